@@ -1,0 +1,130 @@
+//! The output of a sorter: polygons to paint, back to front.
+
+use std::sync::Arc;
+
+use glam::DVec3;
+
+use crate::plane::Plane;
+use crate::polygon_set::PolygonSet;
+
+/// One polygon to paint: a whole piece or a fragment cut from one.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DrawItem {
+    /// Index of the polygon in the list's polygon sets (see [`DrawList::corners`]).
+    pub polygon: u32,
+    /// Index of the source face in the input mesh.
+    pub face: u32,
+}
+
+/// Polygons in paint order (back to front), reused from frame to frame.
+///
+/// Polygons are stored in two places: a shared, immutable set (a sorter's pieces or
+/// precomputed fragments, held by `Arc` so that a frame costs no copy) and a per-frame set of
+/// fragments that a sorter cut during this frame. A polygon index below the shared set's
+/// length refers to the shared set, any other to the per-frame set.
+#[derive(Clone, Debug, Default)]
+pub struct DrawList {
+    shared: Option<Arc<PolygonSet>>,
+    frame: PolygonSet,
+    items: Vec<DrawItem>,
+}
+
+impl DrawList {
+    /// An empty list.
+    #[must_use]
+    pub fn new() -> Self {
+        DrawList {
+            shared: None,
+            frame: PolygonSet::new(),
+            items: Vec::new(),
+        }
+    }
+
+    /// The items in paint order.
+    #[must_use]
+    pub fn items(&self) -> &[DrawItem] {
+        &self.items
+    }
+
+    /// Number of items.
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.items.len()
+    }
+
+    /// Whether nothing is drawn.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.items.is_empty()
+    }
+
+    /// Corners of an item's polygon (centred model space).
+    #[inline]
+    #[must_use]
+    pub fn corners(&self, item: DrawItem) -> &[DVec3] {
+        let (set, i) = self.locate(item.polygon);
+        set.corners(i)
+    }
+
+    /// Plane of an item's polygon (centred model space).
+    #[inline]
+    #[must_use]
+    pub fn plane(&self, item: DrawItem) -> &Plane {
+        let (set, i) = self.locate(item.polygon);
+        set.plane(i)
+    }
+
+    /// Number of polygons cut during the last frame (Newell's splits).
+    #[must_use]
+    pub fn frame_fragments(&self) -> usize {
+        self.frame.len()
+    }
+
+    #[inline]
+    fn locate(&self, polygon: u32) -> (&PolygonSet, usize) {
+        let shared_len = self.shared.as_ref().map_or(0, |s| s.len());
+        let p = polygon as usize;
+        if p < shared_len {
+            (self.shared.as_deref().expect("shared set present"), p)
+        } else {
+            (&self.frame, p - shared_len)
+        }
+    }
+
+    // --- for sorters ---
+
+    /// Starts a frame over `shared` polygons: clears the items and the per-frame set.
+    /// Costs no allocation when the same `Arc` (or any, once capacity is reached) is passed.
+    pub fn begin(&mut self, shared: &Arc<PolygonSet>) {
+        match &self.shared {
+            Some(current) if Arc::ptr_eq(current, shared) => {}
+            _ => self.shared = Some(Arc::clone(shared)),
+        }
+        self.frame.clear();
+        self.items.clear();
+    }
+
+    /// Appends an item.
+    #[inline]
+    pub fn push(&mut self, polygon: u32, face: u32) {
+        self.items.push(DrawItem { polygon, face });
+    }
+
+    /// Adds a per-frame polygon (a fragment cut this frame) and returns its polygon index
+    /// (not yet an item: call [`push`](Self::push) to draw it).
+    pub fn add_frame_polygon(&mut self, corners: &[DVec3], face: u32, plane: Plane) -> u32 {
+        let shared_len = self.shared.as_ref().map_or(0, |s| s.len()) as u32;
+        shared_len + self.frame.push(corners, face, plane)
+    }
+
+    /// The items, mutable, for sorters that fill them in place.
+    pub fn items_mut(&mut self) -> &mut Vec<DrawItem> {
+        &mut self.items
+    }
+
+    /// The shared set of the current frame.
+    #[must_use]
+    pub fn shared(&self) -> Option<&Arc<PolygonSet>> {
+        self.shared.as_ref()
+    }
+}

@@ -1,0 +1,39 @@
+//! The crate's error type.
+
+use thiserror::Error;
+
+/// Why a [`PolygonMesh`](crate::PolygonMesh) could not be built.
+#[derive(Debug, Error, Clone, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum MeshError {
+    /// A position has a NaN or infinite coordinate.
+    #[error("vertex {vertex} has a NaN or infinite coordinate")]
+    NonFinitePosition {
+        /// Vertex index (0-based).
+        vertex: usize,
+    },
+    /// A face has fewer than 3 corners (or absurdly many).
+    #[error("face {face} has {corners} corners; a face needs 3 to {max}", max = crate::mesh::MAX_FACE_CORNERS)]
+    BadArity {
+        /// Face index (0-based).
+        face: usize,
+        /// Its number of corners.
+        corners: usize,
+    },
+    /// A face refers to a vertex that does not exist.
+    #[error("face {face} refers to vertex {index}, but there are only {positions} positions")]
+    IndexOutOfRange {
+        /// Face index (0-based).
+        face: usize,
+        /// The bad index.
+        index: u32,
+        /// Number of positions.
+        positions: usize,
+    },
+    /// The mesh has more corners than 32-bit indices can address.
+    #[error("the mesh has more than 2^32 face corners")]
+    TooLarge,
+    /// The mesh has no face with positive area.
+    #[error("the mesh has no face with positive area")]
+    Empty,
+}

@@ -1,0 +1,130 @@
+//! A mesh prepared for ordering: planar convex pieces in centred model space.
+
+use std::sync::Arc;
+
+use glam::DVec3;
+
+use crate::plane::{Plane, newell_normal};
+use crate::polygon_set::PolygonSet;
+use crate::tolerance::{DEGENERATE_AREA, PLANARITY};
+use crate::{Bounds, MeshError, PolygonMesh};
+
+/// A mesh cut into **pieces**, the units every sorter, the oracle and the truth work on
+/// (CONVENTIONS.md): a planar face is one piece; a non-planar face is the fan of triangles
+/// `(0, 1, 2), (0, 2, 3), …`, each a piece keeping the face's index. Pieces without area
+/// are dropped.
+///
+/// Planar faces are snapped onto their fitted plane (a move of at most `1e-6 · D`), so that
+/// every piece is exactly planar and its plane is the one the truth uses.
+#[derive(Clone, Debug)]
+pub struct Geometry {
+    pieces: Arc<PolygonSet>,
+    bounds: Bounds,
+    face_count: usize,
+    non_planar_faces: usize,
+    dropped_pieces: usize,
+}
+
+impl Geometry {
+    /// Cuts `mesh` into pieces. Errors when no piece has area.
+    pub fn new(mesh: &PolygonMesh) -> Result<Self, MeshError> {
+        let bounds = mesh.bounds().ok_or(MeshError::Empty)?;
+        let centre = bounds.centre();
+        let mut pieces = PolygonSet::new();
+        let mut corners: Vec<DVec3> = Vec::new();
+        let mut non_planar_faces = 0;
+        let mut dropped_pieces = 0;
+        for (face, list) in mesh.faces().enumerate() {
+            corners.clear();
+            corners.extend(list.iter().map(|&i| mesh.positions()[i as usize] - centre));
+            let size = largest_distance(&corners);
+            let plane = Plane::try_from_polygon(&corners);
+            let planar = plane.is_some_and(|p| {
+                corners
+                    .iter()
+                    .all(|&c| p.signed_distance(c).abs() <= PLANARITY * size)
+            });
+            match plane {
+                Some(plane) if planar => {
+                    if newell_normal(&corners).length() <= DEGENERATE_AREA * size * size {
+                        dropped_pieces += 1;
+                        continue;
+                    }
+                    for c in corners.iter_mut() {
+                        *c = plane.project_point(*c);
+                    }
+                    pieces.push(&corners, face as u32, plane);
+                }
+                _ => {
+                    non_planar_faces += 1;
+                    for k in 1..corners.len() - 1 {
+                        let tri = [corners[0], corners[k], corners[k + 1]];
+                        let tri_size = largest_distance(&tri);
+                        let normal = newell_normal(&tri);
+                        match Plane::try_from_polygon(&tri) {
+                            Some(p) if normal.length() > DEGENERATE_AREA * tri_size * tri_size => {
+                                pieces.push(&tri, face as u32, p);
+                            }
+                            _ => dropped_pieces += 1,
+                        }
+                    }
+                }
+            }
+        }
+        if pieces.is_empty() {
+            return Err(MeshError::Empty);
+        }
+        Ok(Geometry {
+            pieces: Arc::new(pieces),
+            bounds,
+            face_count: mesh.face_count(),
+            non_planar_faces,
+            dropped_pieces,
+        })
+    }
+
+    /// The pieces (centred model space).
+    #[must_use]
+    pub fn pieces(&self) -> &Arc<PolygonSet> {
+        &self.pieces
+    }
+
+    /// Bounds of the source mesh (model space).
+    #[must_use]
+    pub fn bounds(&self) -> Bounds {
+        self.bounds
+    }
+
+    /// Number of faces of the source mesh.
+    #[must_use]
+    pub fn face_count(&self) -> usize {
+        self.face_count
+    }
+
+    /// Faces that were not planar and became fans of triangles.
+    #[must_use]
+    pub fn non_planar_faces(&self) -> usize {
+        self.non_planar_faces
+    }
+
+    /// Faces or fan triangles dropped for having no area.
+    #[must_use]
+    pub fn dropped_pieces(&self) -> usize {
+        self.dropped_pieces
+    }
+}
+
+fn largest_distance(corners: &[DVec3]) -> f64 {
+    if corners.len() > 32 {
+        // Bounding-box diagonal: within a factor √3 of the largest distance, and O(n).
+        return Bounds::from_points(corners.iter().copied())
+            .map_or(0.0, |b| (b.max - b.min).length());
+    }
+    let mut best: f64 = 0.0;
+    for (i, a) in corners.iter().enumerate() {
+        for b in &corners[i + 1..] {
+            best = best.max(a.distance_squared(*b));
+        }
+    }
+    best.sqrt()
+}

@@ -1,0 +1,157 @@
+//! The exact, resolution-free judge of a draw order (CONVENTIONS.md).
+//!
+//! An **order violation** is a pair of drawn polygons whose projections overlap with positive
+//! area, where the one drawn later lies behind the other at a point inside the overlap by more
+//! than `1e-9 · L` in view depth. Everything is computed in f64 from the polygons' planes.
+
+use glam::{DVec2, DVec3};
+
+use crate::polygon::{Box2, clip_convex_2d, signed_area_2d};
+use crate::tolerance::{ORACLE_DEPTH, OVERLAP_AREA};
+use crate::{DrawList, ProjectionScratch, View};
+
+/// One violating pair.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Violation {
+    /// Position in the draw list of the polygon drawn first.
+    pub earlier: usize,
+    /// Position of the polygon drawn later, which lies behind the earlier one.
+    pub later: usize,
+    /// By how much (view depth, model units) the later polygon is behind, at the worst point
+    /// of the overlap found.
+    pub depth_gap: f64,
+}
+
+/// Number of order violations of `list` under `view`.
+#[must_use]
+pub fn count_violations(view: &View, list: &DrawList) -> usize {
+    let mut count = 0;
+    for_each_violation(view, list, |_| count += 1);
+    count
+}
+
+/// The violations of `list` under `view`, at most `limit` of them.
+#[must_use]
+pub fn find_violations(view: &View, list: &DrawList, limit: usize) -> Vec<Violation> {
+    let mut found = Vec::new();
+    for_each_violation(view, list, |v| {
+        if found.len() < limit {
+            found.push(v);
+        }
+    });
+    found
+}
+
+struct Projected {
+    points: Vec<DVec2>,
+    starts: Vec<usize>,
+    boxes: Vec<Box2>,
+    /// View-space plane per item: normal and offset.
+    planes: Vec<(DVec3, f64)>,
+}
+
+fn project_all(view: &View, list: &DrawList) -> Projected {
+    let mut p = Projected {
+        points: Vec::new(),
+        starts: vec![0],
+        boxes: Vec::new(),
+        planes: Vec::new(),
+    };
+    let mut out = Vec::new();
+    let mut scratch = ProjectionScratch::default();
+    for &item in list.items() {
+        view.project_polygon(list.corners(item), &mut out, &mut scratch);
+        p.points.extend_from_slice(&out);
+        p.starts.push(p.points.len());
+        p.boxes.push(if out.is_empty() {
+            Box2::EMPTY
+        } else {
+            Box2::from_points(&out)
+        });
+        let plane = list.plane(item);
+        p.planes
+            .push((view.to_view(plane.normal()), plane.offset()));
+    }
+    p
+}
+
+/// View depth (view-space z, larger is nearer) where the ray through pixel `pixel` meets the
+/// plane `n · v = k` (view space); `None` when the ray is parallel to it.
+fn depth_at(view: &View, pixel: DVec2, n: DVec3, k: f64) -> Option<f64> {
+    let s = view.scale();
+    let x = (pixel.x - f64::from(view.width()) * 0.5) / s;
+    let y = -(pixel.y - f64::from(view.height()) * 0.5) / s;
+    match view.eye_in_view() {
+        None => {
+            if n.z.abs() < 1e-300 {
+                return None;
+            }
+            Some((k - n.x * x - n.y * y) / n.z)
+        }
+        Some(eye) => {
+            let dir = DVec3::new(x, y, 0.0) - eye;
+            let denom = n.dot(dir);
+            if denom.abs() < 1e-300 {
+                return None;
+            }
+            let t = (k - n.dot(eye)) / denom;
+            Some(eye.z + t * dir.z)
+        }
+    }
+}
+
+fn for_each_violation(view: &View, list: &DrawList, mut report: impl FnMut(Violation)) {
+    let projected = project_all(view, list);
+    let n = list.len();
+    let scale_area = view.diagonal() * view.scale();
+    let min_area = OVERLAP_AREA * scale_area * scale_area;
+    let tolerance = ORACLE_DEPTH * view.diagonal();
+    let mut by_x: Vec<usize> = (0..n)
+        .filter(|&i| projected.starts[i + 1] > projected.starts[i])
+        .collect();
+    by_x.sort_unstable_by(|&a, &b| {
+        projected.boxes[a]
+            .min
+            .x
+            .total_cmp(&projected.boxes[b].min.x)
+    });
+    let (mut overlap, mut scratch) = (Vec::new(), Vec::new());
+    let poly = |i: usize| &projected.points[projected.starts[i]..projected.starts[i + 1]];
+    for (pos, &a) in by_x.iter().enumerate() {
+        let box_a = projected.boxes[a];
+        for &b in &by_x[pos + 1..] {
+            let box_b = projected.boxes[b];
+            if box_b.min.x >= box_a.max.x {
+                break;
+            }
+            if !box_a.overlaps(&box_b) {
+                continue;
+            }
+            clip_convex_2d(poly(a), poly(b), &mut overlap, &mut scratch);
+            if overlap.len() < 3 || signed_area_2d(&overlap).abs() <= min_area {
+                continue;
+            }
+            let (earlier, later) = if a < b { (a, b) } else { (b, a) };
+            let (ne, ke) = projected.planes[earlier];
+            let (nl, kl) = projected.planes[later];
+            let centroid = overlap.iter().copied().sum::<DVec2>() / overlap.len() as f64;
+            let mut worst = f64::NEG_INFINITY;
+            for &corner in overlap.iter().chain(std::iter::once(&centroid)) {
+                // A hair inside the overlap, so the point is interior.
+                let point = corner + (centroid - corner) * 1e-9;
+                if let (Some(de), Some(dl)) =
+                    (depth_at(view, point, ne, ke), depth_at(view, point, nl, kl))
+                {
+                    worst = worst.max(de - dl);
+                }
+            }
+            if worst > tolerance {
+                report(Violation {
+                    earlier,
+                    later,
+                    depth_gap: worst,
+                });
+            }
+        }
+    }
+}

@@ -1,0 +1,156 @@
+//! Oriented planes with unit normals.
+
+use glam::DVec3;
+
+/// Which side of a plane a point or polygon lies on, with a tolerance.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Side {
+    /// Strictly on the side the normal points to.
+    Front,
+    /// Strictly on the other side.
+    Back,
+    /// Within the tolerance of the plane.
+    On,
+    /// Polygons only: some corners in front, some behind.
+    Spanning,
+}
+
+/// An oriented plane `normal · p = offset`.
+///
+/// # Guarantees
+/// `normal` has unit length (it is normalised at construction).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Plane {
+    normal: DVec3,
+    offset: f64,
+}
+
+impl Plane {
+    /// The plane through `point` with the direction of `normal`; `None` when `normal` is zero
+    /// or not finite.
+    #[must_use]
+    pub fn try_from_point_normal(point: DVec3, normal: DVec3) -> Option<Self> {
+        let unit = normal.try_normalize()?;
+        Some(Plane {
+            normal: unit,
+            offset: unit.dot(point),
+        })
+    }
+
+    /// The fitted plane of a polygon: Newell's normal through the corners' mean.
+    /// `None` when the polygon has no area.
+    #[must_use]
+    pub fn try_from_polygon(corners: &[DVec3]) -> Option<Self> {
+        let normal = newell_normal(corners);
+        let mean = corners.iter().copied().sum::<DVec3>() / corners.len().max(1) as f64;
+        Self::try_from_point_normal(mean, normal)
+    }
+
+    /// Unit normal.
+    #[must_use]
+    pub fn normal(&self) -> DVec3 {
+        self.normal
+    }
+
+    /// `normal · p` for points on the plane.
+    #[must_use]
+    pub fn offset(&self) -> f64 {
+        self.offset
+    }
+
+    /// Signed distance of `p`: positive in front (the side the normal points to).
+    #[inline]
+    #[must_use]
+    pub fn signed_distance(&self, p: DVec3) -> f64 {
+        self.normal.dot(p) - self.offset
+    }
+
+    /// The same plane facing the other way.
+    #[must_use]
+    pub fn flipped(&self) -> Self {
+        Plane {
+            normal: -self.normal,
+            offset: -self.offset,
+        }
+    }
+
+    /// Side of one point, `tolerance` in model units.
+    #[inline]
+    #[must_use]
+    pub fn side_of_point(&self, p: DVec3, tolerance: f64) -> Side {
+        let d = self.signed_distance(p);
+        if d > tolerance {
+            Side::Front
+        } else if d < -tolerance {
+            Side::Back
+        } else {
+            Side::On
+        }
+    }
+
+    /// Side of a polygon: `On` when every corner is on the plane, `Spanning` when corners
+    /// lie strictly on both sides.
+    #[must_use]
+    pub fn side_of_polygon(&self, corners: &[DVec3], tolerance: f64) -> Side {
+        let (mut front, mut back) = (false, false);
+        for &p in corners {
+            match self.side_of_point(p, tolerance) {
+                Side::Front => front = true,
+                Side::Back => back = true,
+                _ => {}
+            }
+        }
+        match (front, back) {
+            (true, true) => Side::Spanning,
+            (true, false) => Side::Front,
+            (false, true) => Side::Back,
+            (false, false) => Side::On,
+        }
+    }
+
+    /// Projects `p` orthogonally onto the plane.
+    #[must_use]
+    pub fn project_point(&self, p: DVec3) -> DVec3 {
+        p - self.normal * self.signed_distance(p)
+    }
+}
+
+/// Newell's normal of a polygon (not normalised; its length is twice the area for a planar
+/// polygon). Counter-clockwise corners seen from the tip give a normal toward the viewer.
+#[must_use]
+pub fn newell_normal(corners: &[DVec3]) -> DVec3 {
+    let n = corners.len();
+    let mut normal = DVec3::ZERO;
+    for i in 0..n {
+        let a = corners[i];
+        let b = corners[(i + 1) % n];
+        normal.x += (a.y - b.y) * (a.z + b.z);
+        normal.y += (a.z - b.z) * (a.x + b.x);
+        normal.z += (a.x - b.x) * (a.y + b.y);
+    }
+    normal
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn newell_normal_of_ccw_square_points_up() {
+        let sq = [
+            DVec3::new(0.0, 0.0, 0.0),
+            DVec3::new(1.0, 0.0, 0.0),
+            DVec3::new(1.0, 1.0, 0.0),
+            DVec3::new(0.0, 1.0, 0.0),
+        ];
+        let n = newell_normal(&sq);
+        assert_eq!(n, DVec3::new(0.0, 0.0, 2.0));
+        let plane = Plane::try_from_polygon(&sq).unwrap();
+        assert_eq!(
+            plane.side_of_point(DVec3::new(0.3, 0.3, 0.5), 1e-9),
+            Side::Front
+        );
+        assert_eq!(plane.side_of_polygon(&sq, 1e-9), Side::On);
+        assert!(Plane::try_from_polygon(&[DVec3::ZERO; 3]).is_none());
+    }
+}

@@ -1,0 +1,179 @@
+//! Convex polygon operations shared by every sorter, the oracle and the sinks:
+//! splitting by a plane, 2D convex clipping, areas.
+
+use glam::{DVec2, DVec3};
+
+use crate::plane::Plane;
+
+/// Splits a convex polygon by `plane`, appending the part in front to `front` and the part
+/// behind to `back` (each left empty when that side has no part). Corners within `tolerance`
+/// of the plane belong to both parts, so the two parts share the cut edge exactly.
+pub fn split_polygon(
+    corners: &[DVec3],
+    plane: &Plane,
+    tolerance: f64,
+    front: &mut Vec<DVec3>,
+    back: &mut Vec<DVec3>,
+) {
+    let n = corners.len();
+    let start_front = front.len();
+    let start_back = back.len();
+    for i in 0..n {
+        let a = corners[i];
+        let b = corners[(i + 1) % n];
+        let da = plane.signed_distance(a);
+        let db = plane.signed_distance(b);
+        let a_on = da.abs() <= tolerance;
+        if a_on {
+            front.push(a);
+            back.push(a);
+        } else if da > 0.0 {
+            front.push(a);
+        } else {
+            back.push(a);
+        }
+        let b_on = db.abs() <= tolerance;
+        if !a_on && !b_on && (da > 0.0) != (db > 0.0) {
+            let t = da / (da - db);
+            let p = a + (b - a) * t;
+            front.push(p);
+            back.push(p);
+        }
+    }
+    if front.len() - start_front < 3 {
+        front.truncate(start_front);
+    }
+    if back.len() - start_back < 3 {
+        back.truncate(start_back);
+    }
+}
+
+/// Twice the signed area of a 2D polygon (positive when counter-clockwise, y up).
+#[must_use]
+pub fn signed_area_2d(corners: &[DVec2]) -> f64 {
+    let n = corners.len();
+    let mut sum = 0.0;
+    for i in 0..n {
+        let a = corners[i];
+        let b = corners[(i + 1) % n];
+        sum += a.perp_dot(b);
+    }
+    sum * 0.5
+}
+
+/// Clips the convex polygon `subject` by the convex polygon `clip` (either winding),
+/// writing the intersection to `out` (cleared first). `scratch` is a reusable buffer.
+pub fn clip_convex_2d(
+    subject: &[DVec2],
+    clip: &[DVec2],
+    out: &mut Vec<DVec2>,
+    scratch: &mut Vec<DVec2>,
+) {
+    out.clear();
+    out.extend_from_slice(subject);
+    let orientation = signed_area_2d(clip).signum();
+    if orientation == 0.0 {
+        out.clear();
+        return;
+    }
+    let m = clip.len();
+    for i in 0..m {
+        if out.is_empty() {
+            return;
+        }
+        let a = clip[i];
+        let b = clip[(i + 1) % m];
+        let edge = b - a;
+        std::mem::swap(out, scratch);
+        out.clear();
+        let inside = |p: DVec2| edge.perp_dot(p - a) * orientation;
+        let k = scratch.len();
+        for j in 0..k {
+            let p = scratch[j];
+            let q = scratch[(j + 1) % k];
+            let dp = inside(p);
+            let dq = inside(q);
+            if dp >= 0.0 {
+                out.push(p);
+            }
+            if (dp >= 0.0) != (dq >= 0.0) {
+                let t = dp / (dp - dq);
+                out.push(p + (q - p) * t);
+            }
+        }
+    }
+}
+
+/// Axis-aligned 2D box.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Box2 {
+    /// Smallest corner.
+    pub min: DVec2,
+    /// Largest corner.
+    pub max: DVec2,
+}
+
+impl Box2 {
+    /// An empty box (adding any point makes it that point).
+    pub const EMPTY: Box2 = Box2 {
+        min: DVec2::splat(f64::INFINITY),
+        max: DVec2::splat(f64::NEG_INFINITY),
+    };
+
+    /// The bounding box of `points`.
+    #[must_use]
+    pub fn from_points(points: &[DVec2]) -> Self {
+        let mut b = Self::EMPTY;
+        for &p in points {
+            b.min = b.min.min(p);
+            b.max = b.max.max(p);
+        }
+        b
+    }
+
+    /// Whether the two boxes overlap with positive width and height.
+    #[inline]
+    #[must_use]
+    pub fn overlaps(&self, other: &Box2) -> bool {
+        self.min.x < other.max.x
+            && other.min.x < self.max.x
+            && self.min.y < other.max.y
+            && other.min.y < self.max.y
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn split_square_in_half() {
+        let sq = [
+            DVec3::new(0.0, 0.0, 0.0),
+            DVec3::new(2.0, 0.0, 0.0),
+            DVec3::new(2.0, 2.0, 0.0),
+            DVec3::new(0.0, 2.0, 0.0),
+        ];
+        let plane = Plane::try_from_point_normal(DVec3::new(1.0, 0.0, 0.0), DVec3::X).unwrap();
+        let (mut f, mut b) = (Vec::new(), Vec::new());
+        split_polygon(&sq, &plane, 1e-12, &mut f, &mut b);
+        assert_eq!(f.len(), 4);
+        assert_eq!(b.len(), 4);
+        assert!(f.iter().all(|p| p.x >= 1.0));
+        assert!(b.iter().all(|p| p.x <= 1.0));
+    }
+
+    #[test]
+    fn clip_overlapping_squares() {
+        let a = [
+            DVec2::new(0.0, 0.0),
+            DVec2::new(2.0, 0.0),
+            DVec2::new(2.0, 2.0),
+            DVec2::new(0.0, 2.0),
+        ];
+        let b: Vec<DVec2> = a.iter().rev().map(|p| *p + DVec2::splat(1.0)).collect();
+        let (mut out, mut s) = (Vec::new(), Vec::new());
+        clip_convex_2d(&a, &b, &mut out, &mut s);
+        assert!((signed_area_2d(&out).abs() - 1.0).abs() < 1e-12);
+    }
+}

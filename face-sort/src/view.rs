@@ -1,0 +1,417 @@
+//! The camera of CONVENTIONS.md: rotation, centre, scale, projection, culling.
+
+use glam::{DMat3, DQuat, DVec2, DVec3, EulerRot};
+
+use crate::Bounds;
+use crate::plane::Plane;
+use crate::tolerance::NEAR_W;
+
+/// Orthographic or perspective projection.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Projection {
+    /// Parallel projection along −Z (the default).
+    Orthographic,
+    /// Eye at `(0, 0, distance)` in pixel space; `distance > 0` in pixels.
+    Perspective {
+        /// Eye distance `d` in pixels.
+        distance: f64,
+    },
+}
+
+/// Which faces culling removes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum CullMode {
+    /// Remove back faces (the default).
+    #[default]
+    Back,
+    /// Remove front faces.
+    Front,
+    /// Keep every face.
+    None,
+}
+
+/// Which winding, seen from outside, is the front.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum FrontFace {
+    /// Counter-clockwise (the default).
+    #[default]
+    CounterClockwise,
+    /// Clockwise.
+    Clockwise,
+}
+
+/// A view of a model per CONVENTIONS.md.
+///
+/// `v = R · (p − c)` (view space, model units), `q = s · v` (pixel space),
+/// orthographic `x = W/2 + q.x, y = H/2 − q.y`; perspective `w = 1 − q.z/d`,
+/// `x = W/2 + q.x/w, y = H/2 − q.y/w`.
+///
+/// Most methods take **centred** model coordinates `p − c`, the coordinates of
+/// [`PolygonSet`](crate::PolygonSet).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct View {
+    rotation: DMat3,
+    centre: DVec3,
+    diagonal: f64,
+    scale: f64,
+    width: u32,
+    height: u32,
+    projection: Projection,
+    cull: CullMode,
+    front: FrontFace,
+    cull_margin_deg: f64,
+}
+
+impl View {
+    /// The default view of a model with these bounds in a `width × height` image: identity
+    /// rotation, centre `c`, scale "fit" `0.9 · min(W, H) / L`, orthographic, cull back faces,
+    /// counter-clockwise front, no cull margin.
+    #[must_use]
+    pub fn fit(bounds: &Bounds, width: u32, height: u32) -> Self {
+        let diagonal = bounds.diagonal();
+        View {
+            rotation: DMat3::IDENTITY,
+            centre: bounds.centre(),
+            diagonal,
+            scale: 0.9 * f64::from(width.min(height).max(1)) / diagonal,
+            width,
+            height,
+            projection: Projection::Orthographic,
+            cull: CullMode::Back,
+            front: FrontFace::CounterClockwise,
+            cull_margin_deg: 0.0,
+        }
+    }
+
+    /// Rotation `Ry(yaw) · Rx(pitch) · Rz(roll)`, angles in degrees.
+    #[must_use]
+    pub fn with_yaw_pitch_roll(mut self, yaw: f64, pitch: f64, roll: f64) -> Self {
+        self.rotation = DMat3::from_euler(
+            EulerRot::YXZ,
+            yaw.to_radians(),
+            pitch.to_radians(),
+            roll.to_radians(),
+        );
+        self
+    }
+
+    /// Any rotation matrix (assumed orthonormal).
+    #[must_use]
+    pub fn with_rotation(mut self, rotation: DMat3) -> Self {
+        self.rotation = rotation;
+        self
+    }
+
+    /// A rotation given as a quaternion (normalised here).
+    #[must_use]
+    pub fn with_quaternion(mut self, rotation: DQuat) -> Self {
+        self.rotation = DMat3::from_quat(rotation.normalize());
+        self
+    }
+
+    /// Scale `s` in pixels per model unit. Default: fit.
+    #[must_use]
+    pub fn with_scale(mut self, scale: f64) -> Self {
+        self.scale = scale;
+        self
+    }
+
+    /// Perspective with eye distance `distance` pixels (CONVENTIONS default: `d = W`).
+    #[must_use]
+    pub fn with_perspective(mut self, distance: f64) -> Self {
+        self.projection = Projection::Perspective { distance };
+        self
+    }
+
+    /// Orthographic projection (the default).
+    #[must_use]
+    pub fn with_orthographic(mut self) -> Self {
+        self.projection = Projection::Orthographic;
+        self
+    }
+
+    /// Cull mode. Default: back.
+    #[must_use]
+    pub fn with_cull(mut self, cull: CullMode) -> Self {
+        self.cull = cull;
+        self
+    }
+
+    /// Front winding. Default: counter-clockwise.
+    #[must_use]
+    pub fn with_front_face(mut self, front: FrontFace) -> Self {
+        self.front = front;
+        self
+    }
+
+    /// Cull margin in degrees: faces up to this far past edge-on stay drawn. Default: 0.
+    #[must_use]
+    pub fn with_cull_margin(mut self, degrees: f64) -> Self {
+        self.cull_margin_deg = degrees;
+        self
+    }
+
+    /// Image size in pixels (the scale is kept).
+    #[must_use]
+    pub fn with_size(mut self, width: u32, height: u32) -> Self {
+        self.width = width;
+        self.height = height;
+        self
+    }
+
+    /// The rotation `R`.
+    #[must_use]
+    pub fn rotation(&self) -> DMat3 {
+        self.rotation
+    }
+    /// The centre `c` (model space).
+    #[must_use]
+    pub fn centre(&self) -> DVec3 {
+        self.centre
+    }
+    /// The model's bounding-box diagonal `L`, the unit of every tolerance.
+    #[must_use]
+    pub fn diagonal(&self) -> f64 {
+        self.diagonal
+    }
+    /// Scale `s`, pixels per model unit.
+    #[must_use]
+    pub fn scale(&self) -> f64 {
+        self.scale
+    }
+    /// Image width in pixels.
+    #[must_use]
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+    /// Image height in pixels.
+    #[must_use]
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+    /// The projection.
+    #[must_use]
+    pub fn projection(&self) -> Projection {
+        self.projection
+    }
+    /// The cull mode.
+    #[must_use]
+    pub fn cull(&self) -> CullMode {
+        self.cull
+    }
+    /// The front winding.
+    #[must_use]
+    pub fn front_face(&self) -> FrontFace {
+        self.front
+    }
+    /// The cull margin in degrees.
+    #[must_use]
+    pub fn cull_margin(&self) -> f64 {
+        self.cull_margin_deg
+    }
+
+    /// View-space position of a centred model point: `R · p`.
+    #[inline]
+    #[must_use]
+    pub fn to_view(&self, centred: DVec3) -> DVec3 {
+        self.rotation * centred
+    }
+
+    /// Eye position in view space, `(0, 0, d/s)`; `None` when orthographic.
+    #[must_use]
+    pub fn eye_in_view(&self) -> Option<DVec3> {
+        match self.projection {
+            Projection::Orthographic => None,
+            Projection::Perspective { distance } => {
+                Some(DVec3::new(0.0, 0.0, distance / self.scale))
+            }
+        }
+    }
+
+    /// Where the viewer is, in centred model space: `Eye(point)` for perspective, or
+    /// `Direction(unit vector toward the viewer)` for orthographic.
+    #[must_use]
+    pub fn viewer(&self) -> Viewer {
+        let back = self.rotation.transpose();
+        match self.eye_in_view() {
+            Some(eye) => Viewer::Eye(back * eye),
+            None => Viewer::Direction(back * DVec3::Z),
+        }
+    }
+
+    /// Screen position (pixels) of a view-space point; `None` when it lies behind the near plane.
+    #[inline]
+    #[must_use]
+    pub fn project_view_point(&self, v: DVec3) -> Option<DVec2> {
+        let half = DVec2::new(f64::from(self.width), f64::from(self.height)) * 0.5;
+        let q = v * self.scale;
+        let w = self.w_of_view_point(v);
+        if w < NEAR_W * (1.0 - 1e-12) {
+            return None;
+        }
+        Some(DVec2::new(half.x + q.x / w, half.y - q.y / w))
+    }
+
+    /// `w = 1 − q.z/d` for perspective, 1 for orthographic.
+    #[inline]
+    #[must_use]
+    pub fn w_of_view_point(&self, v: DVec3) -> f64 {
+        match self.projection {
+            Projection::Orthographic => 1.0,
+            Projection::Perspective { distance } => 1.0 - v.z * self.scale / distance,
+        }
+    }
+
+    /// Projects a polygon (centred model space) to pixel coordinates, clipping it first against
+    /// the near plane `w ≥ 1e-3` in perspective. `out` is cleared; it stays empty when
+    /// nothing is in front of the near plane. `scratch` holds reusable buffers.
+    pub fn project_polygon(
+        &self,
+        corners: &[DVec3],
+        out: &mut Vec<DVec2>,
+        scratch: &mut ProjectionScratch,
+    ) {
+        out.clear();
+        let view = &mut scratch.view;
+        view.clear();
+        view.extend(corners.iter().map(|&p| self.to_view(p)));
+        if let Projection::Perspective { distance } = self.projection {
+            // Keep w ≥ NEAR_W  ⇔  z ≤ (1 − NEAR_W)·d/s.
+            let z_max = (1.0 - NEAR_W) * distance / self.scale;
+            if view.iter().any(|v| v.z > z_max) {
+                let near = Plane::try_from_point_normal(DVec3::new(0.0, 0.0, z_max), -DVec3::Z)
+                    .expect("a unit normal is never zero");
+                scratch.kept.clear();
+                scratch.dropped.clear();
+                crate::polygon::split_polygon(
+                    view,
+                    &near,
+                    0.0,
+                    &mut scratch.kept,
+                    &mut scratch.dropped,
+                );
+                view.clear();
+                view.extend(
+                    scratch
+                        .kept
+                        .iter()
+                        .map(|v| DVec3::new(v.x, v.y, v.z.min(z_max))),
+                );
+            }
+        }
+        for &v in view.iter() {
+            if let Some(p) = self.project_view_point(v) {
+                out.push(p);
+            }
+        }
+        if out.len() < 3 {
+            out.clear();
+        }
+    }
+
+    /// Whether a piece with this plane and first corner (centred model space) is drawn under
+    /// the view's cull mode, front winding and margin (CONVENTIONS.md).
+    #[inline]
+    #[must_use]
+    pub fn is_drawn(&self, plane: &Plane, corner0: DVec3) -> bool {
+        is_drawn_for(&self.cull_test(), plane, corner0)
+    }
+
+    /// The culling parameters of this view, precomputed for a loop over many pieces.
+    #[must_use]
+    pub fn cull_test(&self) -> CullTest {
+        let sign = match self.front {
+            FrontFace::CounterClockwise => 1.0,
+            FrontFace::Clockwise => -1.0,
+        };
+        let (keep_front, keep_back) = match self.cull {
+            CullMode::Back => (true, false),
+            CullMode::Front => (false, true),
+            CullMode::None => (true, true),
+        };
+        CullTest {
+            viewer: self.viewer(),
+            sign,
+            keep_front,
+            keep_back,
+            sin_margin: self.cull_margin_deg.to_radians().sin().max(0.0),
+        }
+    }
+}
+
+/// Where the viewer is, in centred model space.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Viewer {
+    /// Orthographic: unit direction toward the viewer.
+    Direction(DVec3),
+    /// Perspective: the eye point.
+    Eye(DVec3),
+}
+
+impl Viewer {
+    /// Signed "toward the viewer" value of a plane: positive when the viewer is on the side
+    /// the plane's normal points to. Orthographic: `n · dir`; perspective: signed distance of the eye.
+    #[inline]
+    #[must_use]
+    pub fn facing(&self, plane: &Plane) -> f64 {
+        match *self {
+            Viewer::Direction(d) => plane.normal().dot(d),
+            Viewer::Eye(e) => plane.signed_distance(e),
+        }
+    }
+}
+
+/// Precomputed culling parameters of a [`View`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CullTest {
+    /// The viewer.
+    pub viewer: Viewer,
+    sign: f64,
+    keep_front: bool,
+    keep_back: bool,
+    sin_margin: f64,
+}
+
+impl CullTest {
+    /// Whether a piece with this plane and first corner is drawn.
+    #[inline]
+    #[must_use]
+    pub fn is_drawn(&self, plane: &Plane, corner0: DVec3) -> bool {
+        is_drawn_for(self, plane, corner0)
+    }
+}
+
+#[inline]
+fn is_drawn_for(test: &CullTest, plane: &Plane, corner0: DVec3) -> bool {
+    if test.keep_front && test.keep_back {
+        return true;
+    }
+    let n = plane.normal() * test.sign;
+    let (value, scale) = match test.viewer {
+        Viewer::Direction(d) => (n.dot(d), 1.0),
+        Viewer::Eye(e) => {
+            let to_eye = e - corner0;
+            let value = n.dot(to_eye);
+            let scale = if test.sin_margin > 0.0 {
+                to_eye.length()
+            } else {
+                1.0
+            };
+            (value, scale)
+        }
+    };
+    let threshold = -test.sin_margin * scale;
+    if test.keep_front {
+        value > threshold
+    } else {
+        -value > threshold
+    }
+}
+
+/// Reusable buffers for [`View::project_polygon`].
+#[derive(Clone, Debug, Default)]
+pub struct ProjectionScratch {
+    view: Vec<DVec3>,
+    kept: Vec<DVec3>,
+    dropped: Vec<DVec3>,
+}
