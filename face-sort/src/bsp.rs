@@ -1,16 +1,365 @@
-//! Placeholder: delegates to the centroid order until implemented.
+//! A BSP tree built once per geometry and traversed per view: exact for any rigid mesh.
 
-use crate::{Centroid, DrawList, FaceSorter, Geometry, View};
+use std::sync::Arc;
+use std::time::Instant;
 
-/// Placeholder.
+use glam::DVec3;
+
+use crate::plane::{Plane, Side};
+use crate::polygon::split_polygon;
+use crate::tolerance::PLANE_SIDE;
+use crate::{DrawList, FaceSorter, Geometry, PolygonSet, SorterStats, View};
+
+const NONE: u32 = u32::MAX;
+
+/// How the splitter of each node is chosen.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct BspOptions {
+    /// Weight of one split against one unit of imbalance `|front − back|`. Default: 8.
+    pub split_weight: f64,
+    /// Candidate splitters tried per node; all polygons are tried when there are fewer.
+    /// Default: 12.
+    pub candidates: usize,
+    /// Polygons classified per candidate when scoring it (a deterministic sample on large
+    /// nodes). Default: 1024.
+    pub score_sample: usize,
+}
+
+impl BspOptions {
+    /// The defaults.
+    pub const DEFAULT: BspOptions = BspOptions {
+        split_weight: 8.0,
+        candidates: 12,
+        score_sample: 1024,
+    };
+}
+
+impl Default for BspOptions {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
+/// One node, in pre-order (node, front subtree, back subtree).
+#[derive(Clone, Copy, Debug)]
+struct Node {
+    /// Fragments lying in the node's plane: `[first, first + same)` face the plane's way,
+    /// `[first + same, first + same + opposite)` face the other way.
+    first: u32,
+    same: u32,
+    opposite: u32,
+    front_child: u32,
+    back_child: u32,
+    /// Fragments in the front and back subtrees.
+    front_size: u32,
+    back_size: u32,
+}
+
+/// The immutable tree, shareable between views and threads (`Arc`).
 #[derive(Debug)]
-pub struct Bsp(Centroid);
+pub struct BspTree {
+    planes: Vec<Plane>,
+    nodes: Vec<Node>,
+    /// Fragments in pre-order: node by node, each node's own fragments contiguous.
+    fragments: Arc<PolygonSet>,
+    /// Piece each fragment was cut from.
+    fragment_piece: Vec<u32>,
+    pieces: Arc<PolygonSet>,
+    build_ms: f64,
+    depth: usize,
+}
+
+impl BspTree {
+    /// Builds the tree over a geometry's pieces, in f64, with the plane tolerance
+    /// `PLANE_SIDE · L`.
+    #[must_use]
+    pub fn build(geometry: &Geometry, options: &BspOptions) -> Self {
+        let start = Instant::now();
+        let pieces = Arc::clone(geometry.pieces());
+        let tolerance = PLANE_SIDE * geometry.bounds().diagonal();
+        let mut builder = Builder {
+            work: PolygonSet::new(),
+            work_piece: Vec::new(),
+            nodes: Vec::new(),
+            planes: Vec::new(),
+            fragments: PolygonSet::new(),
+            fragment_piece: Vec::new(),
+            tolerance,
+            options: *options,
+            corners_front: Vec::new(),
+            corners_back: Vec::new(),
+        };
+        for i in 0..pieces.len() {
+            builder
+                .work
+                .push(pieces.corners(i), pieces.face(i), *pieces.plane(i));
+            builder.work_piece.push(i as u32);
+        }
+        let depth = builder.build_all((0..pieces.len() as u32).collect());
+        BspTree {
+            planes: builder.planes,
+            nodes: builder.nodes,
+            fragments: Arc::new(builder.fragments),
+            fragment_piece: builder.fragment_piece,
+            pieces,
+            build_ms: start.elapsed().as_secs_f64() * 1e3,
+            depth,
+        }
+    }
+
+    /// Number of fragments (pieces, some cut in parts).
+    #[must_use]
+    pub fn fragment_count(&self) -> usize {
+        self.fragments.len()
+    }
+
+    /// Number of nodes.
+    #[must_use]
+    pub fn node_count(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// Longest root-to-leaf path, in nodes.
+    #[must_use]
+    pub fn depth(&self) -> usize {
+        self.depth
+    }
+
+    /// Build time in milliseconds.
+    #[must_use]
+    pub fn build_ms(&self) -> f64 {
+        self.build_ms
+    }
+
+    /// The fragments (centred model space), in the tree's storage order.
+    #[must_use]
+    pub fn fragments(&self) -> &Arc<PolygonSet> {
+        &self.fragments
+    }
+
+    /// Heap bytes of the tree.
+    #[must_use]
+    pub fn heap_bytes(&self) -> usize {
+        self.planes.capacity() * size_of::<Plane>()
+            + self.nodes.capacity() * size_of::<Node>()
+            + self.fragments.heap_bytes()
+            + self.fragment_piece.capacity() * 4
+    }
+}
+
+struct Builder {
+    work: PolygonSet,
+    work_piece: Vec<u32>,
+    nodes: Vec<Node>,
+    planes: Vec<Plane>,
+    fragments: PolygonSet,
+    fragment_piece: Vec<u32>,
+    tolerance: f64,
+    options: BspOptions,
+    corners_front: Vec<DVec3>,
+    corners_back: Vec<DVec3>,
+}
+
+struct Task {
+    polygons: Vec<u32>,
+    parent: u32,
+    is_front: bool,
+    depth: usize,
+}
+
+impl Builder {
+    fn build_all(&mut self, all: Vec<u32>) -> usize {
+        let mut stack = vec![Task {
+            polygons: all,
+            parent: NONE,
+            is_front: false,
+            depth: 1,
+        }];
+        let mut max_depth = 0;
+        while let Some(task) = stack.pop() {
+            if task.polygons.is_empty() {
+                continue;
+            }
+            max_depth = max_depth.max(task.depth);
+            let index = self.nodes.len() as u32;
+            if task.parent != NONE {
+                let parent = &mut self.nodes[task.parent as usize];
+                if task.is_front {
+                    parent.front_child = index;
+                } else {
+                    parent.back_child = index;
+                }
+            }
+            let splitter = self.choose_splitter(&task.polygons);
+            let plane = *self.work.plane(splitter as usize);
+            let (mut same, mut opposite, mut front, mut back) =
+                (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+            for &p in &task.polygons {
+                let side = if p == splitter {
+                    Side::On
+                } else {
+                    plane.side_of_polygon(self.work.corners(p as usize), self.tolerance)
+                };
+                match side {
+                    Side::On => {
+                        if self.work.plane(p as usize).normal().dot(plane.normal()) >= 0.0 {
+                            same.push(p);
+                        } else {
+                            opposite.push(p);
+                        }
+                    }
+                    Side::Front => front.push(p),
+                    Side::Back => back.push(p),
+                    Side::Spanning => {
+                        let (f, b) = self.split(p, &plane);
+                        front.extend(f);
+                        back.extend(b);
+                    }
+                }
+            }
+            let first = self.fragments.len() as u32;
+            for &p in same.iter().chain(&opposite) {
+                let p = p as usize;
+                self.fragments
+                    .push(self.work.corners(p), self.work.face(p), *self.work.plane(p));
+                self.fragment_piece.push(self.work_piece[p]);
+            }
+            self.planes.push(plane);
+            self.nodes.push(Node {
+                first,
+                same: same.len() as u32,
+                opposite: opposite.len() as u32,
+                front_child: NONE,
+                back_child: NONE,
+                front_size: 0,
+                back_size: 0,
+            });
+            // Back pushed first so that the front subtree is built (numbered) first: pre-order.
+            stack.push(Task {
+                polygons: back,
+                parent: index,
+                is_front: false,
+                depth: task.depth + 1,
+            });
+            stack.push(Task {
+                polygons: front,
+                parent: index,
+                is_front: true,
+                depth: task.depth + 1,
+            });
+        }
+        // Subtree sizes, children after parents in pre-order.
+        let mut size = vec![0u32; self.nodes.len()];
+        for k in (0..self.nodes.len()).rev() {
+            let node = self.nodes[k];
+            let child_size = |c: u32| if c == NONE { 0 } else { size[c as usize] };
+            let front_size = child_size(node.front_child);
+            let back_size = child_size(node.back_child);
+            self.nodes[k].front_size = front_size;
+            self.nodes[k].back_size = back_size;
+            size[k] = node.same + node.opposite + front_size + back_size;
+        }
+        max_depth
+    }
+
+    /// Splits work polygon `p` by `plane`; returns the new front and back polygon ids.
+    fn split(&mut self, p: u32, plane: &Plane) -> (Option<u32>, Option<u32>) {
+        self.corners_front.clear();
+        self.corners_back.clear();
+        split_polygon(
+            self.work.corners(p as usize),
+            plane,
+            self.tolerance,
+            &mut self.corners_front,
+            &mut self.corners_back,
+        );
+        let face = self.work.face(p as usize);
+        let own_plane = *self.work.plane(p as usize);
+        let piece = self.work_piece[p as usize];
+        let add = |corners: &Vec<DVec3>, work: &mut PolygonSet, work_piece: &mut Vec<u32>| {
+            if corners.len() >= 3 {
+                work_piece.push(piece);
+                Some(work.push(corners, face, own_plane))
+            } else {
+                None
+            }
+        };
+        let f = add(&self.corners_front, &mut self.work, &mut self.work_piece);
+        let b = add(&self.corners_back, &mut self.work, &mut self.work_piece);
+        (f, b)
+    }
+
+    fn choose_splitter(&self, polygons: &[u32]) -> u32 {
+        let n = polygons.len();
+        if n <= 2 {
+            return polygons[0];
+        }
+        let candidates = self.options.candidates.max(1).min(n);
+        let sample = self.options.score_sample.max(1).min(n);
+        let mut best = (f64::INFINITY, polygons[0]);
+        for c in 0..candidates {
+            // Evenly spread, deterministic candidates.
+            let candidate = polygons[(c * n) / candidates + (n / candidates) / 2];
+            let plane = self.work.plane(candidate as usize);
+            let (mut front, mut back, mut splits) = (0usize, 0usize, 0usize);
+            for s in 0..sample {
+                let p = polygons[(s * n) / sample];
+                if p == candidate {
+                    continue;
+                }
+                match plane.side_of_polygon(self.work.corners(p as usize), self.tolerance) {
+                    Side::Front => front += 1,
+                    Side::Back => back += 1,
+                    Side::Spanning => splits += 1,
+                    Side::On => {}
+                }
+            }
+            let score = self.options.split_weight * splits as f64 + front.abs_diff(back) as f64;
+            if score < best.0 {
+                best = (score, candidate);
+            }
+        }
+        best.1
+    }
+}
+
+/// Exact back-to-front order from a BSP tree built once per geometry.
+///
+/// The tree ([`BspTree`]) is immutable and shared through an `Arc`, so any number of views or
+/// threads can use one build. Per view, one linear pass over the nodes in pre-order places
+/// every node's fragments (no stack, no recursion: each node's subtree sizes are known at
+/// build time), then the fragments are culled each by its own plane.
+#[derive(Debug)]
+pub struct Bsp {
+    tree: Arc<BspTree>,
+    base: Vec<u32>,
+    order: Vec<u32>,
+    piece_drawn: Vec<bool>,
+}
 
 impl Bsp {
-    /// Placeholder.
+    /// Builds a tree with the default options.
     #[must_use]
     pub fn new(geometry: &Geometry) -> Self {
-        Bsp(Centroid::new(geometry))
+        Self::from_tree(Arc::new(BspTree::build(geometry, &BspOptions::DEFAULT)))
+    }
+
+    /// A sorter over an existing (possibly shared) tree.
+    #[must_use]
+    pub fn from_tree(tree: Arc<BspTree>) -> Self {
+        Bsp {
+            base: vec![0; tree.nodes.len()],
+            order: vec![0; tree.fragments.len()],
+            piece_drawn: vec![false; tree.pieces.len()],
+            tree,
+        }
+    }
+
+    /// The tree.
+    #[must_use]
+    pub fn tree(&self) -> &Arc<BspTree> {
+        &self.tree
     }
 }
 
@@ -18,7 +367,72 @@ impl FaceSorter for Bsp {
     fn name(&self) -> &'static str {
         "bsp"
     }
+
     fn sort(&mut self, view: &View, out: &mut DrawList) {
-        self.0.sort(view, out);
+        let tree = &*self.tree;
+        let cull = view.cull_test();
+        let viewer = cull.viewer;
+        // Cull per piece: fragments share their piece's plane, and each is culled by it.
+        for (i, plane) in tree.pieces.planes().iter().enumerate() {
+            self.piece_drawn[i] = cull.is_drawn(plane, tree.pieces.corners(i)[0]);
+        }
+        if let Some(first) = self.base.first_mut() {
+            *first = 0;
+        }
+        for (k, node) in tree.nodes.iter().enumerate() {
+            let b = self.base[k];
+            let viewer_in_front = viewer.facing(&tree.planes[k]) >= 0.0;
+            let (first_child, second_child, first_size) = if viewer_in_front {
+                (node.back_child, node.front_child, node.back_size)
+            } else {
+                (node.front_child, node.back_child, node.front_size)
+            };
+            if first_child != NONE {
+                self.base[first_child as usize] = b;
+            }
+            let own = b + first_size;
+            let own_len = node.same + node.opposite;
+            if second_child != NONE {
+                self.base[second_child as usize] = own + own_len;
+            }
+            // Within the plane, polygons facing away from the viewer go first.
+            let (first_group, first_len, second_group, second_len) = if viewer_in_front {
+                (node.first + node.same, node.opposite, node.first, node.same)
+            } else {
+                (node.first, node.same, node.first + node.same, node.opposite)
+            };
+            let slot = &mut self.order[own as usize..(own + own_len) as usize];
+            for (j, s) in slot.iter_mut().enumerate() {
+                let j = j as u32;
+                *s = if j < first_len {
+                    first_group + j
+                } else {
+                    second_group + (j - first_len).min(second_len.saturating_sub(1))
+                };
+            }
+        }
+        out.begin(&tree.fragments);
+        let items = out.items_mut();
+        for &f in &self.order {
+            if self.piece_drawn[tree.fragment_piece[f as usize] as usize] {
+                items.push(crate::DrawItem {
+                    polygon: f,
+                    face: tree.fragments.face(f as usize),
+                });
+            }
+        }
+    }
+
+    fn stats(&self) -> SorterStats {
+        SorterStats {
+            build_ms: self.tree.build_ms,
+            polygons: self.tree.fragments.len(),
+            cached_bytes: self.tree.heap_bytes()
+                + self.base.capacity() * 4
+                + self.order.capacity() * 4
+                + self.piece_drawn.capacity(),
+            depth: self.tree.depth,
+            fallbacks: 0,
+        }
     }
 }

@@ -50,7 +50,7 @@ pub mod tolerance;
 mod topological;
 mod view;
 
-pub use bsp::Bsp;
+pub use bsp::{Bsp, BspOptions, BspTree};
 pub use centroid::Centroid;
 pub use draw_list::{DrawItem, DrawList};
 pub use error::MeshError;
