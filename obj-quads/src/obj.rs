@@ -1,0 +1,491 @@
+//! Wavefront OBJ (+ MTL) loading through `tobj`, with triangulation off.
+
+use std::cell::RefCell;
+use std::io::Read;
+use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::path::{Path, PathBuf};
+
+use glam::{DVec3, Vec2};
+
+use crate::build::{RawMesh, finish};
+use crate::error::FaceLocation;
+use crate::{LoadError, LoadOptions, LoadReport, Material, Mesh};
+
+/// Display name of in-memory input in error messages.
+pub(crate) const MEMORY: &str = "<memory>";
+
+/// Loads an OBJ file (and the MTL libraries it names, relative to the OBJ's
+/// directory).
+///
+/// A missing or broken MTL file is a warning in the report, not an error.
+pub fn load_obj(path: impl AsRef<Path>, options: &LoadOptions) -> Result<(Mesh, LoadReport), LoadError> {
+    let path = path.as_ref();
+    let file = path.display().to_string();
+    let bytes = crate::read_file_capped(path, &file, options.max_file_bytes)?;
+    let text = utf8(&bytes, &file)?;
+    load_obj_text(text, file, path.parent(), options)
+}
+
+/// Loads OBJ text from memory. `mtllib` lines cannot be resolved and are
+/// reported as warnings; faces get no material.
+///
+/// ```
+/// let obj = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n";
+/// let (mesh, report) = obj_quads::load_obj_str(obj, &Default::default()).unwrap();
+/// assert_eq!(mesh.face(0), Some(&[0u32, 1, 2, 3][..]));
+/// assert_eq!(report.faces_kept, 1);
+/// ```
+pub fn load_obj_str(text: &str, options: &LoadOptions) -> Result<(Mesh, LoadReport), LoadError> {
+    load_obj_text(text, MEMORY.to_owned(), None, options)
+}
+
+/// Loads OBJ from a reader. MTL libraries are resolved relative to `base_dir`
+/// when given, and otherwise reported as warnings. At most
+/// [`LoadOptions::max_file_bytes`] bytes are read.
+pub fn load_obj_reader(
+    reader: impl Read,
+    base_dir: Option<&Path>,
+    options: &LoadOptions,
+) -> Result<(Mesh, LoadReport), LoadError> {
+    let file = MEMORY.to_owned();
+    let bytes = crate::read_capped(reader, &file, options.max_file_bytes)?;
+    let text = utf8(&bytes, &file)?;
+    load_obj_text(text, file, base_dir, options)
+}
+
+fn utf8<'a>(bytes: &'a [u8], file: &str) -> Result<&'a str, LoadError> {
+    std::str::from_utf8(bytes).map_err(|e| {
+        let valid = bytes.get(..e.valid_up_to()).unwrap_or(&[]);
+        LoadError::InvalidText {
+            file: file.to_owned(),
+            line: Some(valid.iter().filter(|&&b| b == b'\n').count() + 1),
+        }
+    })
+}
+
+/// One `f` or `l` line, in file order.
+struct FaceLine {
+    line: usize,
+    is_face: bool,
+}
+
+/// Cheap pass over the text: face lines with their line numbers, limits,
+/// and non-finite vertex coordinates.
+fn prescan(text: &str, file: &str, options: &LoadOptions) -> Result<Vec<FaceLine>, LoadError> {
+    let mut lines = Vec::new();
+    let mut vertices = 0usize;
+    let mut faces = 0usize;
+    let mut object = "unnamed_object".to_owned();
+    for (i, line) in text.lines().enumerate() {
+        let mut words = line.split_whitespace();
+        match words.next() {
+            Some("v") => {
+                vertices += 1;
+                if vertices > options.max_vertices {
+                    return Err(too_large(file, "vertex count", vertices, options.max_vertices));
+                }
+                for w in words.take(3) {
+                    if let Ok(x) = w.parse::<f64>() {
+                        if !x.is_finite() {
+                            return Err(LoadError::NonFiniteCoordinate {
+                                file: file.to_owned(),
+                                line: Some(i + 1),
+                                what: format!("vertex {vertices} (object `{object}`)"),
+                            });
+                        }
+                    }
+                }
+            }
+            Some(kw @ ("f" | "l")) => {
+                let is_face = kw == "f";
+                if is_face {
+                    let corners = words.count();
+                    if corners > options.max_face_corners {
+                        return Err(LoadError::TooManyCorners {
+                            file: file.to_owned(),
+                            at: FaceLocation {
+                                object: object.clone(),
+                                face: faces,
+                                line: Some(i + 1),
+                            },
+                            corners,
+                            max: options.max_face_corners,
+                        });
+                    }
+                    faces += 1;
+                    if faces > options.max_faces {
+                        return Err(too_large(file, "face count", faces, options.max_faces));
+                    }
+                }
+                lines.push(FaceLine {
+                    line: i + 1,
+                    is_face,
+                });
+            }
+            Some("o" | "g") => object = object_name(line),
+            _ => {}
+        }
+    }
+    Ok(lines)
+}
+
+fn too_large(file: &str, what: &'static str, actual: usize, limit: usize) -> LoadError {
+    LoadError::TooLarge {
+        file: file.to_owned(),
+        what,
+        actual: actual as u64,
+        limit: limit as u64,
+    }
+}
+
+/// Object name as tobj derives it from an `o`/`g` line.
+fn object_name(line: &str) -> String {
+    let name = line.trim_start().get(1..).unwrap_or("").trim();
+    if name.is_empty() {
+        "unnamed_object".to_owned()
+    } else {
+        name.to_owned()
+    }
+}
+
+/// Rejects MTL text that would make tobj panic (colour lines with fewer than
+/// three values). Returns the offending line.
+fn mtl_problem(text: &str) -> Option<usize> {
+    text.lines().enumerate().find_map(|(i, line)| {
+        let mut words = line.split_whitespace();
+        match words.next() {
+            Some("Ka" | "Kd" | "Ks" | "Ke") if words.clone().count() < 3 => Some(i + 1),
+            _ => None,
+        }
+    })
+}
+
+/// Texture file name from a `map_Kd` value, which may start with options.
+fn texture_name(value: &str) -> &str {
+    if value.starts_with('-') {
+        value.split_whitespace().last().unwrap_or(value)
+    } else {
+        value
+    }
+}
+
+fn load_obj_text(
+    text: &str,
+    file: String,
+    base: Option<&Path>,
+    options: &LoadOptions,
+) -> Result<(Mesh, LoadReport), LoadError> {
+    let face_lines = prescan(text, &file, options)?;
+    let warnings = RefCell::new(Vec::<String>::new());
+    // Directory of each loaded MTL, with the number of materials it holds.
+    let mtl_dirs = RefCell::new(Vec::<(usize, PathBuf)>::new());
+    let max_bytes = options.max_file_bytes;
+    let material_loader = |name: &Path| -> tobj::MTLLoadResult {
+        let Some(base) = base else {
+            warnings.borrow_mut().push(format!(
+                "material library `{}` not loaded: in-memory input has no directory",
+                name.display()
+            ));
+            return Err(tobj::LoadError::OpenFileFailed);
+        };
+        let path = base.join(name);
+        let shown = path.display().to_string();
+        let bytes = match crate::read_file_capped(&path, &shown, max_bytes) {
+            Ok(b) => b,
+            Err(e) => {
+                warnings.borrow_mut().push(format!("material library not loaded: {e}"));
+                return Err(tobj::LoadError::OpenFileFailed);
+            }
+        };
+        let Ok(mtl) = std::str::from_utf8(&bytes) else {
+            warnings
+                .borrow_mut()
+                .push(format!("material library not loaded: {shown}: not valid UTF-8"));
+            return Err(tobj::LoadError::ReadError);
+        };
+        if let Some(line) = mtl_problem(mtl) {
+            warnings.borrow_mut().push(format!(
+                "material library not loaded: {shown}, line {line}: colour needs three values"
+            ));
+            return Err(tobj::LoadError::MaterialParseError);
+        }
+        let result = tobj::load_mtl_buf(&mut mtl.as_bytes());
+        match &result {
+            Ok((mats, _)) => mtl_dirs
+                .borrow_mut()
+                .push((mats.len(), path.parent().map(Path::to_path_buf).unwrap_or_default())),
+            Err(e) => warnings
+                .borrow_mut()
+                .push(format!("material library not loaded: {shown}: {e}")),
+        }
+        result
+    };
+    let tobj_options = tobj::LoadOptions {
+        single_index: false,
+        triangulate: false,
+        ignore_points: false,
+        ignore_lines: false,
+        ..Default::default()
+    };
+    let loaded = catch_unwind(AssertUnwindSafe(|| {
+        tobj::load_obj_buf(&mut text.as_bytes(), &tobj_options, material_loader)
+    }));
+    let (models, materials) = match loaded {
+        Ok(Ok(v)) => v,
+        Ok(Err(e)) => return Err(diagnose(text, &file, e)),
+        Err(_) => {
+            return Err(LoadError::Parse {
+                file,
+                line: None,
+                detail: "the OBJ parser panicked on this input".into(),
+            });
+        }
+    };
+    let mut raw = RawMesh::new(file);
+    raw.report.warnings = warnings.into_inner();
+    // Materials.
+    let tobj_materials = match materials {
+        Ok(m) => m,
+        Err(e) => {
+            if raw.report.warnings.is_empty() {
+                raw.report.warnings.push(format!("materials not loaded: {e}"));
+            }
+            Vec::new()
+        }
+    };
+    let dirs = mtl_dirs.into_inner();
+    let mut dir_of = dirs
+        .iter()
+        .flat_map(|(n, d)| std::iter::repeat_n(d.clone(), *n));
+    for m in &tobj_materials {
+        let dir = dir_of.next().unwrap_or_default();
+        let kd = m.diffuse.unwrap_or([1.0; 3]);
+        let alpha = m.dissolve.unwrap_or(1.0);
+        let mut diffuse = [kd[0] as f32, kd[1] as f32, kd[2] as f32, alpha as f32];
+        if diffuse.iter().any(|c| !c.is_finite()) {
+            raw.report
+                .warnings
+                .push(format!("material `{}`: non-finite colour replaced by white", m.name));
+            diffuse = [1.0; 4];
+        }
+        let mut material = Material::new(m.name.clone(), diffuse);
+        if let Some(tex) = &m.diffuse_texture {
+            material.texture = Some(dir.join(texture_name(tex)));
+        }
+        raw.materials.push(material);
+    }
+    // Faces, in file order: models come in file order, faces in order within.
+    let mut all_uvs = Some(Vec::<Vec2>::new());
+    let mut scan = face_lines.iter();
+    let scan_ok = face_lines.len()
+        == models
+            .iter()
+            .map(|m| arities(&m.mesh).len())
+            .sum::<usize>();
+    let mut bad_uvs = false;
+    for model in &models {
+        let mesh = &model.mesh;
+        let base_index = raw.positions.len();
+        let n_pos = mesh.positions.len() / 3;
+        if base_index + n_pos > u32::MAX as usize {
+            return Err(too_large(&raw.file, "vertex count", base_index + n_pos, u32::MAX as usize));
+        }
+        for (k, p) in mesh.positions.chunks_exact(3).enumerate() {
+            let p = DVec3::new(p[0], p[1], p[2]);
+            if !p.is_finite() {
+                return Err(LoadError::NonFiniteCoordinate {
+                    file: raw.file.clone(),
+                    line: None,
+                    what: format!("vertex {k} of object `{}` (after w division)", model.name),
+                });
+            }
+            raw.positions.push(p);
+        }
+        let object = if raw.objects.last() == Some(&model.name) {
+            raw.objects.len() - 1
+        } else {
+            raw.objects.push(model.name.clone());
+            raw.objects.len() - 1
+        };
+        let has_uv = mesh.texcoord_indices.len() == mesh.indices.len() && !mesh.indices.is_empty();
+        let material = mesh
+            .material_id
+            .filter(|&m| m < raw.materials.len())
+            .map(|m| m as u32);
+        let mut at = 0usize;
+        for arity in arities(mesh) {
+            let arity = arity as usize;
+            let range = at..at.saturating_add(arity);
+            at = range.end;
+            let entry = if scan_ok { scan.next() } else { None };
+            if entry.is_some_and(|e| !e.is_face) {
+                continue;
+            }
+            let Some(idx) = mesh.indices.get(range.clone()) else {
+                return Err(LoadError::Parse {
+                    file: raw.file.clone(),
+                    line: entry.map(|e| e.line),
+                    detail: "face indices missing from the OBJ parser's output".into(),
+                });
+            };
+            raw.indices.extend(idx.iter().map(|&i| i + base_index as u32));
+            raw.offsets.push(raw.indices.len());
+            raw.face_materials.push(material);
+            raw.face_objects.push(object as u32);
+            raw.face_lines.push(entry.map(|e| e.line));
+            match (&mut all_uvs, has_uv) {
+                (Some(uvs), true) => {
+                    for &t in mesh.texcoord_indices.get(range).unwrap_or(&[]) {
+                        let t = t as usize;
+                        let uv = match (mesh.texcoords.get(2 * t), mesh.texcoords.get(2 * t + 1)) {
+                            (Some(&u), Some(&v)) => Vec2::new(u as f32, v as f32),
+                            _ => Vec2::ZERO,
+                        };
+                        bad_uvs |= !uv.is_finite();
+                        uvs.push(uv);
+                    }
+                }
+                _ => all_uvs = None,
+            }
+        }
+    }
+    if bad_uvs {
+        raw.report
+            .warnings
+            .push("non-finite texture coordinates: uvs dropped".into());
+        all_uvs = None;
+    }
+    if all_uvs.is_none() && models.iter().any(|m| !m.mesh.texcoord_indices.is_empty()) {
+        raw.report
+            .warnings
+            .push("texture coordinates missing on some faces: uvs dropped".into());
+    }
+    raw.uvs = all_uvs.filter(|u| u.len() == raw.indices.len());
+    if raw.face_count() == 0 {
+        return Err(LoadError::EmptyModel {
+            file: raw.file,
+            detail: "no `f` lines".into(),
+        });
+    }
+    finish(raw, options)
+}
+
+/// Face arities of a tobj mesh; tobj leaves the list empty when every face
+/// is a triangle.
+fn arities(mesh: &tobj::Mesh) -> Vec<u32> {
+    if mesh.face_arities.is_empty() {
+        vec![3; mesh.indices.len() / 3]
+    } else {
+        mesh.face_arities.clone()
+    }
+}
+
+/// Turns a tobj error into a typed error, re-scanning the text for the line.
+fn diagnose(text: &str, file: &str, error: tobj::LoadError) -> LoadError {
+    use tobj::LoadError as T;
+    let (mut v, mut vt, mut vn) = (0usize, 0usize, 0usize);
+    for line in text.lines() {
+        match line.split_whitespace().next() {
+            Some("v") => v += 1,
+            Some("vt") => vt += 1,
+            Some("vn") => vn += 1,
+            _ => {}
+        }
+    }
+    let totals = [v, vt, vn];
+    let mut counts = [0usize; 3];
+    let mut face = 0usize;
+    let mut object = "unnamed_object".to_owned();
+    for (i, line) in text.lines().enumerate() {
+        let lineno = i + 1;
+        let parse_err = |detail: &str| LoadError::Parse {
+            file: file.to_owned(),
+            line: Some(lineno),
+            detail: format!("{detail}: `{}`", line.trim()),
+        };
+        let mut words = line.split_whitespace();
+        let floats_ok = |words: std::str::SplitWhitespace, n: usize| {
+            let vals: Vec<_> = words.take(n).map(str::parse::<f64>).collect();
+            vals.len() == n && vals.iter().all(Result::is_ok)
+        };
+        match words.next() {
+            Some("v") => {
+                counts[0] += 1;
+                if matches!(error, T::PositionParseError) && !floats_ok(words, 3) {
+                    return parse_err("bad vertex position");
+                }
+            }
+            Some("vt") => {
+                counts[1] += 1;
+                if matches!(error, T::TexcoordParseError) && !floats_ok(words, 2) {
+                    return parse_err("bad texture coordinate");
+                }
+            }
+            Some("vn") => {
+                counts[2] += 1;
+                if matches!(error, T::NormalParseError) && !floats_ok(words, 3) {
+                    return parse_err("bad normal");
+                }
+            }
+            Some("o" | "g") => object = object_name(line),
+            Some(kw @ ("f" | "l")) => {
+                let at = FaceLocation {
+                    object: object.clone(),
+                    face,
+                    line: Some(lineno),
+                };
+                if kw == "f" {
+                    face += 1;
+                }
+                for token in words {
+                    for (slot, part) in token.split('/').enumerate() {
+                        if part.is_empty() {
+                            continue;
+                        }
+                        let Ok(x) = part.parse::<i64>() else {
+                            return parse_err("bad face index");
+                        };
+                        let Some(&count) = counts.get(slot) else {
+                            return parse_err("bad face corner (more than v/vt/vn)");
+                        };
+                        let total = totals.get(slot).copied().unwrap_or(0);
+                        // tobj ignores vt/vn references when the file has none.
+                        if slot > 0 && total == 0 {
+                            continue;
+                        }
+                        let bad = if x < 0 {
+                            x.unsigned_abs() > count as u64
+                        } else {
+                            x == 0 || x as u64 > total as u64
+                        };
+                        if bad {
+                            let what = ["vertex", "texture coordinate", "normal"][slot];
+                            return if slot == 0 {
+                                LoadError::IndexOutOfRange {
+                                    file: file.to_owned(),
+                                    at,
+                                    index: x,
+                                    count: if x < 0 { count } else { total },
+                                }
+                            } else {
+                                LoadError::Parse {
+                                    file: file.to_owned(),
+                                    line: Some(lineno),
+                                    detail: format!(
+                                        "{at}: {what} index {x} out of range ({total} available)"
+                                    ),
+                                }
+                            };
+                        }
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    LoadError::Parse {
+        file: file.to_owned(),
+        line: None,
+        detail: format!("OBJ parser: {error}"),
+    }
+}
