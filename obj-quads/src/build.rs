@@ -212,7 +212,9 @@ pub(crate) fn finish(raw: RawMesh, options: &LoadOptions) -> Result<(Mesh, LoadR
                 _ => {}
             }
         }
-        if corners.len() > 3 {
+        // Non-planar faces that are kept are not tested for convexity: they
+        // are fan triangles downstream.
+        if corners.len() > 3 && shape.planar {
             let q = shape.project(&pts);
             if !is_convex(&q, shape.diameter) {
                 if quads_only || options.non_convex == NonConvexPolicy::Reject {

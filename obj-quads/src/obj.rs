@@ -1,5 +1,6 @@
 //! Wavefront OBJ (+ MTL) loading through `tobj`, with triangulation off.
 
+use std::borrow::Cow;
 use std::cell::RefCell;
 use std::io::Read;
 use std::panic::{AssertUnwindSafe, catch_unwind};
@@ -169,12 +170,40 @@ fn texture_name(value: &str) -> &str {
     }
 }
 
+/// Removes trailing comments (`#` at the start of a line or after
+/// whitespace, to the end of the line), which tobj does not understand.
+/// Line structure is kept, so line numbers stay valid.
+fn strip_comments(text: &str) -> Cow<'_, str> {
+    fn comment_start(line: &str) -> Option<usize> {
+        let bytes = line.as_bytes();
+        (0..bytes.len()).find(|&i| bytes[i] == b'#' && (i == 0 || bytes[i - 1].is_ascii_whitespace()))
+    }
+    if !text.lines().any(|l| comment_start(l).is_some_and(|i| !l[..i].trim().is_empty())) {
+        return Cow::Borrowed(text);
+    }
+    let mut out = String::with_capacity(text.len());
+    for line in text.split_inclusive('\n') {
+        let (body, end) = match line.strip_suffix('\n') {
+            Some(b) => (b.strip_suffix('\r').unwrap_or(b), "\n"),
+            None => (line, ""),
+        };
+        match comment_start(body) {
+            Some(i) => out.push_str(&body[..i]),
+            None => out.push_str(body),
+        }
+        out.push_str(end);
+    }
+    Cow::Owned(out)
+}
+
 fn load_obj_text(
     text: &str,
     file: String,
     base: Option<&Path>,
     options: &LoadOptions,
 ) -> Result<(Mesh, LoadReport), LoadError> {
+    let text = strip_comments(text);
+    let text = text.as_ref();
     let face_lines = prescan(text, &file, options)?;
     let warnings = RefCell::new(Vec::<String>::new());
     // Directory of each loaded MTL, with the number of materials it holds.
@@ -209,7 +238,9 @@ fn load_obj_text(
             ));
             return Err(tobj::LoadError::MaterialParseError);
         }
-        let result = tobj::load_mtl_buf(&mut mtl.as_bytes());
+        let mtl = strip_comments(mtl);
+        let result = catch_unwind(|| tobj::load_mtl_buf(&mut mtl.as_bytes()))
+            .unwrap_or(Err(tobj::LoadError::GenericFailure));
         match &result {
             Ok((mats, _)) => mtl_dirs
                 .borrow_mut()
