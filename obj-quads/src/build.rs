@@ -67,7 +67,13 @@ struct Out {
 }
 
 impl Out {
-    fn push(&mut self, corners: &[u32], uvs: Option<&[Vec2]>, material: Option<u32>, source: usize) {
+    fn push(
+        &mut self,
+        corners: &[u32],
+        uvs: Option<&[Vec2]>,
+        material: Option<u32>,
+        source: usize,
+    ) {
         self.indices.extend_from_slice(corners);
         if let Some(uvs) = uvs {
             self.uvs.extend_from_slice(uvs);
@@ -97,7 +103,10 @@ pub(crate) fn finish(raw: RawMesh, options: &LoadOptions) -> Result<(Mesh, LoadR
     let mut report = raw.report.clone();
     let faces = raw.face_count();
     report.faces_read = faces;
-    let has_uvs = raw.uvs.as_ref().is_some_and(|u| u.len() == raw.indices.len());
+    let has_uvs = raw
+        .uvs
+        .as_ref()
+        .is_some_and(|u| u.len() == raw.indices.len());
     let mut out = Out {
         offsets: vec![0],
         ..Out::default()
@@ -184,7 +193,10 @@ pub(crate) fn finish(raw: RawMesh, options: &LoadOptions) -> Result<(Mesh, LoadR
         corners.extend(keep.iter().map(|&k| idx[k]));
         corner_uvs.clear();
         if let Some(uvs) = uvs {
-            corner_uvs.extend(keep.iter().map(|&k| uvs.get(k).copied().unwrap_or(Vec2::ZERO)));
+            corner_uvs.extend(
+                keep.iter()
+                    .map(|&k| uvs.get(k).copied().unwrap_or(Vec2::ZERO)),
+            );
         }
         let cuv = uvs.map(|_| corner_uvs.as_slice());
         let shape = Shape::of(&pts);
@@ -330,11 +342,15 @@ fn merge_triangles(out: Out, positions: &[DVec3], has_uvs: bool, report: &mut Lo
         let uv_t = out.face_uvs(t);
         let pt = [0, 1, 2].map(|k| pos(face_t.get(k).copied().unwrap_or(0)));
         let len2 = |k: usize| pt[k].distance_squared(pt[(k + 1) % 3]);
-        let longest = (0..3).max_by(|&a, &b| len2(a).total_cmp(&len2(b))).unwrap_or(0);
+        let longest = (0..3)
+            .max_by(|&a, &b| len2(a).total_cmp(&len2(b)))
+            .unwrap_or(0);
         let mut best: Option<(bool, usize, [u32; 4], [Vec2; 4])> = None;
         for k in 0..3 {
             let (x, y) = (ct[k], ct[(k + 1) % 3]);
-            let Some(cands) = edges.get(&(y, x)) else { continue };
+            let Some(cands) = edges.get(&(y, x)) else {
+                continue;
+            };
             for &u in cands {
                 if u == t || paired[u] || out.materials.get(u) != out.materials.get(t) {
                     continue;
@@ -350,12 +366,23 @@ fn merge_triangles(out: Out, positions: &[DVec3], has_uvs: bool, report: &mut Lo
                     f.and_then(|f| f.get(i % 3)).copied().unwrap_or(Vec2::ZERO)
                 };
                 if has_uvs
-                    && (getuv(uv_t, k) != getuv(uv_u, j + 1) || getuv(uv_t, k + 1) != getuv(uv_u, j))
+                    && (getuv(uv_t, k) != getuv(uv_u, j + 1)
+                        || getuv(uv_t, k + 1) != getuv(uv_u, j))
                 {
                     continue;
                 }
-                let quad = [get(face_t, k + 2), get(face_t, k), get(face_u, j + 2), get(face_t, k + 1)];
-                let quad_uv = [getuv(uv_t, k + 2), getuv(uv_t, k), getuv(uv_u, j + 2), getuv(uv_t, k + 1)];
+                let quad = [
+                    get(face_t, k + 2),
+                    get(face_t, k),
+                    get(face_u, j + 2),
+                    get(face_t, k + 1),
+                ];
+                let quad_uv = [
+                    getuv(uv_t, k + 2),
+                    getuv(uv_t, k),
+                    getuv(uv_u, j + 2),
+                    getuv(uv_t, k + 1),
+                ];
                 if !is_good_quad(&quad.map(pos)) {
                     continue;
                 }

@@ -230,12 +230,7 @@ mod tests {
 
     #[test]
     fn square_is_convex_and_planar() {
-        let pts = [
-            DVec3::ZERO,
-            DVec3::X,
-            DVec3::new(1.0, 1.0, 0.0),
-            DVec3::Y,
-        ];
+        let pts = [DVec3::ZERO, DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::Y];
         let s = Shape::of(&pts);
         assert!(s.planar && !s.degenerate);
         assert!((s.normal - DVec3::Z).length() < 1e-12);

@@ -28,16 +28,27 @@ const MAX_NODE_VISITS: usize = 1 << 16;
 /// Every primitive in `Triangles` mode of every node of the default scene
 /// (or scene 0, or all root nodes when there is no scene) is loaded with its
 /// node's world transform applied; other modes are skipped with a warning.
-pub fn load_gltf(path: impl AsRef<Path>, options: &LoadOptions) -> Result<(Mesh, LoadReport), LoadError> {
+pub fn load_gltf(
+    path: impl AsRef<Path>,
+    options: &LoadOptions,
+) -> Result<(Mesh, LoadReport), LoadError> {
     let path = path.as_ref();
     let file = path.display().to_string();
     let bytes = crate::read_file_capped(path, &file, options.max_file_bytes)?;
-    load_gltf_bytes(&bytes, file, Some(path.parent().unwrap_or(Path::new(""))), options)
+    load_gltf_bytes(
+        &bytes,
+        file,
+        Some(path.parent().unwrap_or(Path::new(""))),
+        options,
+    )
 }
 
 /// Loads glTF JSON or GLB bytes from memory. Buffers must be embedded (GLB
 /// binary chunk or data URIs); texture URIs are recorded as given.
-pub fn load_gltf_slice(bytes: &[u8], options: &LoadOptions) -> Result<(Mesh, LoadReport), LoadError> {
+pub fn load_gltf_slice(
+    bytes: &[u8],
+    options: &LoadOptions,
+) -> Result<(Mesh, LoadReport), LoadError> {
     load_gltf_bytes(bytes, crate::obj_memory_name(), None, options)
 }
 
@@ -88,7 +99,13 @@ fn load_gltf_bytes(
             let Some(pos_acc) = prim.get(&Semantic::Positions) else {
                 return Err(ctx.err("primitive has no POSITION attribute"));
             };
-            ctx.check(&pos_acc, Dimensions::Vec3, &[DataType::F32], &buffers, "POSITION")?;
+            ctx.check(
+                &pos_acc,
+                Dimensions::Vec3,
+                &[DataType::F32],
+                &buffers,
+                "POSITION",
+            )?;
             let count = pos_acc.count();
             let base_index = raw.positions.len();
             let total = base_index.saturating_add(count);
@@ -102,7 +119,13 @@ fn load_gltf_bytes(
             }
             let index_acc = prim.indices();
             if let Some(acc) = &index_acc {
-                ctx.check(acc, Dimensions::Scalar, &[DataType::U8, DataType::U16, DataType::U32], &buffers, "indices")?;
+                ctx.check(
+                    acc,
+                    Dimensions::Scalar,
+                    &[DataType::U8, DataType::U16, DataType::U32],
+                    &buffers,
+                    "indices",
+                )?;
             }
             let corner_count = index_acc.as_ref().map_or(count, Accessor::count);
             let faces_total = raw.face_count().saturating_add(corner_count / 3);
@@ -116,13 +139,22 @@ fn load_gltf_bytes(
             }
             let tex_acc = prim.get(&Semantic::TexCoords(0));
             if let Some(acc) = &tex_acc {
-                ctx.check(acc, Dimensions::Vec2, &[DataType::F32, DataType::U8, DataType::U16], &buffers, "TEXCOORD_0")?;
+                ctx.check(
+                    acc,
+                    Dimensions::Vec2,
+                    &[DataType::F32, DataType::U8, DataType::U16],
+                    &buffers,
+                    "TEXCOORD_0",
+                )?;
             }
             let read = catch_unwind(AssertUnwindSafe(|| {
                 let reader = prim.reader(|b| buffers.get(b.index()).map(Vec::as_slice));
-                let positions: Option<Vec<[f32; 3]>> = reader.read_positions().map(Iterator::collect);
-                let indices: Option<Vec<u32>> = reader.read_indices().map(|i| i.into_u32().collect());
-                let tex: Option<Vec<[f32; 2]>> = reader.read_tex_coords(0).map(|t| t.into_f32().collect());
+                let positions: Option<Vec<[f32; 3]>> =
+                    reader.read_positions().map(Iterator::collect);
+                let indices: Option<Vec<u32>> =
+                    reader.read_indices().map(|i| i.into_u32().collect());
+                let tex: Option<Vec<[f32; 2]>> =
+                    reader.read_tex_coords(0).map(|t| t.into_f32().collect());
                 (positions, indices, tex)
             }));
             let Ok((positions, indices, tex)) = read else {
@@ -156,12 +188,15 @@ fn load_gltf_bytes(
             }
             let tex = tex.filter(|t| t.len() == count);
             if tex_acc.is_some() && tex.is_none() {
-                raw.report.warnings.push(format!("{object}: TEXCOORD_0 cannot be read"));
+                raw.report
+                    .warnings
+                    .push(format!("{object}: TEXCOORD_0 cannot be read"));
             }
             any_uvs |= tex.is_some();
             uvs_complete &= tex.is_some();
             let object_id = raw.objects.len() as u32;
-            raw.objects.push(format!("{object} (node {})", node.index()));
+            raw.objects
+                .push(format!("{object} (node {})", node.index()));
             let material = prim.material().index().map(|m| m as u32);
             for tri in indices.chunks_exact(3) {
                 let face = raw.face_count();
@@ -179,7 +214,11 @@ fn load_gltf_bytes(
                         });
                     }
                 }
-                let order = if flip { [tri[0], tri[2], tri[1]] } else { [tri[0], tri[1], tri[2]] };
+                let order = if flip {
+                    [tri[0], tri[2], tri[1]]
+                } else {
+                    [tri[0], tri[1], tri[2]]
+                };
                 for i in order {
                     raw.indices.push(base_index as u32 + i);
                     if let Some(t) = &tex {
@@ -241,7 +280,8 @@ impl Ctx<'_> {
         buffers: &[Vec<u8>],
         what: &str,
     ) -> Result<(), LoadError> {
-        let fail = |detail: String| Err(self.err(&format!("{what} accessor {}: {detail}", acc.index())));
+        let fail =
+            |detail: String| Err(self.err(&format!("{what} accessor {}: {detail}", acc.index())));
         if acc.dimensions() != dims || !types.contains(&acc.data_type()) {
             return fail(format!(
                 "unsupported type {:?} {:?}",
@@ -308,7 +348,9 @@ fn load_buffers(
                     if base.is_none() {
                         return Err(gltf_err(
                             file,
-                            format!("{which}: external buffer `{uri}` cannot be loaded from memory"),
+                            format!(
+                                "{which}: external buffer `{uri}` cannot be loaded from memory"
+                            ),
                         ));
                     }
                     let shown = path.display().to_string();
@@ -319,7 +361,11 @@ fn load_buffers(
         if data.len() < buffer.length() {
             return Err(gltf_err(
                 file,
-                format!("{which}: {} bytes, declared {}", data.len(), buffer.length()),
+                format!(
+                    "{which}: {} bytes, declared {}",
+                    data.len(),
+                    buffer.length()
+                ),
             ));
         }
         out.push(data);
@@ -329,7 +375,10 @@ fn load_buffers(
 
 /// Resolves a relative URI (percent-decoded) against `base`.
 fn resolve_uri(uri: &str, base: Option<&Path>) -> Result<PathBuf, String> {
-    let path = if let Some(rest) = uri.strip_prefix("file://").or_else(|| uri.strip_prefix("file:")) {
+    let path = if let Some(rest) = uri
+        .strip_prefix("file://")
+        .or_else(|| uri.strip_prefix("file:"))
+    {
         rest
     } else if uri.contains(':') {
         return Err(format!("unsupported URI scheme in `{uri}`"));
@@ -351,7 +400,9 @@ fn percent_decode(s: &str) -> Option<String> {
     while i < bytes.len() {
         let b = bytes[i];
         if b == b'%' {
-            let hex = bytes.get(i + 1..i + 3).and_then(|h| std::str::from_utf8(h).ok());
+            let hex = bytes
+                .get(i + 1..i + 3)
+                .and_then(|h| std::str::from_utf8(h).ok());
             if let Some(v) = hex.and_then(|h| u8::from_str_radix(h, 16).ok()) {
                 out.push(v);
                 i += 3;
@@ -395,11 +446,15 @@ fn materials(doc: &Document, base: Option<&Path>, warnings: &mut Vec<String>) ->
     doc.materials()
         .map(|m| {
             let index = m.index().unwrap_or(0);
-            let name = m.name().map_or_else(|| format!("material {index}"), str::to_owned);
+            let name = m
+                .name()
+                .map_or_else(|| format!("material {index}"), str::to_owned);
             let pbr = m.pbr_metallic_roughness();
             let mut diffuse = pbr.base_color_factor();
             if diffuse.iter().any(|c| !c.is_finite()) {
-                warnings.push(format!("material `{name}`: non-finite colour replaced by white"));
+                warnings.push(format!(
+                    "material `{name}`: non-finite colour replaced by white"
+                ));
                 diffuse = [1.0; 4];
             }
             let mut material = Material::new(name, diffuse);
@@ -408,7 +463,9 @@ fn materials(doc: &Document, base: Option<&Path>, warnings: &mut Vec<String>) ->
                     gltf::image::Source::Uri { uri, .. } if !uri.starts_with("data:") => {
                         match resolve_uri(uri, base) {
                             Ok(path) => material.texture = Some(path),
-                            Err(e) => warnings.push(format!("material `{}`: texture {e}", material.name)),
+                            Err(e) => {
+                                warnings.push(format!("material `{}`: texture {e}", material.name))
+                            }
                         }
                     }
                     _ => warnings.push(format!(
@@ -444,7 +501,14 @@ fn walk_scene<'a>(doc: &'a Document, file: &str) -> Result<Vec<(Node<'a>, DMat4)
     let mut path = Vec::new();
     let mut visits = 0usize;
     for root in roots {
-        visit(root, DMat4::IDENTITY, &mut path, &mut visits, &mut out, file)?;
+        visit(
+            root,
+            DMat4::IDENTITY,
+            &mut path,
+            &mut visits,
+            &mut out,
+            file,
+        )?;
     }
     Ok(out)
 }
@@ -458,12 +522,18 @@ fn visit<'a>(
     file: &str,
 ) -> Result<(), LoadError> {
     if path.contains(&node.index()) {
-        return Err(gltf_err(file, format!("node {} is its own ancestor (cycle)", node.index())));
+        return Err(gltf_err(
+            file,
+            format!("node {} is its own ancestor (cycle)", node.index()),
+        ));
     }
     if path.len() >= MAX_NODE_DEPTH {
         return Err(gltf_err(
             file,
-            format!("node hierarchy deeper than {MAX_NODE_DEPTH} at node {}", node.index()),
+            format!(
+                "node hierarchy deeper than {MAX_NODE_DEPTH} at node {}",
+                node.index()
+            ),
         ));
     }
     *visits += 1;
@@ -478,7 +548,10 @@ fn visit<'a>(
     let local = node.transform().matrix();
     let local = DMat4::from_cols_array_2d(&local.map(|c| c.map(f64::from)));
     if !local.is_finite() {
-        return Err(gltf_err(file, format!("node {} has a non-finite transform", node.index())));
+        return Err(gltf_err(
+            file,
+            format!("node {} has a non-finite transform", node.index()),
+        ));
     }
     let world = parent * local;
     if node.mesh().is_some() {

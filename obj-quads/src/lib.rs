@@ -94,7 +94,10 @@ pub use options::{FacePolicy, LoadOptions, LoadReport, NonConvexPolicy, NonPlana
 /// let (mesh, _report) = obj_quads::load(path, &Default::default()).unwrap();
 /// assert_eq!(mesh.face_count(), 6);
 /// ```
-pub fn load(path: impl AsRef<Path>, options: &LoadOptions) -> Result<(Mesh, LoadReport), LoadError> {
+pub fn load(
+    path: impl AsRef<Path>,
+    options: &LoadOptions,
+) -> Result<(Mesh, LoadReport), LoadError> {
     let path = path.as_ref();
     let extension = path
         .extension()

@@ -189,7 +189,9 @@ impl Mesh {
             .iter()
             .position(|fm| fm.is_some_and(|x| x as usize >= m))
         {
-            return bad(format!("face {i}: material index out of range ({m} materials)"));
+            return bad(format!(
+                "face {i}: material index out of range ({m} materials)"
+            ));
         }
         if let Some(uvs) = &self.uvs {
             if uvs.len() != self.indices.len() {
@@ -236,7 +238,10 @@ impl Mesh {
     /// The corner positions of face `i`.
     pub fn face_positions(&self, i: usize) -> Option<impl Iterator<Item = DVec3> + '_> {
         let face = self.face(i)?;
-        Some(face.iter().filter_map(|&v| self.positions.get(v as usize).copied()))
+        Some(
+            face.iter()
+                .filter_map(|&v| self.positions.get(v as usize).copied()),
+        )
     }
 
     /// Iterates over the faces' position indices, in face order.

@@ -19,7 +19,10 @@ pub(crate) const MEMORY: &str = "<memory>";
 /// directory).
 ///
 /// A missing or broken MTL file is a warning in the report, not an error.
-pub fn load_obj(path: impl AsRef<Path>, options: &LoadOptions) -> Result<(Mesh, LoadReport), LoadError> {
+pub fn load_obj(
+    path: impl AsRef<Path>,
+    options: &LoadOptions,
+) -> Result<(Mesh, LoadReport), LoadError> {
     let path = path.as_ref();
     let file = path.display().to_string();
     let bytes = crate::read_file_capped(path, &file, options.max_file_bytes)?;
@@ -83,7 +86,12 @@ fn prescan(text: &str, file: &str, options: &LoadOptions) -> Result<Vec<FaceLine
             Some("v") => {
                 vertices += 1;
                 if vertices > options.max_vertices {
-                    return Err(too_large(file, "vertex count", vertices, options.max_vertices));
+                    return Err(too_large(
+                        file,
+                        "vertex count",
+                        vertices,
+                        options.max_vertices,
+                    ));
                 }
                 for w in words.take(3) {
                     if let Ok(x) = w.parse::<f64>() {
@@ -176,9 +184,13 @@ fn texture_name(value: &str) -> &str {
 fn strip_comments(text: &str) -> Cow<'_, str> {
     fn comment_start(line: &str) -> Option<usize> {
         let bytes = line.as_bytes();
-        (0..bytes.len()).find(|&i| bytes[i] == b'#' && (i == 0 || bytes[i - 1].is_ascii_whitespace()))
+        (0..bytes.len())
+            .find(|&i| bytes[i] == b'#' && (i == 0 || bytes[i - 1].is_ascii_whitespace()))
     }
-    if !text.lines().any(|l| comment_start(l).is_some_and(|i| !l[..i].trim().is_empty())) {
+    if !text
+        .lines()
+        .any(|l| comment_start(l).is_some_and(|i| !l[..i].trim().is_empty()))
+    {
         return Cow::Borrowed(text);
     }
     let mut out = String::with_capacity(text.len());
@@ -222,14 +234,16 @@ fn load_obj_text(
         let bytes = match crate::read_file_capped(&path, &shown, max_bytes) {
             Ok(b) => b,
             Err(e) => {
-                warnings.borrow_mut().push(format!("material library not loaded: {e}"));
+                warnings
+                    .borrow_mut()
+                    .push(format!("material library not loaded: {e}"));
                 return Err(tobj::LoadError::OpenFileFailed);
             }
         };
         let Ok(mtl) = std::str::from_utf8(&bytes) else {
-            warnings
-                .borrow_mut()
-                .push(format!("material library not loaded: {shown}: not valid UTF-8"));
+            warnings.borrow_mut().push(format!(
+                "material library not loaded: {shown}: not valid UTF-8"
+            ));
             return Err(tobj::LoadError::ReadError);
         };
         if let Some(line) = mtl_problem(mtl) {
@@ -242,9 +256,10 @@ fn load_obj_text(
         let result = catch_unwind(|| tobj::load_mtl_buf(&mut mtl.as_bytes()))
             .unwrap_or(Err(tobj::LoadError::GenericFailure));
         match &result {
-            Ok((mats, _)) => mtl_dirs
-                .borrow_mut()
-                .push((mats.len(), path.parent().map(Path::to_path_buf).unwrap_or_default())),
+            Ok((mats, _)) => mtl_dirs.borrow_mut().push((
+                mats.len(),
+                path.parent().map(Path::to_path_buf).unwrap_or_default(),
+            )),
             Err(e) => warnings
                 .borrow_mut()
                 .push(format!("material library not loaded: {shown}: {e}")),
@@ -279,7 +294,9 @@ fn load_obj_text(
         Ok(m) => m,
         Err(e) => {
             if raw.report.warnings.is_empty() {
-                raw.report.warnings.push(format!("materials not loaded: {e}"));
+                raw.report
+                    .warnings
+                    .push(format!("materials not loaded: {e}"));
             }
             Vec::new()
         }
@@ -294,9 +311,10 @@ fn load_obj_text(
         let alpha = m.dissolve.unwrap_or(1.0);
         let mut diffuse = [kd[0] as f32, kd[1] as f32, kd[2] as f32, alpha as f32];
         if diffuse.iter().any(|c| !c.is_finite()) {
-            raw.report
-                .warnings
-                .push(format!("material `{}`: non-finite colour replaced by white", m.name));
+            raw.report.warnings.push(format!(
+                "material `{}`: non-finite colour replaced by white",
+                m.name
+            ));
             diffuse = [1.0; 4];
         }
         let mut material = Material::new(m.name.clone(), diffuse);
@@ -308,18 +326,19 @@ fn load_obj_text(
     // Faces, in file order: models come in file order, faces in order within.
     let mut all_uvs = Some(Vec::<Vec2>::new());
     let mut scan = face_lines.iter();
-    let scan_ok = face_lines.len()
-        == models
-            .iter()
-            .map(|m| arities(&m.mesh).len())
-            .sum::<usize>();
+    let scan_ok = face_lines.len() == models.iter().map(|m| arities(&m.mesh).len()).sum::<usize>();
     let mut bad_uvs = false;
     for model in &models {
         let mesh = &model.mesh;
         let base_index = raw.positions.len();
         let n_pos = mesh.positions.len() / 3;
         if base_index + n_pos > u32::MAX as usize {
-            return Err(too_large(&raw.file, "vertex count", base_index + n_pos, u32::MAX as usize));
+            return Err(too_large(
+                &raw.file,
+                "vertex count",
+                base_index + n_pos,
+                u32::MAX as usize,
+            ));
         }
         for (k, p) in mesh.positions.chunks_exact(3).enumerate() {
             let p = DVec3::new(p[0], p[1], p[2]);
@@ -359,7 +378,8 @@ fn load_obj_text(
                     detail: "face indices missing from the OBJ parser's output".into(),
                 });
             };
-            raw.indices.extend(idx.iter().map(|&i| i + base_index as u32));
+            raw.indices
+                .extend(idx.iter().map(|&i| i + base_index as u32));
             raw.offsets.push(raw.indices.len());
             raw.face_materials.push(material);
             raw.face_objects.push(object as u32);

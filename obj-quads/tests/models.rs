@@ -30,21 +30,53 @@ fn hist(pairs: &[(usize, usize)]) -> BTreeMap<usize, usize> {
 
 /// OBJ models: path, faces, arity 3 / 4 / 5+ histogram from SOURCES.md.
 const OBJ_MODELS: &[(&str, usize, &[(usize, usize)])] = &[
-    (asset!("keenan-crane/spot/spot_quadrangulated.obj"), 2928, &[(4, 2928)]),
-    (asset!("keenan-crane/spot/spot_triangulated.obj"), 5856, &[(3, 5856)]),
-    (asset!("keenan-crane/spot/spot_control_mesh.obj"), 180, &[(3, 4), (4, 160), (5, 16)]),
-    (asset!("keenan-crane/spot/spot_control_mesh_texture.obj"), 180, &[(3, 4), (4, 160), (5, 16)]),
-    (asset!("keenan-crane/blub/blub_quadrangulated.obj"), 7104, &[(4, 7104)]),
-    (asset!("keenan-crane/blub/blub_control_mesh.obj"), 112, &[(3, 8), (4, 100), (5, 4)]),
+    (
+        asset!("keenan-crane/spot/spot_quadrangulated.obj"),
+        2928,
+        &[(4, 2928)],
+    ),
+    (
+        asset!("keenan-crane/spot/spot_triangulated.obj"),
+        5856,
+        &[(3, 5856)],
+    ),
+    (
+        asset!("keenan-crane/spot/spot_control_mesh.obj"),
+        180,
+        &[(3, 4), (4, 160), (5, 16)],
+    ),
+    (
+        asset!("keenan-crane/spot/spot_control_mesh_texture.obj"),
+        180,
+        &[(3, 4), (4, 160), (5, 16)],
+    ),
+    (
+        asset!("keenan-crane/blub/blub_quadrangulated.obj"),
+        7104,
+        &[(4, 7104)],
+    ),
+    (
+        asset!("keenan-crane/blub/blub_control_mesh.obj"),
+        112,
+        &[(3, 8), (4, 100), (5, 4)],
+    ),
     (asset!("suzanne/suzanne.obj"), 500, &[(3, 32), (4, 468)]),
-    (asset!("fandisk-quads/fandisk_quads.converted.obj"), 764, &[(4, 764)]),
+    (
+        asset!("fandisk-quads/fandisk_quads.converted.obj"),
+        764,
+        &[(4, 764)],
+    ),
     (asset!("compas/tubemesh.obj"), 171, &[(4, 171)]),
     (asset!("compas/hypar.obj"), 64, &[(4, 64)]),
     (asset!("compas/quadmesh.obj"), 81, &[(4, 81)]),
     (asset!("compas/faces.obj"), 25, &[(4, 25)]),
     (asset!("compas/boxes.obj"), 48, &[(4, 48)]),
     (asset!("cornell-box/cornell_box.obj"), 18, &[(4, 18)]),
-    (asset!("opensubdiv-torus/catmark_torus_creases0.obj"), 32, &[(4, 32)]),
+    (
+        asset!("opensubdiv-torus/catmark_torus_creases0.obj"),
+        32,
+        &[(4, 32)],
+    ),
     (asset!("assimp-obj/box.obj"), 6, &[(4, 6)]),
     (asset!("combobulate-samples/book.obj"), 9, &[(4, 9)]),
 ];
@@ -78,7 +110,10 @@ fn pure_quad_models_load_under_quads_only() {
 fn quads_only_rejects_suzanne_triangles_naming_the_face() {
     let err = load(asset!("suzanne/suzanne.obj"), &opts(FacePolicy::QuadsOnly)).unwrap_err();
     let msg = err.to_string();
-    assert!(msg.contains("suzanne.obj") && msg.contains("line") && msg.contains("3 corners"), "{msg}");
+    assert!(
+        msg.contains("suzanne.obj") && msg.contains("line") && msg.contains("3 corners"),
+        "{msg}"
+    );
 }
 
 #[test]
@@ -94,16 +129,25 @@ fn tetrahedron_and_octahedron_are_triangles() {
 
 #[test]
 fn spot_has_uvs_and_textured_material() {
-    let (mesh, report) = load_with(asset!("keenan-crane/spot/spot_control_mesh_texture.obj"), FacePolicy::Polygons);
+    let (mesh, report) = load_with(
+        asset!("keenan-crane/spot/spot_control_mesh_texture.obj"),
+        FacePolicy::Polygons,
+    );
     assert!(report.warnings.is_empty(), "{report:?}");
     assert_eq!(mesh.materials().len(), 1);
     let tex = mesh.materials()[0].texture.as_ref().expect("map_Kd");
-    assert!(tex.ends_with("keenan-crane/spot/spot_texture.png"), "{tex:?}");
+    assert!(
+        tex.ends_with("keenan-crane/spot/spot_texture.png"),
+        "{tex:?}"
+    );
     assert!(tex.exists());
     assert!((0..mesh.face_count()).all(|i| mesh.face_material(i) == Some(0)));
     let uvs = mesh.face_uvs(0).expect("uvs");
     assert_eq!(uvs.len(), mesh.face(0).unwrap().len());
-    let (quad, _) = load_with(asset!("keenan-crane/spot/spot_quadrangulated.obj"), FacePolicy::QuadsOnly);
+    let (quad, _) = load_with(
+        asset!("keenan-crane/spot/spot_quadrangulated.obj"),
+        FacePolicy::QuadsOnly,
+    );
     assert_eq!(quad.uvs().map(<[_]>::len), Some(2928 * 4));
 }
 
@@ -125,7 +169,10 @@ fn cornell_box_keeps_file_order_and_five_materials() {
     assert!(report.warnings.is_empty(), "{report:?}");
     assert_eq!(mesh.materials().len(), 5);
     let names: Vec<_> = mesh.materials().iter().map(|m| m.name.as_str()).collect();
-    assert!(names.contains(&"white") && names.contains(&"red"), "{names:?}");
+    assert!(
+        names.contains(&"white") && names.contains(&"red"),
+        "{names:?}"
+    );
     // Face order follows the `f` lines: collect the first corner's position from
     // the file itself and compare.
     let text = std::fs::read_to_string(asset!("cornell-box/cornell_box.obj")).unwrap();
@@ -155,7 +202,10 @@ fn cornell_box_keeps_file_order_and_five_materials() {
 #[test]
 fn suzanne_missing_mtl_is_a_warning() {
     let (mesh, report) = load_with(asset!("suzanne/suzanne.obj"), FacePolicy::Polygons);
-    assert!(report.warnings.iter().any(|w| w.contains("affe.mtl")), "{report:?}");
+    assert!(
+        report.warnings.iter().any(|w| w.contains("affe.mtl")),
+        "{report:?}"
+    );
     assert!(mesh.materials().is_empty());
 }
 
@@ -166,7 +216,10 @@ fn concave_polygon_is_triangulated() {
     assert_eq!(report.faces_read, 1);
     assert_eq!(report.non_convex_split, 1, "{report:?}");
     assert!(mesh.face_count() >= 60, "{}", mesh.face_count());
-    assert_eq!(mesh.arity_histogram().keys().copied().collect::<Vec<_>>(), vec![3]);
+    assert_eq!(
+        mesh.arity_histogram().keys().copied().collect::<Vec<_>>(),
+        vec![3]
+    );
     assert!((0..mesh.face_count()).all(|i| mesh.face_source(i) == Some(0)));
     // The triangles cover the polygon's area exactly (no overlaps, no gaps).
     let text = std::fs::read_to_string(path).unwrap();
@@ -188,7 +241,10 @@ fn concave_polygon_is_triangulated() {
     let tri_area: f64 = (0..mesh.face_count())
         .map(|i| mesh.face_normal(i).unwrap().length() / 2.0)
         .sum();
-    assert!((polygon_area - tri_area).abs() <= 1e-9 * polygon_area, "{polygon_area} vs {tri_area}");
+    assert!(
+        (polygon_area - tri_area).abs() <= 1e-9 * polygon_area,
+        "{polygon_area} vs {tri_area}"
+    );
     let err = load(
         path,
         &LoadOptions {
@@ -220,9 +276,15 @@ const GLTF_MODELS: &[(&str, usize)] = &[
     (asset!("gltf/BoxVertexColors/BoxVertexColors.gltf"), 12),
     (asset!("gltf/Cube/Cube.gltf"), 12),
     (asset!("gltf/SimpleMeshes/SimpleMeshes.gltf"), 2),
-    (asset!("gltf/SimpleMeshes/glTF-Embedded/SimpleMeshes.gltf"), 2),
+    (
+        asset!("gltf/SimpleMeshes/glTF-Embedded/SimpleMeshes.gltf"),
+        2,
+    ),
     (asset!("gltf/MultipleScenes/MultipleScenes.gltf"), 2),
-    (asset!("gltf/MultipleScenes/glTF-Embedded/MultipleScenes.gltf"), 2),
+    (
+        asset!("gltf/MultipleScenes/glTF-Embedded/MultipleScenes.gltf"),
+        2,
+    ),
     (asset!("gltf/AnimatedMorphCube/AnimatedMorphCube.gltf"), 12),
 ];
 
@@ -246,11 +308,18 @@ fn boxes_merge_into_six_quads() {
         asset!("gltf/AnimatedMorphCube/AnimatedMorphCube.gltf"),
     ] {
         let (mesh, report) = load_with(path, FacePolicy::MergeTriangles);
-        assert_eq!(mesh.arity_histogram(), hist(&[(4, 6)]), "{path}: {report:?}");
+        assert_eq!(
+            mesh.arity_histogram(),
+            hist(&[(4, 6)]),
+            "{path}: {report:?}"
+        );
         assert_eq!(report.triangles_merged, 12, "{path}");
         // Merged faces take the lower index and stay in order.
         let sources: Vec<_> = (0..6).map(|i| mesh.face_source(i).unwrap()).collect();
-        assert!(sources.windows(2).all(|w| w[0] < w[1]), "{path}: {sources:?}");
+        assert!(
+            sources.windows(2).all(|w| w[0] < w[1]),
+            "{path}: {sources:?}"
+        );
         // Each quad's normal is an axis direction (the boxes are axis aligned
         // in their own frame; Box's matrix is a rotation about X).
         for i in 0..6 {
@@ -262,9 +331,15 @@ fn boxes_merge_into_six_quads() {
 
 #[test]
 fn spot_triangulated_merges_some_pairs() {
-    let (mesh, report) = load_with(asset!("keenan-crane/spot/spot_triangulated.obj"), FacePolicy::MergeTriangles);
+    let (mesh, report) = load_with(
+        asset!("keenan-crane/spot/spot_triangulated.obj"),
+        FacePolicy::MergeTriangles,
+    );
     let h = mesh.arity_histogram();
-    assert_eq!(h.get(&3).copied().unwrap_or(0) + 2 * h.get(&4).copied().unwrap_or(0), 5856);
+    assert_eq!(
+        h.get(&3).copied().unwrap_or(0) + 2 * h.get(&4).copied().unwrap_or(0),
+        5856
+    );
     assert_eq!(report.triangles_merged, 2 * h.get(&4).copied().unwrap_or(0));
 }
 
@@ -276,8 +351,14 @@ fn box_node_matrix_is_applied() {
     // face instead: the raw +Z face (normal 0,0,1) must come out facing ±Y.
     let (mesh, _) = load_with(asset!("gltf/Box/Box.gltf"), FacePolicy::MergeTriangles);
     let (min, max) = mesh.bounds();
-    assert!((min + glam::DVec3::splat(0.5)).abs().max_element() < 1e-6, "{min}");
-    assert!((max - glam::DVec3::splat(0.5)).abs().max_element() < 1e-6, "{max}");
+    assert!(
+        (min + glam::DVec3::splat(0.5)).abs().max_element() < 1e-6,
+        "{min}"
+    );
+    assert!(
+        (max - glam::DVec3::splat(0.5)).abs().max_element() < 1e-6,
+        "{max}"
+    );
     let text = std::fs::read_to_string(asset!("gltf/Box/Box.gltf")).unwrap();
     assert!(text.contains("\"matrix\""));
     // First primitive face in Box0.bin is the +Z face (normals accessor says
@@ -288,10 +369,16 @@ fn box_node_matrix_is_applied() {
 
 #[test]
 fn box_textured_records_texture_path_and_uvs() {
-    let (mesh, report) = load_with(asset!("gltf/BoxTextured/BoxTextured.gltf"), FacePolicy::Polygons);
+    let (mesh, report) = load_with(
+        asset!("gltf/BoxTextured/BoxTextured.gltf"),
+        FacePolicy::Polygons,
+    );
     assert!(report.warnings.is_empty(), "{report:?}");
     let tex = mesh.materials()[0].texture.as_ref().expect("texture");
-    assert!(tex.ends_with("CesiumLogoFlat.png") && tex.exists(), "{tex:?}");
+    assert!(
+        tex.ends_with("CesiumLogoFlat.png") && tex.exists(),
+        "{tex:?}"
+    );
     assert!(mesh.uvs().is_some());
     assert!((0..12).all(|i| mesh.face_material(i) == Some(0)));
 }
@@ -300,15 +387,24 @@ fn box_textured_records_texture_path_and_uvs() {
 fn multiple_scenes_uses_the_default_scene() {
     // `scene`: 1 — check against scene 0 by count: SOURCES.md says 3 triangles
     // over both meshes (triangle + square); the default scene draws only some.
-    let (mesh, _) = load_with(asset!("gltf/MultipleScenes/MultipleScenes.gltf"), FacePolicy::Polygons);
+    let (mesh, _) = load_with(
+        asset!("gltf/MultipleScenes/MultipleScenes.gltf"),
+        FacePolicy::Polygons,
+    );
     assert_eq!(mesh.face_count(), 2);
-    let (merged, _) = load_with(asset!("gltf/MultipleScenes/MultipleScenes.gltf"), FacePolicy::MergeTriangles);
+    let (merged, _) = load_with(
+        asset!("gltf/MultipleScenes/MultipleScenes.gltf"),
+        FacePolicy::MergeTriangles,
+    );
     assert_eq!(merged.arity_histogram(), hist(&[(4, 1)]));
 }
 
 #[test]
 fn simple_meshes_instances_one_mesh_twice() {
-    let (mesh, _) = load_with(asset!("gltf/SimpleMeshes/SimpleMeshes.gltf"), FacePolicy::Polygons);
+    let (mesh, _) = load_with(
+        asset!("gltf/SimpleMeshes/SimpleMeshes.gltf"),
+        FacePolicy::Polygons,
+    );
     assert_eq!(mesh.face_count(), 2);
     // The second node is translated, so the two triangles differ.
     let a: Vec<_> = mesh.face_positions(0).unwrap().collect();
