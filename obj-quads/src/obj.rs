@@ -94,14 +94,14 @@ fn prescan(text: &str, file: &str, options: &LoadOptions) -> Result<Vec<FaceLine
                     ));
                 }
                 for w in words.take(3) {
-                    if let Ok(x) = w.parse::<f64>() {
-                        if !x.is_finite() {
-                            return Err(LoadError::NonFiniteCoordinate {
-                                file: file.to_owned(),
-                                line: Some(i + 1),
-                                what: format!("vertex {vertices} (object `{object}`)"),
-                            });
-                        }
+                    if let Ok(x) = w.parse::<f64>()
+                        && !x.is_finite()
+                    {
+                        return Err(LoadError::NonFiniteCoordinate {
+                            file: file.to_owned(),
+                            line: Some(i + 1),
+                            what: format!("vertex {vertices} (object `{object}`)"),
+                        });
                     }
                 }
             }
@@ -266,6 +266,8 @@ fn load_obj_text(
         }
         result
     };
+    // tobj's optional `merging`/`reordering` features add fields, hence the update.
+    #[allow(clippy::needless_update)]
     let tobj_options = tobj::LoadOptions {
         single_index: false,
         triangulate: false,

@@ -29,7 +29,10 @@ fn hist(pairs: &[(usize, usize)]) -> BTreeMap<usize, usize> {
 }
 
 /// OBJ models: path, faces, arity 3 / 4 / 5+ histogram from SOURCES.md.
-const OBJ_MODELS: &[(&str, usize, &[(usize, usize)])] = &[
+/// Path, face count, arity histogram.
+type ObjCase = (&'static str, usize, &'static [(usize, usize)]);
+
+const OBJ_MODELS: &[ObjCase] = &[
     (
         asset!("keenan-crane/spot/spot_quadrangulated.obj"),
         2928,
