@@ -65,9 +65,30 @@ fn load_gltf_bytes(
     base: Option<&Path>,
     options: &LoadOptions,
 ) -> Result<(Mesh, LoadReport), LoadError> {
-    let parsed = catch_unwind(|| gltf::Gltf::from_slice(bytes))
+    let parsed = catch_unwind(|| gltf::Gltf::from_slice_without_validation(bytes))
         .map_err(|_| gltf_err(&file, "the glTF parser panicked on this input"))?;
     let gltf::Gltf { document, blob } = parsed.map_err(|e| gltf_err(&file, e.to_string()))?;
+    // gltf-json's validation indexes the POSITION accessor unchecked: check first.
+    let root = document.as_json();
+    for (m, mesh) in root.meshes.iter().enumerate() {
+        for (p, prim) in mesh.primitives.iter().enumerate() {
+            let key = gltf::json::validation::Checked::Valid(gltf::json::mesh::Semantic::Positions);
+            if prim
+                .attributes
+                .get(&key)
+                .is_some_and(|a| a.value() >= root.accessors.len())
+            {
+                return Err(gltf_err(
+                    &file,
+                    format!("mesh {m} primitive {p}: POSITION accessor does not exist"),
+                ));
+            }
+        }
+    }
+    let json = document.into_json();
+    let document = catch_unwind(AssertUnwindSafe(|| gltf::Document::from_json(json)))
+        .map_err(|_| gltf_err(&file, "the glTF validator panicked on this input"))?
+        .map_err(|e| gltf_err(&file, e.to_string()))?;
     let buffers = load_buffers(&document, blob, base, &file, options)?;
     let mut raw = RawMesh::new(file);
     raw.materials = materials(&document, base, &mut raw.report.warnings);

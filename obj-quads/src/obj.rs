@@ -275,12 +275,25 @@ fn load_obj_text(
         ignore_lines: false,
         ..Default::default()
     };
+    // Check every face index first: tobj has no line numbers, and overflows
+    // on huge indices.
+    if let Some(e) = scan_problem(text, &file, None) {
+        return Err(e);
+    }
     let loaded = catch_unwind(AssertUnwindSafe(|| {
         tobj::load_obj_buf(&mut text.as_bytes(), &tobj_options, material_loader)
     }));
     let (models, materials) = match loaded {
         Ok(Ok(v)) => v,
-        Ok(Err(e)) => return Err(diagnose(text, &file, e)),
+        Ok(Err(e)) => {
+            return Err(
+                scan_problem(text, &file, Some(e)).unwrap_or_else(|| LoadError::Parse {
+                    file: file.clone(),
+                    line: None,
+                    detail: format!("OBJ parser: {e}"),
+                }),
+            );
+        }
         Err(_) => {
             return Err(LoadError::Parse {
                 file,
@@ -433,8 +446,9 @@ fn arities(mesh: &tobj::Mesh) -> Vec<u32> {
     }
 }
 
-/// Turns a tobj error into a typed error, re-scanning the text for the line.
-fn diagnose(text: &str, file: &str, error: tobj::LoadError) -> LoadError {
+/// Finds the first out-of-range face index (always) and, given a tobj
+/// error, the line that caused it.
+fn scan_problem(text: &str, file: &str, error: Option<tobj::LoadError>) -> Option<LoadError> {
     use tobj::LoadError as T;
     let (mut v, mut vt, mut vn) = (0usize, 0usize, 0usize);
     for line in text.lines() {
@@ -464,20 +478,20 @@ fn diagnose(text: &str, file: &str, error: tobj::LoadError) -> LoadError {
         match words.next() {
             Some("v") => {
                 counts[0] += 1;
-                if matches!(error, T::PositionParseError) && !floats_ok(words, 3) {
-                    return parse_err("bad vertex position");
+                if matches!(error, Some(T::PositionParseError)) && !floats_ok(words, 3) {
+                    return Some(parse_err("bad vertex position"));
                 }
             }
             Some("vt") => {
                 counts[1] += 1;
-                if matches!(error, T::TexcoordParseError) && !floats_ok(words, 2) {
-                    return parse_err("bad texture coordinate");
+                if matches!(error, Some(T::TexcoordParseError)) && !floats_ok(words, 2) {
+                    return Some(parse_err("bad texture coordinate"));
                 }
             }
             Some("vn") => {
                 counts[2] += 1;
-                if matches!(error, T::NormalParseError) && !floats_ok(words, 3) {
-                    return parse_err("bad normal");
+                if matches!(error, Some(T::NormalParseError)) && !floats_ok(words, 3) {
+                    return Some(parse_err("bad normal"));
                 }
             }
             Some("o" | "g") => object = object_name(line),
@@ -496,10 +510,16 @@ fn diagnose(text: &str, file: &str, error: tobj::LoadError) -> LoadError {
                             continue;
                         }
                         let Ok(x) = part.parse::<i64>() else {
-                            return parse_err("bad face index");
+                            if error.is_none() {
+                                break;
+                            }
+                            return Some(parse_err("bad face index"));
                         };
                         let Some(&count) = counts.get(slot) else {
-                            return parse_err("bad face corner (more than v/vt/vn)");
+                            if error.is_none() {
+                                break;
+                            }
+                            return Some(parse_err("bad face corner (more than v/vt/vn)"));
                         };
                         let total = totals.get(slot).copied().unwrap_or(0);
                         // tobj ignores vt/vn references when the file has none.
@@ -513,7 +533,7 @@ fn diagnose(text: &str, file: &str, error: tobj::LoadError) -> LoadError {
                         };
                         if bad {
                             let what = ["vertex", "texture coordinate", "normal"][slot];
-                            return if slot == 0 {
+                            return Some(if slot == 0 {
                                 LoadError::IndexOutOfRange {
                                     file: file.to_owned(),
                                     at,
@@ -528,7 +548,7 @@ fn diagnose(text: &str, file: &str, error: tobj::LoadError) -> LoadError {
                                         "{at}: {what} index {x} out of range ({total} available)"
                                     ),
                                 }
-                            };
+                            });
                         }
                     }
                 }
@@ -536,9 +556,5 @@ fn diagnose(text: &str, file: &str, error: tobj::LoadError) -> LoadError {
             _ => {}
         }
     }
-    LoadError::Parse {
-        file: file.to_owned(),
-        line: None,
-        detail: format!("OBJ parser: {error}"),
-    }
+    None
 }
