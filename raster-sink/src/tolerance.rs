@@ -1,0 +1,18 @@
+//! Every tolerance the crate uses, in one place (CONVENTIONS.md sets the first two).
+
+/// A pixel is unambiguous only when its centre is at least this far (pixels) from every
+/// projected edge of every drawn piece.
+pub const EDGE_MARGIN_PX: f64 = 0.75;
+
+/// A pixel is unambiguous only when the nearest two depths along its ray differ by more
+/// than `DEPTH_GAP · L` in view units (`DEPTH_GAP · L · s` in pixel-space depth).
+pub const DEPTH_GAP: f64 = 1e-6;
+
+/// A projected polygon whose doubled area is at most `DEGENERATE_PROJECTED_AREA · D²`
+/// (`D` the diagonal of its screen bounding box) has zero area: it draws nothing and is
+/// excluded from the truth (CONVENTIONS.md: "faces whose projection has zero area").
+pub const DEGENERATE_PROJECTED_AREA: f64 = 1e-12;
+
+/// Edges of two drawn polygons whose endpoints (or, for T-junctions, whose lines and
+/// overlap) agree within this many pixels count as shared for the seam outset.
+pub const SHARED_EDGE_PX: f64 = 1e-3;

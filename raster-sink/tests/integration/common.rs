@@ -1,0 +1,167 @@
+//! Shared scenes and helpers.
+
+#![allow(dead_code, reason = "each test module uses a different subset")]
+
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use raster_sink::face_sort::glam::{DVec2, DVec3};
+use raster_sink::face_sort::{DrawList, Geometry, PolygonMesh, PolygonSet};
+
+/// A small xorshift generator, seeded, for reproducible scenes.
+pub struct Rng(u64);
+
+impl Rng {
+    pub fn new(seed: u64) -> Self {
+        Rng(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1)
+    }
+    pub fn next_u64(&mut self) -> u64 {
+        let mut x = self.0;
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        self.0 = x;
+        x
+    }
+    /// Uniform in [lo, hi).
+    pub fn range(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * ((self.next_u64() >> 11) as f64 / (1u64 << 53) as f64)
+    }
+}
+
+pub fn workspace_root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("crate in a workspace")
+        .to_path_buf()
+}
+
+/// A tiny OBJ reader for tests: `v`, `vt` and `f` lines (`f a/b/c` forms, 1-based or negative).
+pub struct Obj {
+    pub positions: Vec<DVec3>,
+    pub uvs: Vec<DVec2>,
+    /// Per face: (position index, uv index if any).
+    pub faces: Vec<Vec<(u32, Option<u32>)>>,
+}
+
+pub fn read_obj(path: &std::path::Path) -> Obj {
+    let text = std::fs::read_to_string(path).expect("model readable");
+    let mut obj = Obj {
+        positions: Vec::new(),
+        uvs: Vec::new(),
+        faces: Vec::new(),
+    };
+    for line in text.lines() {
+        let mut parts = line.split_whitespace();
+        match parts.next() {
+            Some("v") => {
+                let c: Vec<f64> = parts.take(3).map(|s| s.parse().expect("number")).collect();
+                obj.positions.push(DVec3::new(c[0], c[1], c[2]));
+            }
+            Some("vt") => {
+                let c: Vec<f64> = parts.take(2).map(|s| s.parse().expect("number")).collect();
+                obj.uvs.push(DVec2::new(c[0], c[1]));
+            }
+            Some("f") => {
+                let resolve = |s: &str, n: usize| -> u32 {
+                    let i: i64 = s.parse().expect("index");
+                    if i < 0 { (n as i64 + i) as u32 } else { (i - 1) as u32 }
+                };
+                let face = parts
+                    .map(|corner| {
+                        let mut it = corner.split('/');
+                        let v = resolve(it.next().expect("v"), obj.positions.len());
+                        let t = it
+                            .next()
+                            .filter(|s| !s.is_empty())
+                            .map(|s| resolve(s, obj.uvs.len()));
+                        (v, t)
+                    })
+                    .collect();
+                obj.faces.push(face);
+            }
+            _ => {}
+        }
+    }
+    obj
+}
+
+impl Obj {
+    pub fn mesh(&self) -> PolygonMesh {
+        let faces: Vec<Vec<u32>> = self
+            .faces
+            .iter()
+            .map(|f| f.iter().map(|c| c.0).collect())
+            .collect();
+        PolygonMesh::new(self.positions.clone(), faces).expect("valid mesh")
+    }
+}
+
+pub fn spot_control() -> Obj {
+    read_obj(&workspace_root().join("assets/models/keenan-crane/spot/spot_control_mesh.obj"))
+}
+
+pub fn spot() -> Obj {
+    read_obj(&workspace_root().join("assets/models/keenan-crane/spot/spot_quadrangulated.obj"))
+}
+
+/// Axis-aligned square in the plane z = `z`, counter-clockwise seen from +Z.
+pub fn square(centre: DVec2, half: f64, z: f64) -> [DVec3; 4] {
+    [
+        DVec3::new(centre.x - half, centre.y - half, z),
+        DVec3::new(centre.x + half, centre.y - half, z),
+        DVec3::new(centre.x + half, centre.y + half, z),
+        DVec3::new(centre.x - half, centre.y + half, z),
+    ]
+}
+
+/// A mesh of separate quads.
+pub fn quads_mesh(quads: &[[DVec3; 4]]) -> PolygonMesh {
+    let positions: Vec<DVec3> = quads.iter().flatten().copied().collect();
+    let faces: Vec<[u32; 4]> = (0..quads.len() as u32)
+        .map(|i| [4 * i, 4 * i + 1, 4 * i + 2, 4 * i + 3])
+        .collect();
+    PolygonMesh::new(positions, faces).expect("valid mesh")
+}
+
+/// A draw list with the geometry's pieces in the given order (piece indices).
+pub fn list_in_order(geometry: &Geometry, order: &[usize]) -> DrawList {
+    let pieces: &Arc<PolygonSet> = geometry.pieces();
+    let mut list = DrawList::new();
+    list.begin(pieces);
+    for &i in order {
+        list.push(i as u32, pieces.face(i));
+    }
+    list
+}
+
+/// A closed cube subdivided into `n × n` quads per side, centred at the origin, edge 2.
+pub fn subdivided_cube(n: u32) -> PolygonMesh {
+    let mut positions = Vec::new();
+    let mut faces = Vec::new();
+    // Each side: origin, u, v axes with u × v pointing outward.
+    let sides = [
+        (DVec3::new(-1.0, -1.0, 1.0), DVec3::X, DVec3::Y),
+        (DVec3::new(1.0, -1.0, -1.0), DVec3::NEG_X, DVec3::Y),
+        (DVec3::new(1.0, -1.0, 1.0), DVec3::NEG_Z, DVec3::Y),
+        (DVec3::new(-1.0, -1.0, -1.0), DVec3::Z, DVec3::Y),
+        (DVec3::new(-1.0, 1.0, 1.0), DVec3::X, DVec3::NEG_Z),
+        (DVec3::new(-1.0, -1.0, -1.0), DVec3::X, DVec3::Z),
+    ];
+    let step = 2.0 / f64::from(n);
+    for (origin, u, v) in sides {
+        let base = positions.len() as u32;
+        for j in 0..=n {
+            for i in 0..=n {
+                positions.push(origin + u * (f64::from(i) * step) + v * (f64::from(j) * step));
+            }
+        }
+        for j in 0..n {
+            for i in 0..n {
+                let k = base + j * (n + 1) + i;
+                faces.push([k, k + 1, k + n + 2, k + n + 1]);
+            }
+        }
+    }
+    PolygonMesh::new(positions, faces).expect("valid cube")
+}

@@ -1,0 +1,5 @@
+//! Integration tests of raster-sink (one binary, modules per area).
+
+mod common;
+mod cracks;
+mod truth;
