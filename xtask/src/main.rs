@@ -1,1 +1,96 @@
-fn main() {}
+//! `cargo xtask`: the workspace's command line.
+//!
+//! - `render` draws a model (or the built-in demo scene) with any sorter to a PNG or an ID image.
+//! - `bench` measures every sorter, and the `plane-split` crate as an outside peer, for time
+//!   against error on real models and generated hard scenes, and writes a table, a JSON
+//!   report and a chart under `target/bench/`.
+//! - `fuzz` runs every sorter against the order-violation oracle on generated scenes and
+//!   saves failing cases under `target/fuzz/` for replay with `render`.
+//! - `ci` runs what CI runs: fmt, clippy, tests.
+//!
+//! See `xtask/README.md` for examples.
+
+mod bench;
+mod ci;
+mod fuzz;
+mod peer;
+mod progress;
+mod raster;
+mod render;
+mod scenes;
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+/// The workspace's command line.
+#[derive(Debug, Parser)]
+#[command(name = "cargo xtask", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+/// Every subcommand. Later issues add `stress` (numerical stability sweeps) and `bake`
+/// (aspect bakes) here.
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Render a model (or the built-in demo scene) to a PNG or an ID image.
+    Render(render::RenderArgs),
+    /// Measure every sorter (and plane-split) for time against error; write
+    /// target/bench/report.{md,json} and a chart.
+    Bench(bench::BenchArgs),
+    /// Run every sorter against the order-violation oracle on generated scenes; save
+    /// failures under target/fuzz/.
+    Fuzz(fuzz::FuzzArgs),
+    /// Run what CI runs: cargo fmt --check, clippy -D warnings, tests.
+    Ci(ci::CiArgs),
+}
+
+fn main() -> ExitCode {
+    // A panic is a bug, but the user still gets one plain line rather than a backtrace.
+    std::panic::set_hook(Box::new(|info| {
+        let message = info
+            .payload()
+            .downcast_ref::<&str>()
+            .map(|s| (*s).to_owned())
+            .or_else(|| info.payload().downcast_ref::<String>().cloned())
+            .unwrap_or_else(|| "unknown cause".to_owned());
+        let location = info
+            .location()
+            .map(|l| format!(" at {}:{}", l.file(), l.line()))
+            .unwrap_or_default();
+        eprintln!("error: internal failure{location}: {message}");
+    }));
+    let cli = Cli::parse();
+    let result = std::panic::catch_unwind(|| match cli.command {
+        Command::Render(args) => render::run(&args),
+        Command::Bench(args) => bench::run(&args),
+        Command::Fuzz(args) => fuzz::run(&args),
+        Command::Ci(args) => ci::run(&args),
+    });
+    match result {
+        Ok(Ok(code)) => code,
+        Ok(Err(error)) => {
+            eprintln!("error: {error:#}");
+            ExitCode::FAILURE
+        }
+        Err(_) => ExitCode::from(101),
+    }
+}
+
+/// The workspace root (the parent of this crate's directory).
+fn workspace_root() -> PathBuf {
+    let manifest = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    manifest
+        .parent()
+        .map_or_else(|| manifest.clone(), PathBuf::from)
+}
+
+/// `target/` of the workspace (honours `CARGO_TARGET_DIR`).
+fn target_dir() -> PathBuf {
+    std::env::var_os("CARGO_TARGET_DIR")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| workspace_root().join("target"))
+}

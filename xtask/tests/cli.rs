@@ -1,0 +1,169 @@
+//! Runs the built `xtask` binary: render the demo, a bad model, `--json`, and a smoke bench.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn xtask(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_xtask"))
+        .args(args)
+        .output()
+        .expect("run xtask")
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("xtask-test-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn text(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes).into_owned()
+}
+
+#[test]
+fn render_demo_writes_a_png() {
+    let dir = temp_dir("demo");
+    let out = dir.join("demo.png");
+    let result = xtask(&["render", "--size", "128x128", "-o", out.to_str().unwrap()]);
+    assert!(result.status.success(), "{}", text(&result.stderr));
+    let stdout = text(&result.stdout);
+    assert!(
+        stdout.contains("faces") && stdout.contains("drawn"),
+        "{stdout}"
+    );
+    let bytes = std::fs::read(&out).unwrap();
+    assert_eq!(&bytes[1..4], b"PNG");
+}
+
+#[test]
+fn render_bad_obj_fails_with_a_message() {
+    let dir = temp_dir("bad");
+    let model = dir.join("bad.obj");
+    std::fs::write(&model, "v 0 0 0\nv 1 0 0\nf 1 2 7\n").unwrap();
+    let out = dir.join("bad.png");
+    let result = xtask(&[
+        "render",
+        model.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(!result.status.success());
+    let stderr = text(&result.stderr);
+    assert!(stderr.starts_with("error: "), "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert!(!out.exists());
+}
+
+#[test]
+fn render_json_has_the_keys() {
+    let dir = temp_dir("json");
+    let out = dir.join("box.png");
+    let model = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../assets/models/assimp-obj/box.obj"
+    );
+    let result = xtask(&[
+        "render",
+        model,
+        "--json",
+        "--size",
+        "64x64",
+        "--yaw",
+        "30",
+        "--pitch",
+        "-20",
+        "--check",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(result.status.success(), "{}", text(&result.stderr));
+    let value: serde_json::Value = serde_json::from_slice(&result.stdout).expect("one JSON object");
+    for key in [
+        "faces",
+        "drawn",
+        "fragments",
+        "sorter",
+        "load_ms",
+        "sort_ms",
+        "raster_ms",
+        "plan",
+    ] {
+        assert!(value.get(key).is_some(), "missing {key}: {value}");
+    }
+    assert_eq!(value["faces"], 6);
+    assert_eq!(value["violations"], 0);
+}
+
+#[test]
+fn render_ids_writes_an_id_image() {
+    let dir = temp_dir("ids");
+    let out = dir.join("ids.png");
+    let model = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../assets/models/assimp-obj/box.obj"
+    );
+    let result = xtask(&[
+        "render",
+        model,
+        "--ids",
+        "--size",
+        "32x32",
+        "--yaw",
+        "30",
+        "--pitch",
+        "20",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(result.status.success(), "{}", text(&result.stderr));
+    assert!(out.exists());
+}
+
+#[test]
+fn bench_smoke_writes_the_reports() {
+    let dir = temp_dir("bench");
+    let result = xtask(&["bench", "--smoke", "--out", dir.to_str().unwrap()]);
+    assert!(result.status.success(), "{}", text(&result.stderr));
+    let rows: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("report.json")).unwrap()).unwrap();
+    let rows = rows.as_array().expect("an array of rows");
+    for sorter in ["centroid", "topological", "newell", "bsp", "plane-split"] {
+        assert!(
+            rows.iter().any(|r| r["sorter"] == sorter),
+            "no {sorter} row"
+        );
+    }
+    for key in [
+        "sorter",
+        "scene",
+        "projection",
+        "faces",
+        "frame_us",
+        "build_ms",
+        "fragments",
+        "pixel_error",
+        "violations",
+        "frame_ratio_vs_centroid",
+    ] {
+        assert!(rows[0].get(key).is_some(), "missing {key}");
+    }
+    for row in rows
+        .iter()
+        .filter(|r| r["sorter"] == "bsp" || r["sorter"] == "newell")
+    {
+        assert_eq!(row["violations"], 0, "{row}");
+    }
+    assert!(dir.join("report.md").exists() && dir.join("chart.svg").exists());
+}
+
+#[test]
+fn fuzz_few_cases_passes() {
+    let dir = temp_dir("fuzz");
+    let result = xtask(&["fuzz", "--cases", "20", "--out", dir.to_str().unwrap()]);
+    assert!(
+        result.status.success(),
+        "{}{}",
+        text(&result.stdout),
+        text(&result.stderr)
+    );
+}
