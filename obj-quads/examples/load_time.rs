@@ -29,13 +29,18 @@ fn main() -> Result<(), obj_quads::LoadError> {
         };
         let mut best = Duration::MAX;
         let mut faces = 0;
+        let mut report = obj_quads::LoadReport::default();
         for _ in 0..5 {
             let start = Instant::now();
-            let (mesh, _) = load(format!("{dir}{file}"), &options)?;
+            let (mesh, r) = load(format!("{dir}{file}"), &options)?;
             best = best.min(start.elapsed());
             faces = mesh.face_count();
+            report = r;
         }
-        println!("{file} ({policy:?}): {faces} faces, best of 5: {best:.1?}");
+        println!(
+            "{file} ({policy:?}): {faces} faces ({} non-planar, {} triangles merged), best of 5: {best:.1?}",
+            report.non_planar, report.triangles_merged
+        );
     }
     Ok(())
 }

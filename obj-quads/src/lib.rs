@@ -63,8 +63,10 @@
 //! [`load`] dispatches on the file extension and reports
 //! [`LoadError::UnsupportedFormat`] for formats whose feature is off.
 
+#[cfg_attr(not(any(feature = "obj", feature = "gltf")), allow(dead_code))]
 mod build;
 mod error;
+#[cfg_attr(not(any(feature = "obj", feature = "gltf")), allow(dead_code))]
 mod geometry;
 mod mesh;
 mod options;
@@ -99,6 +101,7 @@ pub fn load(
     options: &LoadOptions,
 ) -> Result<(Mesh, LoadReport), LoadError> {
     let path = path.as_ref();
+    let _ = options; // unused when both format features are off
     let extension = path
         .extension()
         .and_then(|e| e.to_str())
