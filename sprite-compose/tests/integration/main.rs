@@ -1,0 +1,6 @@
+//! Integration tests of sprite-compose (one binary, modules by area).
+
+#[path = "../support/mod.rs"]
+mod support;
+
+mod painter;
