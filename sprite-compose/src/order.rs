@@ -31,6 +31,17 @@ impl StackMirror {
         self.stack.push(id);
     }
 
+    /// Reserves room for `n` sprites in every buffer (so that later frames do not allocate).
+    pub fn reserve(&mut self, n: usize) {
+        for v in [&mut self.ranks, &mut self.tails, &mut self.previous] {
+            v.reserve(n.saturating_sub(v.len()));
+        }
+        self.keep.reserve(n.saturating_sub(self.keep.len()));
+        self.moved.reserve(n.saturating_sub(self.moved.len()));
+        self.in_sequence.reserve(n.saturating_sub(self.in_sequence.len()));
+        self.next_stack.reserve(n.saturating_sub(self.next_stack.len()));
+    }
+
     /// Removes a sprite (what `destroy_sprite` does).
     pub fn remove(&mut self, id: SpriteId) {
         if let Some(&p) = self.position.get(id.index())

@@ -411,6 +411,11 @@ impl State {
                 self.create(SpriteId(i as u32), out);
             }
         }
+        let n = self.sprites.len();
+        self.mirror.reserve(n);
+        self.sequence.reserve(n);
+        self.previous.reserve(n);
+        self.shown.resize(n, 0);
         self.sort_and_apply(out);
     }
 
