@@ -110,7 +110,7 @@ impl SpriteTransform {
 fn solve_2x2_least_squares(a: DVec3, b: DVec3, r: DVec3) -> Option<DVec2> {
     let (aa, ab, bb) = (a.dot(a), a.dot(b), b.dot(b));
     let det = aa * bb - ab * ab;
-    if !(det.abs() > 1e-300) || det.abs() <= 1e-24 * aa * bb {
+    if !det.is_finite() || det.abs() <= 1e-300 || det.abs() <= 1e-24 * aa * bb {
         return None;
     }
     let (ar, br) = (a.dot(r), b.dot(r));
@@ -160,7 +160,7 @@ pub fn piece_map(space: &SpriteSpace, corners: &[DVec3], normal: DVec3) -> Optio
 /// The unit-square map onto `origin + u·a + v·b`, third column the front normal.
 fn affine(origin: DVec3, a: DVec3, b: DVec3, n: DVec3) -> Option<SpriteTransform> {
     let cross = a.cross(b);
-    if !(cross.length() > 0.0) {
+    if !cross.is_finite() || cross.length() <= 0.0 {
         return None;
     }
     let size = cross.length().sqrt();
@@ -193,13 +193,13 @@ fn quad(p: &[DVec3], n: DVec3) -> Option<SpriteTransform> {
     let w_min = [1.0, 1.0 + g, 1.0 + h, 1.0 + g + h]
         .into_iter()
         .fold(f64::INFINITY, f64::min);
-    if !(w_min > 1e-6) {
+    if !w_min.is_finite() || w_min <= 1e-6 {
         return None;
     }
     let a = q[1] * (1.0 + g) - q[0];
     let b = q[3] * (1.0 + h) - q[0];
     let size = (q[1] - q[0]).cross(q[3] - q[0]).length().sqrt();
-    if !(size > 0.0) {
+    if !size.is_finite() || size <= 0.0 {
         return None;
     }
     Some(SpriteTransform {
@@ -228,7 +228,7 @@ fn bounding_rectangle(p: &[DVec3], n: DVec3) -> Option<PieceMap> {
         hi = hi.max(*c);
     }
     let extent = hi - lo;
-    if !(extent.x > 0.0 && extent.y > 0.0) {
+    if !extent.is_finite() || extent.x <= 0.0 || extent.y <= 0.0 {
         return None;
     }
     let transform = affine(

@@ -183,12 +183,12 @@ fn sorter_change_costs_order_only_and_brushes_cost_brushes_only() {
     only(s.ops, &["visible", "reorder"]);
     assert_scene_matches(&p);
     // Recolour every third face.
-    p.set_brushes(|f| if f % 3 == 0 { Brush::Solid([255, 0, 0, 255]) } else { Brush::Palette });
+    p.set_brushes(|f| if f.is_multiple_of(3) { Brush::Solid([255, 0, 0, 255]) } else { Brush::Palette });
     let s = p.frame();
     only(s.ops, &["brush"]);
-    let recoloured = (0..g.pieces().len()).filter(|&i| g.pieces().face(i) % 3 == 0).count();
+    let recoloured = (0..g.pieces().len()).filter(|&i| g.pieces().face(i).is_multiple_of(3)).count();
     assert_eq!(s.ops.brush, recoloured);
-    p.set_brushes(|f| if f % 3 == 0 { Brush::Solid([255, 0, 0, 255]) } else { Brush::Palette });
+    p.set_brushes(|f| if f.is_multiple_of(3) { Brush::Solid([255, 0, 0, 255]) } else { Brush::Palette });
     assert_eq!(p.frame().ops.total(), 0, "same brushes: nothing");
 }
 
