@@ -19,7 +19,7 @@ use crate::scenes;
 #[derive(Debug, Args)]
 pub struct FuzzArgs {
     /// Number of generated cases (scene + view), each run through every sorter.
-    #[arg(long, default_value_t = 2000)]
+    #[arg(long, default_value_t = 20_000)]
     cases: u64,
     /// Seed of the generator (a run is reproducible from it).
     #[arg(long, default_value_t = 1)]
@@ -48,7 +48,11 @@ pub fn run(args: &FuzzArgs) -> Result<ExitCode> {
     let mut seed = [0u8; 32];
     seed[..8].copy_from_slice(&args.seed.to_le_bytes());
     let mut runner = TestRunner::new_with_rng(
-        Config::default(),
+        Config {
+            max_local_rejects: u32::MAX,
+            max_global_rejects: u32::MAX,
+            ..Config::default()
+        },
         TestRng::from_seed(RngAlgorithm::ChaCha, &seed),
     );
     let strategy = (any_scene(), view_spec());
@@ -62,13 +66,21 @@ pub fn run(args: &FuzzArgs) -> Result<ExitCode> {
         let mut tree = strategy
             .new_tree(&mut runner)
             .map_err(|e| anyhow::anyhow!("generating case {case}: {e}"))?;
-        let (mesh, spec) = tree.current();
+        let (mut mesh, spec) = tree.current();
+        // Every tenth case: a larger scene (10 to 80 random quads crossing freely), where
+        // sorters meet many overlaps at once. Not shrunk.
+        let large = case % 10 == 9;
+        if large {
+            let mut rng = scenes::Rng::new(args.seed ^ case.wrapping_mul(0x2545_F491_4F6C_DD1D));
+            let count = 10 + (rng.next_u64() % 71) as usize;
+            mesh = scenes::random_quads(count, rng.next_u64())?.mesh;
+        }
         let Ok(geometry) = Geometry::new(&mesh) else {
             skipped += 1;
             continue;
         };
         let view = spec.view(&geometry);
-        let mut shrunk = false;
+        let mut shrunk = large;
         for (kind, tally) in SorterKind::ALL.into_iter().zip(tallies.iter_mut()) {
             let violations = violations_of(kind, &geometry, &view, &mut list);
             if violations == 0 {
