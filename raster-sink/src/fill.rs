@@ -104,7 +104,9 @@ pub fn for_each_pixel_near_segment(
             (a.x.min(b.x) - radius, a.x.max(b.x) + radius)
         };
         let x0 = first_index_at_or_after(lo, width);
-        let x1 = first_index_at_or_after(hi, width).saturating_add(1).min(width);
+        let x1 = first_index_at_or_after(hi, width)
+            .saturating_add(1)
+            .min(width);
         for x in x0..x1 {
             let p = DVec2::new(f64::from(x) + 0.5, yc);
             let t = if len2 > 0.0 {

@@ -53,7 +53,9 @@ impl IdImage {
     #[must_use]
     pub fn get(&self, x: u32, y: u32) -> Option<u32> {
         if x < self.width && y < self.height {
-            self.ids.get(y as usize * self.width as usize + x as usize).copied()
+            self.ids
+                .get(y as usize * self.width as usize + x as usize)
+                .copied()
         } else {
             None
         }

@@ -150,7 +150,11 @@ pub fn truth(view: &View, geometry: &Geometry) -> Truth {
             let row = y as usize * stride;
             for x in x0..x1 {
                 let z = caster.depth(DVec2::new(f64::from(x) + 0.5, yc), n, offset);
-                let z = if z.is_nan() { z_hi } else { z.clamp(z_lo, z_hi) };
+                let z = if z.is_nan() {
+                    z_hi
+                } else {
+                    z.clamp(z_lo, z_hi)
+                };
                 let k = row + x as usize;
                 if z > best[k] || (z == best[k] && face_id < ids[k]) {
                     second[k] = best[k];

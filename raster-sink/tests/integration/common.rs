@@ -65,7 +65,11 @@ pub fn read_obj(path: &std::path::Path) -> Obj {
             Some("f") => {
                 let resolve = |s: &str, n: usize| -> u32 {
                     let i: i64 = s.parse().expect("index");
-                    if i < 0 { (n as i64 + i) as u32 } else { (i - 1) as u32 }
+                    if i < 0 {
+                        (n as i64 + i) as u32
+                    } else {
+                        (i - 1) as u32
+                    }
                 };
                 let face = parts
                     .map(|corner| {

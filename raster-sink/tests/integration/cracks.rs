@@ -12,8 +12,11 @@ fn square_cut_by_random_lines_is_covered_exactly_once() {
         let mut rng = Rng::new(seed + 100);
         let sq = square(DVec2::ZERO, 1.0, 0.0);
         let geometry = Geometry::new(&quads_mesh(&[sq])).expect("square");
-        let view = View::fit(&geometry.bounds(), 97, 83)
-            .with_yaw_pitch_roll(rng.range(-40.0, 40.0), rng.range(-40.0, 40.0), 7.0);
+        let view = View::fit(&geometry.bounds(), 97, 83).with_yaw_pitch_roll(
+            rng.range(-40.0, 40.0),
+            rng.range(-40.0, 40.0),
+            7.0,
+        );
         let view = if seed % 2 == 1 {
             view.with_perspective(150.0)
         } else {

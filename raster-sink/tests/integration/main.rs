@@ -2,4 +2,5 @@
 
 mod common;
 mod cracks;
+mod seams;
 mod truth;

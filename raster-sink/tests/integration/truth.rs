@@ -149,7 +149,12 @@ fn truth_matches_brute_force_on_spot() {
 fn layered_orders(geometry: &Geometry) -> (Vec<usize>, Vec<usize>) {
     let pieces = geometry.pieces();
     let mut order: Vec<usize> = (0..pieces.len()).collect();
-    order.sort_by(|&a, &b| pieces.plane(a).offset().total_cmp(&pieces.plane(b).offset()));
+    order.sort_by(|&a, &b| {
+        pieces
+            .plane(a)
+            .offset()
+            .total_cmp(&pieces.plane(b).offset())
+    });
     let mut reversed = order.clone();
     reversed.reverse();
     (order, reversed)
