@@ -1,0 +1,72 @@
+//! Steady-state frames allocate nothing: a counting global allocator watches every sorter
+//! sort the same geometry again from new views.
+
+// The counting allocator is the one place that needs `unsafe`: implementing `GlobalAlloc`.
+#![allow(unsafe_code)]
+
+mod common;
+
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use common::{asset, read_obj};
+use face_sort::{DrawList, Geometry, SorterKind, View};
+
+struct Counting;
+
+static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
+
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        // SAFETY: forwarded unchanged to the system allocator.
+        unsafe { System.alloc(layout) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        // SAFETY: forwarded unchanged to the system allocator.
+        unsafe { System.dealloc(ptr, layout) }
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        ALLOCATIONS.fetch_add(1, Ordering::Relaxed);
+        // SAFETY: forwarded unchanged to the system allocator.
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+#[test]
+fn sorting_again_allocates_nothing() {
+    let geometry = Geometry::new(&read_obj(&asset("compas/boxes.obj"))).unwrap();
+    let base = View::fit(&geometry.bounds(), 256, 256);
+    let views: Vec<View> = (0..12)
+        .map(|k| {
+            let v = base.with_yaw_pitch_roll(f64::from(k) * 30.0, 20.0, 0.0);
+            if k % 2 == 0 {
+                v
+            } else {
+                v.with_perspective(256.0)
+            }
+        })
+        .collect();
+    for kind in SorterKind::ALL {
+        let mut sorter = kind.build(&geometry);
+        let mut list = DrawList::new();
+        // Warm-up: buffers grow to the largest frame (Newell's splits vary by view).
+        for view in &views {
+            sorter.sort(view, &mut list);
+        }
+        let before = ALLOCATIONS.load(Ordering::Relaxed);
+        for view in &views {
+            sorter.sort(view, &mut list);
+        }
+        let after = ALLOCATIONS.load(Ordering::Relaxed);
+        assert_eq!(
+            after - before,
+            0,
+            "{} allocated in steady state",
+            kind.name()
+        );
+    }
+}
