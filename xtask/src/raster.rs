@@ -1,7 +1,15 @@
 //! The bench's and the fuzzer's view of `raster-sink`: truth and pixel error.
 
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use anyhow::Result;
+use face_sort::glam::{DVec2, DVec3};
 use face_sort::{DrawList, Geometry, View};
 pub use raster_sink::Truth;
+use raster_sink::tiny_skia::Pixmap;
+use raster_sink::{Brush, Light, RasterOptions, Style, TextureBrush, UvMap};
 
 /// Wrong and unambiguous pixel counts of one draw list.
 #[derive(Clone, Copy, Debug, Default)]
@@ -28,104 +36,99 @@ pub fn pixel_error(view: &View, list: &DrawList, truth: &Truth) -> ErrorCounts {
 }
 
 /// Colour options of `render`.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub struct ColourOptions {
     /// Anti-aliased edges.
     pub anti_alias: bool,
     /// Flat Lambert shading.
     pub shade: bool,
-    /// A ground grid under the model (drawn once raster-sink's grid lands).
-    #[expect(dead_code, reason = "raster-sink's ground grid has not landed yet")]
-    pub grid: bool,
+    /// Face index of the ground grid's quad, and the grid, when there is one.
+    pub grid: Option<(u32, raster_sink::GroundGrid)>,
+    /// A texture for meshes with uvs but no material texture (the demo's spot).
+    pub texture: Option<PathBuf>,
 }
 
-/// A colour image ready to save.
-pub struct ColourImage(raster_sink::tiny_skia::Pixmap);
-
-impl ColourImage {
-    /// Writes a PNG.
-    pub fn save(&self, path: &std::path::Path) -> anyhow::Result<()> {
-        self.0
-            .save_png(path)
-            .map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))
-    }
-}
-
-/// Paints `list` in order with flat colours (material diffuse, else a golden-angle palette).
+/// Paints `list` in order with raster-sink: material textures (or `options.texture`) where
+/// the mesh has uvs, material diffuse colours, else the golden-angle palette; the ground
+/// grid on its face.
 pub fn render_colour(
     view: &View,
+    geometry: &Geometry,
     list: &DrawList,
     mesh: &obj_quads::Mesh,
-    _model: &std::path::Path,
     options: &ColourOptions,
-) -> anyhow::Result<ColourImage> {
-    use raster_sink::tiny_skia::{Color, FillRule, Paint, PathBuilder, Pixmap, Transform};
-    let mut pixmap = Pixmap::new(view.width(), view.height()).ok_or_else(|| {
-        anyhow::anyhow!("cannot allocate a {}x{} image", view.width(), view.height())
-    })?;
-    pixmap.fill(Color::from_rgba8(250, 250, 250, 255));
-    let mut scratch = face_sort::ProjectionScratch::default();
-    let mut points = Vec::new();
-    let light = face_sort::glam::DVec3::new(0.3, 0.5, 1.0).normalize();
-    for &item in list.items() {
-        view.project_polygon(list.corners(item), &mut points, &mut scratch);
-        if points.len() < 3 {
-            continue;
+) -> Result<Pixmap> {
+    let mut style = Style::palette();
+    let mut textures: HashMap<PathBuf, Option<Arc<Pixmap>>> = HashMap::new();
+    let mut load = |path: &Path| -> Result<Option<Arc<Pixmap>>> {
+        if let Some(t) = textures.get(path) {
+            return Ok(t.clone());
         }
-        let face = item.face as usize;
-        let base = mesh
-            .face_material(face)
-            .and_then(|m| mesh.materials().get(m as usize))
-            .map(|m| {
-                [
-                    m.diffuse[0] as f64,
-                    m.diffuse[1] as f64,
-                    m.diffuse[2] as f64,
-                ]
-            })
-            .unwrap_or_else(|| golden(face));
-        let k = if options.shade {
-            let n = view.to_view(list.plane(item).normal());
-            0.35 + 0.65 * n.dot(light).abs()
-        } else {
-            1.0
+        let image = Pixmap::load_png(path)
+            .map(Arc::new)
+            .map_err(|e| anyhow::anyhow!("texture {}: {e}", path.display()));
+        // A missing or unreadable material texture falls back to the diffuse colour (with
+        // a warning); an explicitly requested one is an error.
+        let image = match image {
+            Ok(image) => Some(image),
+            Err(e) if options.texture.as_deref() == Some(path) => return Err(e),
+            Err(e) => {
+                eprintln!("warning: {e:#}; using the diffuse colour");
+                None
+            }
         };
-        let c = |v: f64| ((v * k).clamp(0.0, 1.0) * 255.0).round() as u8;
-        let mut pb = PathBuilder::new();
-        pb.move_to(points[0].x as f32, points[0].y as f32);
-        for p in &points[1..] {
-            pb.line_to(p.x as f32, p.y as f32);
+        textures.insert(path.to_owned(), image.clone());
+        Ok(image)
+    };
+    let centre = geometry.bounds().centre();
+    let positions = mesh.positions();
+    for face in 0..mesh.face_count() {
+        let material = mesh
+            .face_material(face)
+            .and_then(|m| mesh.materials().get(m as usize));
+        let texture_path = material
+            .and_then(|m| m.texture.clone())
+            .or_else(|| options.texture.clone());
+        let brush = match (texture_path, mesh.face_uvs(face), mesh.face(face)) {
+            (Some(path), Some(uvs), Some(indices)) => load(&path)?.and_then(|image| {
+                let corners: Vec<DVec3> = indices
+                    .iter()
+                    .map(|&i| positions[i as usize] - centre)
+                    .collect();
+                let uvs: Vec<DVec2> = uvs
+                    .iter()
+                    .map(|uv| DVec2::new(f64::from(uv.x), 1.0 - f64::from(uv.y)))
+                    .collect();
+                UvMap::fit(&corners, &uvs).map(|map| Brush::Texture(TextureBrush { image, map }))
+            }),
+            _ => None,
+        };
+        let brush = brush.or_else(|| {
+            material.map(|m| {
+                let c = |v: f32| (v.clamp(0.0, 1.0) * 255.0).round() as u8;
+                Brush::Solid([
+                    c(m.diffuse[0]),
+                    c(m.diffuse[1]),
+                    c(m.diffuse[2]),
+                    c(m.diffuse[3]),
+                ])
+            })
+        });
+        if let Some(brush) = brush {
+            style.set_face(face as u32, brush);
         }
-        pb.close();
-        let Some(path) = pb.finish() else { continue };
-        let mut paint = Paint::default();
-        paint.set_color_rgba8(c(base[0]), c(base[1]), c(base[2]), 255);
-        paint.anti_alias = options.anti_alias;
-        pixmap.fill_path(
-            &path,
-            &paint,
-            FillRule::Winding,
-            Transform::identity(),
-            None,
-        );
     }
-    Ok(ColourImage(pixmap))
+    if let Some((face, grid)) = &options.grid {
+        style.set_face(*face, Brush::Grid(Arc::new(grid.clone())));
+    }
+    let raster_options = RasterOptions::DEFAULT
+        .with_anti_alias(options.anti_alias)
+        .with_shading(options.shade.then_some(Light::DEFAULT));
+    raster_sink::render_colour(view, list, &style, &raster_options)
+        .map_err(|e| anyhow::anyhow!("raster: {e}"))
 }
 
-/// Golden-angle hue per face index.
-fn golden(face: usize) -> [f64; 3] {
-    let h = (face as f64 * 137.507_764) % 360.0 / 60.0;
-    let (s, v) = (0.55, 0.9);
-    let c = v * s;
-    let x = c * (1.0 - (h % 2.0 - 1.0).abs());
-    let (r, g, b) = match h as u32 {
-        0 => (c, x, 0.0),
-        1 => (x, c, 0.0),
-        2 => (0.0, c, x),
-        3 => (0.0, x, c),
-        4 => (x, 0.0, c),
-        _ => (c, 0.0, x),
-    };
-    let m = v - c;
-    [r + m, g + m, b + m]
+/// Writes a colour image as PNG.
+pub fn save_colour(pixmap: &Pixmap, path: &Path) -> Result<()> {
+    raster_sink::save_png(pixmap, path).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))
 }

@@ -7,7 +7,8 @@ use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
 use clap::{Args, ValueEnum};
-use face_sort::{CullMode, DrawList, FrontFace, Geometry, SorterKind, View, oracle};
+use face_sort::{CullMode, DrawList, FrontFace, Geometry, PolygonMesh, SorterKind, View, oracle};
+use raster_sink::GroundGrid;
 use serde::Serialize;
 
 use crate::raster;
@@ -15,9 +16,11 @@ use crate::scenes;
 
 /// The demo scene: spot the cow (Keenan Crane, CC0), textured, on a ground grid.
 const DEMO_MODEL: &str = "assets/models/keenan-crane/spot/spot_quadrangulated.obj";
+/// The demo model's texture (its OBJ has uvs but no MTL).
+const DEMO_TEXTURE: &str = "assets/models/keenan-crane/spot/spot_texture.png";
 /// The demo's view when no angle is given.
 const DEMO_YAW: f64 = 145.0;
-const DEMO_PITCH: f64 = 20.0;
+const DEMO_PITCH: f64 = -25.0;
 
 /// Options of `render`.
 #[derive(Debug, Args)]
@@ -30,7 +33,7 @@ pub struct RenderArgs {
     /// Yaw in degrees (about the screen's vertical axis). Default 0 (the demo: 145).
     #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
     yaw: Option<f64>,
-    /// Pitch in degrees. Default 0 (the demo: 20).
+    /// Pitch in degrees. Default 0 (the demo: -25; yaw turns the pitched model, so near yaw 180 a negative pitch shows the top).
     #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
     pitch: Option<f64>,
     /// Roll in degrees. Default 0.
@@ -82,6 +85,9 @@ pub struct RenderArgs {
     /// Draw a ground grid under the model (always on for the demo).
     #[arg(long)]
     grid: bool,
+    /// Texture (PNG) for a model with uvs but no material texture (the demo uses spot's).
+    #[arg(long, value_name = "PNG")]
+    texture: Option<PathBuf>,
     /// Also write an SVG of the same draw list.
     #[arg(long, value_name = "OUT.svg")]
     svg: Option<PathBuf>,
@@ -203,7 +209,30 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
 
     let start = Instant::now();
     let (mesh, _report) = scenes::load_model(&model_path, policy)?;
-    let polygons = scenes::to_polygon_mesh(&mesh)?;
+    let model_only = scenes::to_polygon_mesh(&mesh)?;
+    let model_bounds = model_only
+        .bounds()
+        .ok_or_else(|| anyhow::anyhow!("{}: no faces", model_path.display()))?;
+    // The ground grid is one more face (index = face count), sorted like any other.
+    let grid = (args.grid || demo).then(|| {
+        let extent = (model_bounds.max - model_bounds.min).max_element();
+        (
+            mesh.face_count() as u32,
+            GroundGrid::new(&model_bounds, 2.0 * extent),
+        )
+    });
+    let polygons = match &grid {
+        None => model_only,
+        Some((face, grid)) => {
+            debug_assert_eq!(*face as usize, model_only.face_count());
+            let first = model_only.positions().len() as u32;
+            let mut positions = model_only.positions().to_vec();
+            positions.extend_from_slice(&grid.quad());
+            let mut faces: Vec<Vec<u32>> = model_only.faces().map(<[u32]>::to_vec).collect();
+            faces.push((first..first + 4).collect());
+            PolygonMesh::new(positions, faces)?
+        }
+    };
     let geometry =
         Geometry::new(&polygons).map_err(|e| anyhow::anyhow!("{}: {e}", model_path.display()))?;
     let load_ms = ms(start);
@@ -227,6 +256,9 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
             bail!("--scale must be a positive number, got {scale}");
         }
         view = view.with_scale(scale);
+    } else if grid.is_some() {
+        // Fit the model, not the (larger) grid: the grid leaves the frame and fades out.
+        view = view.with_scale(0.9 * f64::from(width.min(height)) / model_bounds.diagonal());
     }
     match (args.persp, demo && !args.ortho) {
         (Some(d), _) => {
@@ -273,14 +305,19 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
             .save_png(&output)
             .map_err(|e| anyhow::anyhow!("{}: {e}", output.display()))?;
     } else {
+        let texture = match (&args.texture, demo) {
+            (Some(path), _) => Some(path.clone()),
+            (None, true) => Some(scenes::asset(DEMO_TEXTURE)),
+            (None, false) => None,
+        };
         let options = raster::ColourOptions {
             anti_alias: !args.no_aa,
             shade: args.shade || demo,
-            grid: args.grid || demo,
+            grid: grid.clone(),
+            texture,
         };
-        raster::render_colour(&view, &list, &mesh, &model_path, &options)?
-            .save(&output)
-            .with_context(|| format!("writing {}", output.display()))?;
+        let image = raster::render_colour(&view, &geometry, &list, &mesh, &options)?;
+        raster::save_colour(&image, &output)?;
     }
     let raster_ms = ms(start);
 
