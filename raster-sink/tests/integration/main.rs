@@ -2,5 +2,8 @@
 
 mod common;
 mod cracks;
+mod golden;
+mod grid;
+mod scenes;
 mod seams;
 mod truth;
