@@ -53,15 +53,15 @@ impl Brush {
     }
 }
 
-/// The fallback palette: hue advancing by the golden angle (≈ 137.5°) per face, saturation 0.55,
-/// value 0.9, opaque. Neighbouring faces get clearly different colours.
+/// The seed's fallback palette (the same as `raster-sink`'s): hue `face · 137.508°` (the golden
+/// angle), saturation 0.55, value 0.92, opaque. Neighbouring faces get clearly different colours.
 #[must_use]
 pub fn golden_angle_colour(face: u32) -> [u8; 4] {
-    const GOLDEN_ANGLE_DEG: f64 = 137.507_764_050_037_85;
+    const GOLDEN_ANGLE_DEG: f64 = 137.508;
     let hue = (f64::from(face) * GOLDEN_ANGLE_DEG).rem_euclid(360.0) / 60.0;
-    let (s, v) = (0.55, 0.9);
+    let (s, v) = (0.55, 0.92);
     let c = v * s;
-    let x = c * (1.0 - (hue.rem_euclid(2.0) - 1.0).abs());
+    let x = c * (1.0 - (hue % 2.0 - 1.0).abs());
     let (r, g, b) = match hue as u32 {
         0 => (c, x, 0.0),
         1 => (x, c, 0.0),

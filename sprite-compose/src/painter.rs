@@ -746,3 +746,20 @@ fn fragment_clip(
     );
     true
 }
+
+impl<C: Compositor> SpritePainter<C> {
+    /// The drawn polygons of the current frame, projected to pixels (for picking, outlines
+    /// and overlays). Allocates; not for the per-frame path.
+    #[must_use]
+    pub fn projected_frame(&self) -> crate::ProjectedFrame {
+        crate::ProjectedFrame::new(&self.state.view, &self.state.list)
+    }
+
+    /// The topmost face at pixel position `(x, y)` of the current frame (a pixel's centre is
+    /// `(x + 0.5, y + 0.5)`): front to back over the draw list, exact point-in-polygon on the
+    /// projected polygons.
+    #[must_use]
+    pub fn pick(&self, x: f64, y: f64) -> Option<face_sort::DrawItem> {
+        self.projected_frame().pick(DVec2::new(x, y))
+    }
+}
