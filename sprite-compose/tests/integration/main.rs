@@ -5,3 +5,4 @@ mod support;
 
 mod painter;
 mod writers;
+mod browser;
