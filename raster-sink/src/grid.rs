@@ -189,7 +189,7 @@ impl<'a> GridShader<'a> {
         let extent = g.x.abs().max(g.y.abs()) / half;
         let fade = (1.0 - smoothstep(grid.fade_start, 1.0, extent))
             * smoothstep(grid.grazing_fade * 0.2, grid.grazing_fade, cos);
-        if fade <= 0.0 || !(grid.cell > 0.0) {
+        if fade <= 0.0 || grid.cell.is_nan() || grid.cell <= 0.0 {
             return [0.0; 4];
         }
         // Footprint of one pixel in ground units, per ground axis (like GLSL fwidth).

@@ -1,6 +1,61 @@
-//! Reference raster for painter draw lists.
+//! The reference raster of the painter workspace: what a draw list looks like, and how wrong
+//! its order is.
 //!
-//! TODO: crate docs.
+//! - **ID images** ([`render_ids`]): every polygon of a [`face_sort::DrawList`] filled in
+//!   paint order at pixel centres by the crate's own f64 scanline ([`for_each_span`], a
+//!   top-left fill rule), so split fragments tile without cracks or double cover; 24-bit
+//!   face index + 1 per pixel, written as 8-bit RGB PNG (CONVENTIONS.md).
+//! - **Truth** ([`truth()`]): per pixel centre, the drawn piece whose plane the pixel's ray meets
+//!   nearest, in f64, with the mask of unambiguous pixels; [`pixel_error`] compares a
+//!   painter's ID image with it. An exact order gives exactly 0.
+//! - **Colour** ([`render_colour`], [`run_steps`]) on tiny-skia: anti-aliased, with solid,
+//!   textured ([`UvMap`]) and palette brushes ([`golden_angle_colour`]), flat Lambert
+//!   shading ([`Light`]), supersampling, override brushes, a small list of render [`Step`]s,
+//!   and a procedural [`GroundGrid`].
+//!
+//! # Seams
+//! Anti-aliased neighbours conflate: a pixel half covered by each of two adjacent polygons
+//! keeps a quarter of the background. Each draw step finds the edges that two drawn
+//! polygons share (same projected endpoints, or collinear overlap at T-junctions where a
+//! sorter split one face but not its neighbour) and pushes the fill out across those edges
+//! by [`RasterOptions::seam_outset`] (half a pixel); silhouette edges stay exact.
+//!
+//! # Textures and perspective
+//! A texture is mapped per polygon by one affine transform (a tiny-skia `Pattern`), exact in
+//! orthographic views. Perspective is projective: the affine map is exact only at the three
+//! corners it is fitted to and drifts elsewhere (a quad's fourth corner, long polygons).
+//! [`RasterOptions::texture_subdivision`] cuts each textured fan triangle into `n × n`
+//! pieces with their own transforms, which shrinks the drift by about `n²`.
+//!
+//! ```
+//! use raster_sink::face_sort::glam::DVec3;
+//! use raster_sink::face_sort::{Centroid, DrawList, FaceSorter, Geometry, PolygonMesh, View};
+//! use raster_sink::{RasterOptions, Style, pixel_error, render_colour, render_ids, truth};
+//!
+//! // Two squares, the second in front of the first and overlapping it.
+//! let positions = vec![
+//!     DVec3::new(0.0, 0.0, 0.0), DVec3::new(2.0, 0.0, 0.0),
+//!     DVec3::new(2.0, 2.0, 0.0), DVec3::new(0.0, 2.0, 0.0),
+//!     DVec3::new(1.0, 1.0, 1.0), DVec3::new(3.0, 1.0, 1.0),
+//!     DVec3::new(3.0, 3.0, 1.0), DVec3::new(1.0, 3.0, 1.0),
+//! ];
+//! let mesh = PolygonMesh::new(positions, [[0, 1, 2, 3], [4, 5, 6, 7]]).unwrap();
+//! let geometry = Geometry::new(&mesh).unwrap();
+//! let view = View::fit(&geometry.bounds(), 64, 64);
+//! let mut list = DrawList::new();
+//! Centroid::new(&geometry).sort(&view, &mut list);
+//!
+//! let ids = render_ids(&view, &list);
+//! let error = pixel_error(&ids, &truth(&view, &geometry));
+//! assert!(error.pixels > 0);
+//! assert_eq!(error.wrong, 0); // parallel layers: the centroid order is right
+//!
+//! let image = render_colour(&view, &list, &Style::palette(), &RasterOptions::DEFAULT).unwrap();
+//! assert_eq!((image.width(), image.height()), (64, 64));
+//! ```
+//!
+//! # Feature flags
+//! None yet: tiny-skia (with its PNG support) and png are always on.
 
 mod colour;
 mod error;

@@ -38,5 +38,5 @@ pub(crate) fn is_degenerate(points: &[DVec2]) -> bool {
     }
     let d2 = (hi - lo).length_squared();
     let area2 = face_sort::signed_area_2d(points).abs() * 2.0;
-    !(area2 > DEGENERATE_PROJECTED_AREA * d2)
+    area2.is_nan() || area2 <= DEGENERATE_PROJECTED_AREA * d2
 }

@@ -100,7 +100,7 @@ fn solve3(m: [[f64; 3]; 3], rhs: [DVec2; 3]) -> Option<[DVec2; 3]> {
     };
     let det = det3(m);
     let scale = m.iter().flatten().fold(0.0f64, |a, &b| a.max(b.abs()));
-    if !(det.abs() > 1e-12 * scale * scale * scale) {
+    if det.is_nan() || det.abs() <= 1e-12 * scale * scale * scale {
         return None;
     }
     let mut out = [DVec2::ZERO; 3];

@@ -6,4 +6,5 @@ mod golden;
 mod grid;
 mod scenes;
 mod seams;
+mod steps;
 mod truth;

@@ -228,3 +228,20 @@ fn id_png_round_trips() {
     assert_eq!(&image.to_rgb_bytes()[..3], &[0x12, 0x34, 0x56]);
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn bsp_order_gives_zero_error_on_spot() {
+    let geometry = Geometry::new(&spot_control().mesh()).expect("spot");
+    for view in [
+        View::fit(&geometry.bounds(), 160, 160).with_yaw_pitch_roll(40.0, 20.0, 0.0),
+        View::fit(&geometry.bounds(), 160, 160)
+            .with_yaw_pitch_roll(200.0, -30.0, 0.0)
+            .with_perspective(200.0),
+    ] {
+        let mut list = DrawList::new();
+        Bsp::new(&geometry).sort(&view, &mut list);
+        let e = pixel_error(&render_ids(&view, &list), &truth(&view, &geometry));
+        assert!(e.pixels > 1000, "{e:?}");
+        assert_eq!(e.wrong, 0, "{e:?}");
+    }
+}
