@@ -60,6 +60,8 @@ struct Node {
 #[derive(Debug)]
 pub struct BspTree {
     planes: Vec<Plane>,
+    /// The node planes as `[nx, ny, nz, offset]`, for the per-view side pass.
+    plane_rows: Vec<[f64; 4]>,
     nodes: Vec<Node>,
     /// Fragments in pre-order: node by node, each node's own fragments contiguous.
     fragments: Arc<PolygonSet>,
@@ -97,7 +99,13 @@ impl BspTree {
             builder.work_piece.push(i as u32);
         }
         let depth = builder.build_all((0..pieces.len() as u32).collect());
+        let plane_rows = builder
+            .planes
+            .iter()
+            .map(|p| [p.normal().x, p.normal().y, p.normal().z, p.offset()])
+            .collect();
         BspTree {
+            plane_rows,
             planes: builder.planes,
             nodes: builder.nodes,
             fragments: Arc::new(builder.fragments),
@@ -142,6 +150,7 @@ impl BspTree {
     #[must_use]
     pub fn heap_bytes(&self) -> usize {
         self.planes.capacity() * size_of::<Plane>()
+            + self.plane_rows.capacity() * size_of::<[f64; 4]>()
             + self.nodes.capacity() * size_of::<Node>()
             + self.fragments.heap_bytes()
             + self.fragment_piece.capacity() * 4
@@ -336,6 +345,7 @@ pub struct Bsp {
     base: Vec<u32>,
     order: Vec<u32>,
     piece_drawn: Vec<bool>,
+    viewer_in_front: Vec<bool>,
 }
 
 impl Bsp {
@@ -352,6 +362,7 @@ impl Bsp {
             base: vec![0; tree.nodes.len()],
             order: vec![0; tree.fragments.len()],
             piece_drawn: vec![false; tree.pieces.len()],
+            viewer_in_front: vec![false; tree.nodes.len()],
             tree,
         }
     }
@@ -376,13 +387,21 @@ impl FaceSorter for Bsp {
         for (i, plane) in tree.pieces.planes().iter().enumerate() {
             self.piece_drawn[i] = cull.is_drawn(plane, tree.pieces.corners(i)[0]);
         }
+        // Which side of every node plane the viewer is on: one branch-free pass.
+        let (point, w) = match viewer {
+            crate::Viewer::Direction(d) => (d, 0.0),
+            crate::Viewer::Eye(e) => (e, 1.0),
+        };
+        for (side, row) in self.viewer_in_front.iter_mut().zip(&tree.plane_rows) {
+            *side = row[0] * point.x + row[1] * point.y + row[2] * point.z - w * row[3] >= 0.0;
+        }
         if let Some(first) = self.base.first_mut() {
             *first = 0;
         }
         for (k, node) in tree.nodes.iter().enumerate() {
             let b = self.base[k];
-            let viewer_in_front = viewer.facing(&tree.planes[k]) >= 0.0;
-            let (first_child, second_child, first_size) = if viewer_in_front {
+            let in_front = self.viewer_in_front[k];
+            let (first_child, second_child, first_size) = if in_front {
                 (node.back_child, node.front_child, node.back_size)
             } else {
                 (node.front_child, node.back_child, node.front_size)
@@ -390,25 +409,20 @@ impl FaceSorter for Bsp {
             if first_child != NONE {
                 self.base[first_child as usize] = b;
             }
-            let own = b + first_size;
-            let own_len = node.same + node.opposite;
+            let own = (b + first_size) as usize;
             if second_child != NONE {
-                self.base[second_child as usize] = own + own_len;
+                self.base[second_child as usize] = b + first_size + node.same + node.opposite;
             }
             // Within the plane, polygons facing away from the viewer go first.
-            let (first_group, first_len, second_group, second_len) = if viewer_in_front {
-                (node.first + node.same, node.opposite, node.first, node.same)
+            let same = node.first..node.first + node.same;
+            let opposite = node.first + node.same..node.first + node.same + node.opposite;
+            let (a, c) = if in_front {
+                (opposite, same)
             } else {
-                (node.first, node.same, node.first + node.same, node.opposite)
+                (same, opposite)
             };
-            let slot = &mut self.order[own as usize..(own + own_len) as usize];
-            for (j, s) in slot.iter_mut().enumerate() {
-                let j = j as u32;
-                *s = if j < first_len {
-                    first_group + j
-                } else {
-                    second_group + (j - first_len).min(second_len.saturating_sub(1))
-                };
+            for (slot, f) in self.order[own..].iter_mut().zip(a.chain(c)) {
+                *slot = f;
             }
         }
         out.begin(&tree.fragments);
@@ -430,7 +444,8 @@ impl FaceSorter for Bsp {
             cached_bytes: self.tree.heap_bytes()
                 + self.base.capacity() * 4
                 + self.order.capacity() * 4
-                + self.piece_drawn.capacity(),
+                + self.piece_drawn.capacity()
+                + self.viewer_in_front.capacity(),
             depth: self.tree.depth,
             fallbacks: 0,
         }

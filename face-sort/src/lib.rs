@@ -36,6 +36,7 @@ mod bsp;
 mod centroid;
 mod draw_list;
 mod error;
+pub mod generate;
 mod geometry;
 mod mesh;
 mod newell;

@@ -13,7 +13,7 @@ use crate::tolerance::PLANE_SIDE;
 use crate::{DrawList, FaceSorter, Geometry, PolygonSet, SorterStats, View};
 
 /// Meshes up to this many pieces test every pair; larger ones only pairs within reach.
-const ALL_PAIRS_LIMIT: usize = 6000;
+const ALL_PAIRS_LIMIT: usize = 512;
 /// On large meshes, pairs are considered when their bounding spheres come within this many
 /// median piece diameters of each other.
 const REACH_IN_DIAMETERS: f64 = 2.0;
@@ -23,7 +23,7 @@ const REACH_IN_DIAMETERS: f64 = 2.0;
 ///
 /// The graph holds a pair `(x, y)` when every corner of `x` is on or behind `y`'s plane and one
 /// strictly behind. Per view, `x` goes before `y` when the viewer is in front of `y`'s plane,
-/// after it otherwise. Meshes of more than 6,000 pieces only relate pieces within two median
+/// after it otherwise. Meshes of more than 512 pieces only relate pieces within two median
 /// piece diameters of each other (a spatial grid), so the build stays near-linear: an
 /// approximation on top of an approximation, measured by the bench like everything else.
 #[derive(Debug)]
