@@ -406,8 +406,7 @@ fn bench_scene(scene: &Scene, budget: &Budget, resolution: u32) -> Result<Vec<Ro
 }
 
 /// Scaling: build and per-frame time of every sorter on a torus of `faces` faces; skips a
-/// measurement whose estimate from the previous size (assuming quadratic growth) exceeds the
-/// budget.
+/// measurement whose estimate from the previous sizes exceeds the budget.
 fn scaling_size(faces: usize, budget: &Budget, previous: &[ScalingRow]) -> Result<Vec<ScalingRow>> {
     let scene = scenes::torus(faces)?;
     let geometry = Geometry::new(&scene.mesh)?;
@@ -419,13 +418,24 @@ fn scaling_size(faces: usize, budget: &Budget, previous: &[ScalingRow]) -> Resul
         })
         .collect();
     let limit_ms = budget.scaling_limit.as_secs_f64() * 1e3;
+    // Extrapolates from the previous sizes with the growth exponent seen between the last
+    // two (clamped to 1..=2; 2 when there is only one).
     let estimate = |sorter: &str, pick: fn(&ScalingRow) -> Option<f64>, scale_ms: f64| {
-        previous
+        let mut points: Vec<(usize, f64)> = previous
             .iter()
             .filter(|r| r.sorter == sorter)
             .filter_map(|r| pick(r).map(|v| (r.faces, v)))
-            .max_by_key(|&(f, _)| f)
-            .map(|(f, v)| v * scale_ms * (faces as f64 / f as f64).powi(2))
+            .collect();
+        points.sort_by_key(|&(f, _)| f);
+        let &(f1, v1) = points.last()?;
+        let exponent = match points.len() {
+            n if n >= 2 => {
+                let (f0, v0) = points[n - 2];
+                ((v1 / v0).ln() / (f1 as f64 / f0 as f64).ln()).clamp(1.0, 2.0)
+            }
+            _ => 2.0,
+        };
+        Some(v1 * scale_ms * (faces as f64 / f1 as f64).powf(exponent))
     };
     let skipped_before = |sorter: &str| {
         previous
@@ -451,7 +461,7 @@ fn scaling_size(faces: usize, budget: &Budget, previous: &[ScalingRow]) -> Resul
                 frame_us: None,
                 fragments: None,
                 note: format!(
-                    "skipped: estimated (quadratic) build {:.0} ms / frame {:.0} ms over the {:.0} s limit",
+                    "skipped: estimated build {:.0} ms / frame {:.0} ms over the {:.0} s limit",
                     build_estimate,
                     frame_estimate,
                     limit_ms / 1e3
@@ -604,11 +614,11 @@ fn markdown(command: &str, rows: &[Row], scaling: &[ScalingRow], resolution: u32
 }
 
 fn summary(rows: &[Row]) -> String {
-    let mut s = String::from("sorter        median frame ×centroid  pixel error  violations\n");
-    let mut names: Vec<&str> = rows.iter().map(|r| r.sorter.as_str()).collect();
-    names.dedup();
-    let mut seen = Vec::new();
-    for name in names {
+    let mut s =
+        String::from("sorter        ×centroid (geo-mean)  mean pixel error  violations  rows\n");
+    let mut seen: Vec<&str> = Vec::new();
+    for r in rows {
+        let name = r.sorter.as_str();
         if seen.contains(&name) {
             continue;
         }
@@ -617,21 +627,24 @@ fn summary(rows: &[Row]) -> String {
             .iter()
             .filter(|r| r.sorter == name && r.views > 0)
             .collect();
-        let mut ratios: Vec<f64> = mine.iter().map(|r| r.frame_ratio_vs_centroid).collect();
-        let mut frames: Vec<f64> = mine.iter().map(|r| r.frame_us).collect();
+        let ratios: Vec<f64> = mine
+            .iter()
+            .map(|r| r.frame_ratio_vs_centroid)
+            .filter(|r| r.is_finite() && *r > 0.0)
+            .collect();
+        let geo = (ratios.iter().map(|r| r.ln()).sum::<f64>() / ratios.len().max(1) as f64).exp();
         let errors: Vec<f64> = mine.iter().filter_map(|r| r.pixel_error).collect();
         let mean_error = errors.iter().sum::<f64>() / errors.len().max(1) as f64;
         let violations: usize = mine.iter().map(|r| r.violations).sum();
         let _ = writeln!(
             s,
-            "{name:<13} {:>12} {:>9.2} {:>11} {violations:>11}",
-            fmt_time(median(&mut frames)),
-            median(&mut ratios),
+            "{name:<13} {geo:>20.2} {:>17} {violations:>11} {:>5}",
             if errors.is_empty() {
                 "n/a".to_owned()
             } else {
                 format!("{:.3} %", mean_error * 100.0)
             },
+            mine.len()
         );
     }
     s.trim_end().to_owned()
