@@ -35,8 +35,16 @@ impl AngleRange {
                 if self.hi - self.lo >= p {
                     return true;
                 }
-                let (a, lo, hi) = (angle.rem_euclid(p), self.lo.rem_euclid(p), self.hi.rem_euclid(p));
-                if lo <= hi { a >= lo && a < hi } else { a >= lo || a < hi }
+                let (a, lo, hi) = (
+                    angle.rem_euclid(p),
+                    self.lo.rem_euclid(p),
+                    self.hi.rem_euclid(p),
+                );
+                if lo <= hi {
+                    a >= lo && a < hi
+                } else {
+                    a >= lo || a < hi
+                }
             }
         }
     }
@@ -188,7 +196,10 @@ impl BakedGraph {
     /// Brush of a face.
     #[must_use]
     pub fn brush(&self, face: u32) -> Brush {
-        self.brushes.get(face as usize).copied().unwrap_or(Brush::Palette)
+        self.brushes
+            .get(face as usize)
+            .copied()
+            .unwrap_or(Brush::Palette)
     }
 
     /// Reassigns brushes; returns how many baked sprites (over all containers) must be told,
@@ -215,7 +226,10 @@ impl BakedGraph {
 }
 
 fn clip_of(space: &SpriteSpace, t: &SpriteTransform, corners: &[DVec3]) -> Vec<DVec2> {
-    corners.iter().map(|&c| t.unit_coords(space.point(c))).collect()
+    corners
+        .iter()
+        .map(|&c| t.unit_coords(space.point(c)))
+        .collect()
 }
 
 /// Holds the baked graph being shown; a new one (computed on any thread) replaces it in one

@@ -1,13 +1,63 @@
-//! TODO docs
+//! A backend-agnostic sprite tree for drawing polygon meshes without a depth buffer.
+//!
+//! Every face (more exactly every planar piece of [`face_sort::Geometry`], and every split
+//! fragment a sorter keeps) becomes one **sprite**: the unit square under a fixed
+//! [`SpriteTransform`] (exact affine map for parallelograms and triangles, the exact
+//! homography for general planar quads, a clip polygon for triangles, n-gons and fragments).
+//! A frame moves only the [`root_transform`] (rotation and perspective), visibility and the
+//! stacking order. [`SpritePainter`] asks a [`face_sort::FaceSorter`] for the paint order
+//! and sends a retained [`Compositor`] only what changed, with few reorders (the longest
+//! increasing subsequence of the previous stack stays in place).
+//!
+//! Also here: picking and selection outlines ([`ProjectedFrame`]), the SVG writer
+//! ([`write_svg`]) and the HTML/CSS 3D writer ([`write_html`], flat or `preserve-3d`), both
+//! with a CONVENTIONS.md ID-colour mode, and the data shapes of a baked realisation
+//! ([`Bake`], [`BakedGraph`], [`FacingPredicate`]).
+//!
+//! ```
+//! use sprite_compose::face_sort::{Geometry, PolygonMesh, SorterKind, View};
+//! use sprite_compose::glam::DVec3;
+//! use sprite_compose::{RecordingCompositor, SpritePainter, rotation_from_yaw_pitch_roll};
+//!
+//! // A unit cube.
+//! let p = |x: f64, y: f64, z: f64| DVec3::new(x, y, z);
+//! let positions = vec![
+//!     p(0., 0., 0.), p(1., 0., 0.), p(0., 1., 0.), p(1., 1., 0.),
+//!     p(0., 0., 1.), p(1., 0., 1.), p(0., 1., 1.), p(1., 1., 1.),
+//! ];
+//! let faces = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 4, 6, 2], [1, 3, 7, 5], [0, 1, 5, 4], [2, 6, 7, 3]];
+//! let geometry = Geometry::new(&PolygonMesh::new(positions, faces).unwrap()).unwrap();
+//! let view = View::fit(&geometry.bounds(), 256, 256).with_yaw_pitch_roll(30.0, 20.0, 0.0);
+//! let sorter = SorterKind::Bsp.build(&geometry);
+//! let mut painter = SpritePainter::new(&geometry, sorter, view, RecordingCompositor::new());
+//!
+//! let first = painter.frame();
+//! assert_eq!(first.ops.create, 6); // one sprite per face, created once
+//! assert_eq!(first.drawn, 3); // three faces face the viewer
+//! assert_eq!(painter.frame().ops.total(), 0); // nothing changed: nothing sent
+//!
+//! // Turning costs the root transform plus visibility flips and moves, never transforms.
+//! painter.set_rotation(rotation_from_yaw_pitch_roll(120.0, 20.0, 0.0));
+//! let turned = painter.frame();
+//! assert_eq!((turned.ops.root, turned.ops.transform), (1, 0));
+//!
+//! // The topmost face at the centre pixel.
+//! assert!(painter.pick(128.0, 128.0).is_some());
+//! ```
+//!
+//! # Feature flags
+//! None yet: the crate depends only on `face-sort` and `glam`. The writers
+//! produce text and need no extra dependency.
+
 mod bake;
 mod compositor;
 mod html;
-mod pick;
-mod svg;
 mod order;
 mod painter;
+mod pick;
 mod recording;
 mod root;
+mod svg;
 mod transform;
 
 pub use bake::{
@@ -21,8 +71,8 @@ pub use html::{HtmlMode, HtmlOptions, css_matrix3d, write_html};
 pub use painter::{FrameStats, RotationHandle, RotationSource, SpritePainter};
 pub use pick::{OUTLINE_PROBE_PX, ProjectedFrame, contains, outline_svg_path};
 pub use recording::{RecordingCompositor, Scene, SceneSprite};
-pub use svg::{SvgOptions, project_sprite, write_svg};
 pub use root::{perspective_matrix, root_transform, rotation_from_yaw_pitch_roll};
+pub use svg::{SvgOptions, project_sprite, write_svg};
 pub use transform::{
     MapKind, PARALLELOGRAM, PieceMap, PieceMaps, SpriteSpace, SpriteTransform, piece_map,
 };

@@ -38,8 +38,10 @@ impl StackMirror {
         }
         self.keep.reserve(n.saturating_sub(self.keep.len()));
         self.moved.reserve(n.saturating_sub(self.moved.len()));
-        self.in_sequence.reserve(n.saturating_sub(self.in_sequence.len()));
-        self.next_stack.reserve(n.saturating_sub(self.next_stack.len()));
+        self.in_sequence
+            .reserve(n.saturating_sub(self.in_sequence.len()));
+        self.next_stack
+            .reserve(n.saturating_sub(self.next_stack.len()));
     }
 
     /// Removes a sprite (what `destroy_sprite` does).
@@ -175,7 +177,11 @@ mod tests {
         }
         let seq: Vec<SpriteId> = target.iter().map(|&s| SpriteId(s)).collect();
         let moves = mirror.reorder(&seq, &mut rec);
-        assert_eq!(mirror.stack(), rec.scene().stack(), "mirror matches backend");
+        assert_eq!(
+            mirror.stack(),
+            rec.scene().stack(),
+            "mirror matches backend"
+        );
         let shown: Vec<SpriteId> = rec
             .scene()
             .stack()

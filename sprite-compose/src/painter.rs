@@ -133,7 +133,12 @@ impl<C: Compositor> SpritePainter<C> {
     /// `compositor` (which must be empty). Nothing is sent until the first
     /// [`frame`](Self::frame). Every face starts with [`Brush::Palette`].
     #[must_use]
-    pub fn new(geometry: &Geometry, sorter: Box<dyn FaceSorter>, view: View, compositor: C) -> Self {
+    pub fn new(
+        geometry: &Geometry,
+        sorter: Box<dyn FaceSorter>,
+        view: View,
+        compositor: C,
+    ) -> Self {
         let state = State::new_like(geometry, sorter, view);
         SpritePainter { compositor, state }
     }
@@ -442,7 +447,11 @@ impl State {
         if sprite.has_clip {
             out.set_clip(id, Some(&sprite.clip));
         }
-        let brush = self.brushes.get(sprite.face as usize).copied().unwrap_or(Brush::Palette);
+        let brush = self
+            .brushes
+            .get(sprite.face as usize)
+            .copied()
+            .unwrap_or(Brush::Palette);
         sprite.brush = brush;
         if brush != Brush::Palette {
             out.set_brush(id, &brush);
@@ -502,7 +511,11 @@ impl State {
         let Some(shared) = self.list.shared().cloned() else {
             return;
         };
-        if self.shared.as_ref().is_some_and(|s| Arc::ptr_eq(s, &shared)) {
+        if self
+            .shared
+            .as_ref()
+            .is_some_and(|s| Arc::ptr_eq(s, &shared))
+        {
             return;
         }
         for id in std::mem::take(&mut self.shared_fragments) {
@@ -511,19 +524,21 @@ impl State {
         let pieces = Arc::clone(self.geometry.pieces());
         self.shared_to_sprite.clear();
         if Arc::ptr_eq(&shared, &pieces) {
-            self.shared_to_sprite.extend(
-                (0..pieces.len() as u32)
-                    .map(|i| if self.sprites[i as usize].piece != NONE { i } else { NONE }),
-            );
+            self.shared_to_sprite
+                .extend((0..pieces.len() as u32).map(|i| {
+                    if self.sprites[i as usize].piece != NONE {
+                        i
+                    } else {
+                        NONE
+                    }
+                }));
         } else {
             for i in 0..shared.len() {
                 let face = shared.face(i);
                 let corners = shared.corners(i);
                 let f = face as usize;
                 let whole = match (self.face_pieces.get(f), self.face_pieces.get(f + 1)) {
-                    (Some(&a), Some(&b)) => {
-                        (a..b).find(|&p| pieces.corners(p as usize) == corners)
-                    }
+                    (Some(&a), Some(&b)) => (a..b).find(|&p| pieces.corners(p as usize) == corners),
                     _ => None,
                 };
                 let id = match whole {
@@ -531,7 +546,12 @@ impl State {
                     Some(_) => NONE,
                     None => match self.source_piece(face, shared.plane(i)) {
                         Some(piece)
-                            if fragment_clip(&self.maps, piece, corners, &mut self.clip_scratch) =>
+                            if fragment_clip(
+                                &self.maps,
+                                piece,
+                                corners,
+                                &mut self.clip_scratch,
+                            ) =>
                         {
                             let id = self.new_sprite_id(face, piece);
                             let sprite = &mut self.sprites[id.index()];
@@ -555,7 +575,13 @@ impl State {
     }
 
     /// Slot `k` of the per-frame fragment pool, showing a fragment of `piece`.
-    fn transient_slot(&mut self, k: usize, face: u32, piece: u32, out: &mut dyn Compositor) -> SpriteId {
+    fn transient_slot(
+        &mut self,
+        k: usize,
+        face: u32,
+        piece: u32,
+        out: &mut dyn Compositor,
+    ) -> SpriteId {
         if k == self.transient.len() {
             let id = self.new_sprite_id(face, piece);
             let sprite = &mut self.sprites[id.index()];
@@ -583,7 +609,11 @@ impl State {
         }
         if sprite.face != face {
             sprite.face = face;
-            let brush = self.brushes.get(face as usize).copied().unwrap_or(Brush::Palette);
+            let brush = self
+                .brushes
+                .get(face as usize)
+                .copied()
+                .unwrap_or(Brush::Palette);
             if brush != sprite.brush {
                 sprite.brush = brush;
                 out.set_brush(id, &brush);
@@ -620,7 +650,8 @@ impl State {
                         );
                         if ok {
                             transient_used += 1;
-                            self.transient_slot(transient_used - 1, item.face, piece, out).0
+                            self.transient_slot(transient_used - 1, item.face, piece, out)
+                                .0
                         } else {
                             NONE
                         }
@@ -632,7 +663,8 @@ impl State {
                 continue;
             }
             if self.shown.len() <= id as usize {
-                self.shown.resize(self.sprites.len().max(id as usize + 1), 0);
+                self.shown
+                    .resize(self.sprites.len().max(id as usize + 1), 0);
             }
             if self.shown[id as usize] == self.stamp {
                 continue;
@@ -708,7 +740,11 @@ impl State {
             if !sprite.alive {
                 continue;
             }
-            let brush = self.brushes.get(sprite.face as usize).copied().unwrap_or(Brush::Palette);
+            let brush = self
+                .brushes
+                .get(sprite.face as usize)
+                .copied()
+                .unwrap_or(Brush::Palette);
             if brush != sprite.brush {
                 sprite.brush = brush;
                 out.set_brush(SpriteId(i as u32), &brush);
@@ -722,7 +758,10 @@ impl<C: Compositor> SpritePainter<C> {
     #[must_use]
     pub fn sprite_transform(&self, id: SpriteId) -> Option<&SpriteTransform> {
         let sprite = self.state.sprites.get(id.index()).filter(|s| s.alive)?;
-        self.state.maps.get(sprite.piece as usize).map(|m| &m.transform)
+        self.state
+            .maps
+            .get(sprite.piece as usize)
+            .map(|m| &m.transform)
     }
 }
 

@@ -103,7 +103,10 @@ impl ProjectedFrame {
             return Vec::new();
         }
         let near = |b: &Box2| {
-            b.min.x <= area.max.x && b.max.x >= area.min.x && b.min.y <= area.max.y && b.max.y >= area.min.y
+            b.min.x <= area.max.x
+                && b.max.x >= area.min.x
+                && b.min.y <= area.max.y
+                && b.max.y >= area.min.y
         };
         let mut edges: Vec<[DVec2; 2]> = Vec::new();
         for i in (0..self.len()).filter(|&i| near(&self.boxes[i])) {

@@ -226,7 +226,11 @@ fn points_attribute(polygon: &[DVec2]) -> String {
 fn fmt(v: f64) -> String {
     let s = format!("{v:.4}");
     let s = s.trim_end_matches('0').trim_end_matches('.');
-    if s == "-0" { "0".to_owned() } else { s.to_owned() }
+    if s == "-0" {
+        "0".to_owned()
+    } else {
+        s.to_owned()
+    }
 }
 
 /// Texture space `[0,1]²` → pixels, through the sprite's unit square (affine through the

@@ -340,7 +340,10 @@ mod tests {
             Some(clip) => {
                 assert_eq!(clip.len(), corners.len());
                 for (uv, c) in clip.iter().zip(corners) {
-                    assert!(uv.cmpge(DVec2::splat(-1e-12)).all() && uv.cmple(DVec2::splat(1.0 + 1e-12)).all());
+                    assert!(
+                        uv.cmpge(DVec2::splat(-1e-12)).all()
+                            && uv.cmple(DVec2::splat(1.0 + 1e-12)).all()
+                    );
                     let got = map.transform.apply(*uv);
                     assert!((got - space.point(*c)).length() < 1e-9);
                 }

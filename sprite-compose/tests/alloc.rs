@@ -72,12 +72,19 @@ fn steady_state_frames_allocate_nothing() {
         let ((), allocations) = count(|| {
             for k in 1..=360u32 {
                 handle.request_rotation(rotation_from_yaw_pitch_roll(f64::from(k), 20.0, 0.0));
-                ops += painter.tick(Duration::from_millis(u64::from(k) * 16)).ops.total();
+                ops += painter
+                    .tick(Duration::from_millis(u64::from(k) * 16))
+                    .ops
+                    .total();
                 // An unchanged frame in between.
                 assert_eq!(painter.frame().ops.total(), 0);
             }
         });
-        assert!(ops > 360, "{}: the spin did change things ({ops} ops)", kind.name());
+        assert!(
+            ops > 360,
+            "{}: the spin did change things ({ops} ops)",
+            kind.name()
+        );
         assert_eq!(allocations, 0, "{}: frames 2..=721 allocated", kind.name());
     }
 }

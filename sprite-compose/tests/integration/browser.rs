@@ -26,7 +26,9 @@ fn chromium() -> Option<&'static Path> {
              (apt-get install -y chromium) to run the HTML/CSS 3D tests"
         );
     }
-    eprintln!("notice: {CHROMIUM} not found; skipping the headless Chromium test (set CI to make this fail)");
+    eprintln!(
+        "notice: {CHROMIUM} not found; skipping the headless Chromium test (set CI to make this fail)"
+    );
     None
 }
 
@@ -90,7 +92,10 @@ fn html_pages_in_chromium_match_raster_sink() {
         let (g, p) = spot_painter(SorterKind::Newell, 35.0, perspective);
         let html = write_html(
             p.compositor().scene(),
-            &HtmlOptions::DEFAULT.with_size(SIZE, SIZE).with_mode(mode).with_ids(true),
+            &HtmlOptions::DEFAULT
+                .with_size(SIZE, SIZE)
+                .with_mode(mode)
+                .with_ids(true),
         );
         let started = Instant::now();
         let rgba = screenshot(browser, &html, &format!("{mode:?}-{perspective}"));

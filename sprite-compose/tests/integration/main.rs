@@ -3,6 +3,7 @@
 #[path = "../support/mod.rs"]
 mod support;
 
+mod bake;
+mod browser;
 mod painter;
 mod writers;
-mod browser;

@@ -16,7 +16,12 @@ fn painter(
     kind: SorterKind,
     view: View,
 ) -> SpritePainter<RecordingCompositor> {
-    SpritePainter::new(geometry, kind.build(geometry), view, RecordingCompositor::new())
+    SpritePainter::new(
+        geometry,
+        kind.build(geometry),
+        view,
+        RecordingCompositor::new(),
+    )
 }
 
 fn sphere() -> Geometry {
@@ -79,7 +84,14 @@ fn first_frame_builds_the_scene_and_an_unchanged_frame_sends_nothing() {
     assert_eq!(first.ops.root, 1);
     assert_scene_matches(&p);
     for _ in 0..3 {
-        assert_eq!(p.frame(), FrameStats { ops: OpCounts::default(), sorted: false, drawn: first.drawn });
+        assert_eq!(
+            p.frame(),
+            FrameStats {
+                ops: OpCounts::default(),
+                sorted: false,
+                drawn: first.drawn
+            }
+        );
     }
     // The same view set again, and the same rotation requested: still nothing.
     p.set_view(view);
@@ -183,12 +195,26 @@ fn sorter_change_costs_order_only_and_brushes_cost_brushes_only() {
     only(s.ops, &["visible", "reorder"]);
     assert_scene_matches(&p);
     // Recolour every third face.
-    p.set_brushes(|f| if f.is_multiple_of(3) { Brush::Solid([255, 0, 0, 255]) } else { Brush::Palette });
+    p.set_brushes(|f| {
+        if f.is_multiple_of(3) {
+            Brush::Solid([255, 0, 0, 255])
+        } else {
+            Brush::Palette
+        }
+    });
     let s = p.frame();
     only(s.ops, &["brush"]);
-    let recoloured = (0..g.pieces().len()).filter(|&i| g.pieces().face(i).is_multiple_of(3)).count();
+    let recoloured = (0..g.pieces().len())
+        .filter(|&i| g.pieces().face(i).is_multiple_of(3))
+        .count();
     assert_eq!(s.ops.brush, recoloured);
-    p.set_brushes(|f| if f.is_multiple_of(3) { Brush::Solid([255, 0, 0, 255]) } else { Brush::Palette });
+    p.set_brushes(|f| {
+        if f.is_multiple_of(3) {
+            Brush::Solid([255, 0, 0, 255])
+        } else {
+            Brush::Palette
+        }
+    });
     assert_eq!(p.frame().ops.total(), 0, "same brushes: nothing");
 }
 
@@ -221,7 +247,11 @@ fn rotation_requests_coalesce_across_threads() {
             let h = handle.clone();
             std::thread::spawn(move || {
                 for k in 0..50 {
-                    h.request_rotation(rotation_from_yaw_pitch_roll(f64::from(t * 50 + k), 0.0, 0.0));
+                    h.request_rotation(rotation_from_yaw_pitch_roll(
+                        f64::from(t * 50 + k),
+                        0.0,
+                        0.0,
+                    ));
                 }
             })
         })
@@ -234,14 +264,24 @@ fn rotation_requests_coalesce_across_threads() {
     let s = p.tick(Duration::from_millis(16));
     assert_eq!(s.ops.root, 1, "one root update for many requests");
     assert_eq!(p.view().rotation(), last);
-    assert_eq!(p.tick(Duration::from_millis(32)).ops.total(), 0, "requests were consumed");
+    assert_eq!(
+        p.tick(Duration::from_millis(32)).ops.total(),
+        0,
+        "requests were consumed"
+    );
     // A rotation source is sampled per tick.
     p.set_rotation_source(Some(Box::new(|t: Duration| {
         rotation_from_yaw_pitch_roll(t.as_secs_f64() * 90.0, 20.0, 0.0)
     })));
     p.tick(Duration::from_secs(1));
     let want = rotation_from_yaw_pitch_roll(90.0, 20.0, 0.0);
-    assert!((p.view().rotation() - want).abs().to_cols_array().iter().all(|e| *e < 1e-12));
+    assert!(
+        (p.view().rotation() - want)
+            .abs()
+            .to_cols_array()
+            .iter()
+            .all(|e| *e < 1e-12)
+    );
     assert_scene_matches(&p);
 }
 
@@ -255,13 +295,18 @@ fn cull_margin_covers_a_one_frame_lag() {
     for _ in 0..20 {
         let (yaw, pitch) = (rng.range(0.0, 360.0), rng.range(-60.0, 60.0));
         let base = View::fit(&g.bounds(), 256, 256);
-        let old = base.with_yaw_pitch_roll(yaw, pitch, 0.0).with_cull_margin(step);
+        let old = base
+            .with_yaw_pitch_roll(yaw, pitch, 0.0)
+            .with_cull_margin(step);
         let new = base.with_yaw_pitch_roll(yaw + step * 0.99, pitch, 0.0);
         let faces = |v: &View| {
             let mut s = SorterKind::Centroid.build(&g);
             let mut l = sprite_compose::face_sort::DrawList::new();
             s.sort(v, &mut l);
-            l.items().iter().map(|i| i.polygon).collect::<std::collections::HashSet<_>>()
+            l.items()
+                .iter()
+                .map(|i| i.polygon)
+                .collect::<std::collections::HashSet<_>>()
         };
         assert!(faces(&new).is_subset(&faces(&old)));
     }
@@ -269,7 +314,9 @@ fn cull_margin_covers_a_one_frame_lag() {
 
 #[test]
 fn random_walk_keeps_the_backend_in_sync() {
-    let g = support::geometry(&support::load_obj("keenan-crane/spot/spot_control_mesh.obj"));
+    let g = support::geometry(&support::load_obj(
+        "keenan-crane/spot/spot_control_mesh.obj",
+    ));
     let mut rng = Rng(99);
     let base = View::fit(&g.bounds(), 200, 200);
     let mut p = painter(&g, SorterKind::Bsp, base);

@@ -18,7 +18,9 @@ pub fn spot_painter(
     yaw: f64,
     perspective: bool,
 ) -> (Geometry, SpritePainter<RecordingCompositor>) {
-    let g = support::geometry(&support::load_obj("keenan-crane/spot/spot_control_mesh.obj"));
+    let g = support::geometry(&support::load_obj(
+        "keenan-crane/spot/spot_control_mesh.obj",
+    ));
     let mut view = View::fit(&g.bounds(), SIZE, SIZE).with_yaw_pitch_roll(yaw, 20.0, 0.0);
     if perspective {
         view = view.with_perspective(f64::from(SIZE));
@@ -38,11 +40,16 @@ pub fn ids_of_rgba(width: u32, height: u32, rgba: &[u8]) -> IdImage {
 }
 
 fn rasterise_svg(svg: &str) -> resvg::tiny_skia::Pixmap {
-    let tree = resvg::usvg::Tree::from_str(svg, &resvg::usvg::Options::default()).expect("valid SVG");
+    let tree =
+        resvg::usvg::Tree::from_str(svg, &resvg::usvg::Options::default()).expect("valid SVG");
     let size = tree.size();
     let mut pixmap =
         resvg::tiny_skia::Pixmap::new(size.width() as u32, size.height() as u32).expect("pixmap");
-    resvg::render(&tree, resvg::tiny_skia::Transform::default(), &mut pixmap.as_mut());
+    resvg::render(
+        &tree,
+        resvg::tiny_skia::Transform::default(),
+        &mut pixmap.as_mut(),
+    );
     pixmap
 }
 
@@ -61,11 +68,17 @@ pub fn differing(a: &IdImage, b: &IdImage, t: &Truth) -> (usize, usize) {
 
 #[test]
 fn svg_ids_through_resvg_match_raster_sink() {
-    for (kind, perspective) in [(SorterKind::Newell, false), (SorterKind::Newell, true), (SorterKind::Centroid, true)] {
+    for (kind, perspective) in [
+        (SorterKind::Newell, false),
+        (SorterKind::Newell, true),
+        (SorterKind::Centroid, true),
+    ] {
         let (g, p) = spot_painter(kind, 35.0, perspective);
         let svg = write_svg(
             p.compositor().scene(),
-            &SvgOptions::DEFAULT.with_ids(true).with_background(Some([0, 0, 0, 255])),
+            &SvgOptions::DEFAULT
+                .with_ids(true)
+                .with_background(Some([0, 0, 0, 255])),
         );
         let pixmap = rasterise_svg(&svg);
         let svg_ids = ids_of_rgba(SIZE, SIZE, pixmap.data());
@@ -98,7 +111,13 @@ fn svg_colours_through_resvg_match_the_palette_image() {
     // Rule: at most 1 % of the pixels at least 0.75 px from every edge may differ by more than
     // 8 (of 255) in any channel.
     let (g, mut p) = spot_painter(SorterKind::Newell, -50.0, true);
-    p.set_brushes(|f| if f % 7 == 0 { Brush::Solid([250, 40, 30, 255]) } else { Brush::Palette });
+    p.set_brushes(|f| {
+        if f % 7 == 0 {
+            Brush::Solid([250, 40, 30, 255])
+        } else {
+            Brush::Palette
+        }
+    });
     p.frame();
     let svg = write_svg(
         p.compositor().scene(),
@@ -153,7 +172,8 @@ fn picking_agrees_with_the_id_image() {
                 .map_or(0, |item| item.face + 1);
             assert_eq!(picked, ids.ids[k], "{} at ({x}, {y})", kind.name());
             assert_eq!(
-                p.pick(f64::from(x) + 0.5, f64::from(y) + 0.5).map_or(0, |i| i.face + 1),
+                p.pick(f64::from(x) + 0.5, f64::from(y) + 0.5)
+                    .map_or(0, |i| i.face + 1),
                 picked
             );
         }
@@ -172,11 +192,15 @@ fn selection_outline_surrounds_the_visible_part() {
     for [a, b] in &outline {
         let m = (*a + *b) * 0.5;
         let n = (*b - *a).perp().normalize() * 0.01;
-        let sides = [frame.pick(m + n), frame.pick(m - n)].map(|i| i.is_some_and(|i| i.face == face));
+        let sides =
+            [frame.pick(m + n), frame.pick(m - n)].map(|i| i.is_some_and(|i| i.face == face));
         assert_ne!(sides[0], sides[1]);
     }
     let overlay = outline_svg_path(&outline, [255, 255, 0, 255], 2.0);
-    let svg = write_svg(p.compositor().scene(), &SvgOptions::DEFAULT.with_overlay(overlay));
+    let svg = write_svg(
+        p.compositor().scene(),
+        &SvgOptions::DEFAULT.with_overlay(overlay),
+    );
     let _ = rasterise_svg(&svg);
     let _ = id_colour(face);
 }

@@ -32,8 +32,16 @@ pub fn load_obj(relative: &str) -> PolygonMesh {
             Some("f") => {
                 let face = words
                     .map(|w| {
-                        let i: i64 = w.split('/').next().and_then(|s| s.parse().ok()).expect("index");
-                        if i < 0 { (positions.len() as i64 + i) as u32 } else { (i - 1) as u32 }
+                        let i: i64 = w
+                            .split('/')
+                            .next()
+                            .and_then(|s| s.parse().ok())
+                            .expect("index");
+                        if i < 0 {
+                            (positions.len() as i64 + i) as u32
+                        } else {
+                            (i - 1) as u32
+                        }
                     })
                     .collect();
                 faces.push(face);
@@ -51,7 +59,11 @@ pub fn uv_sphere(rings: u32, segments: u32) -> PolygonMesh {
         let theta = std::f64::consts::PI * f64::from(r) / f64::from(rings);
         for s in 0..segments {
             let phi = std::f64::consts::TAU * f64::from(s) / f64::from(segments);
-            positions.push(DVec3::new(theta.sin() * phi.cos(), theta.cos(), -theta.sin() * phi.sin()));
+            positions.push(DVec3::new(
+                theta.sin() * phi.cos(),
+                theta.cos(),
+                -theta.sin() * phi.sin(),
+            ));
         }
     }
     let at = |r: u32, s: u32| 2 + (r - 1) * segments + (s % segments);

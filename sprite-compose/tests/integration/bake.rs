@@ -1,0 +1,138 @@
+//! Baked realisation: containers per cell, brushes-only material swaps, one-step swap, convex
+//! facing predicates.
+
+use std::sync::Arc;
+
+use sprite_compose::face_sort::{DrawList, PolygonSet, SorterKind, View};
+use sprite_compose::{
+    AngleRange, Bake, BakeCell, BakeSlot, BakedGraph, Brush, convex_facing_predicates,
+    rotation_from_yaw_pitch_roll,
+};
+
+use crate::support;
+
+/// A sampled stand-in for aspect-bake: one cell per `step` degrees of yaw, ordered by the
+/// sorter at the cell's start.
+fn sampled_bake(step: f64) -> (sprite_compose::face_sort::Geometry, View, Bake) {
+    let g = support::geometry(&support::load_obj(
+        "keenan-crane/spot/spot_control_mesh.obj",
+    ));
+    let base = View::fit(&g.bounds(), 256, 256);
+    let mut sorter = SorterKind::Centroid.build(&g);
+    let mut list = DrawList::new();
+    let mut cells = Vec::new();
+    let mut polygons: Option<Arc<PolygonSet>> = None;
+    let mut lo = 0.0;
+    while lo < 360.0 {
+        sorter.sort(
+            &base.with_rotation(rotation_from_yaw_pitch_roll(lo, 20.0, 0.0)),
+            &mut list,
+        );
+        polygons = list.shared().cloned();
+        cells.push(BakeCell {
+            range: AngleRange {
+                lo,
+                hi: lo + step,
+                period: Some(360.0),
+            },
+            order: list.items().iter().map(|i| i.polygon).collect(),
+        });
+        lo += step;
+    }
+    let bake = Bake {
+        polygons: polygons.expect("a frame"),
+        cells,
+    };
+    (g, base, bake)
+}
+
+#[test]
+fn one_container_per_cell_with_wrapping_predicates() {
+    let (g, view, bake) = sampled_bake(30.0);
+    let graph = BakedGraph::realise(&bake, &g, &view);
+    assert_eq!(graph.containers().len(), 12);
+    for angle in [0.0, 29.9, 30.0, 359.0, 365.0, -1.0, 719.0] {
+        let shown: Vec<usize> = (0..12)
+            .filter(|&k| graph.containers()[k].visible_while.contains(angle))
+            .collect();
+        assert_eq!(shown.len(), 1, "exactly one container at {angle}");
+        assert_eq!(graph.container_at(angle), Some(shown[0]));
+    }
+    let wrap = AngleRange {
+        lo: 350.0,
+        hi: 370.0,
+        period: Some(360.0),
+    };
+    assert!(wrap.contains(355.0) && wrap.contains(5.0) && !wrap.contains(15.0));
+    assert_eq!(
+        wrap.to_expression("a"),
+        "((a % 360 + 360) % 360 >= 350 || (a % 360 + 360) % 360 < 10)"
+    );
+    // Every baked sprite has a transform; the first container shows the order at yaw 0.
+    let c = &graph.containers()[0];
+    assert_eq!(c.sprites.len(), bake.cells[0].order.len());
+    assert!(
+        c.sprites
+            .iter()
+            .all(|s| graph.polygon_map(s.polygon).is_some())
+    );
+}
+
+#[test]
+fn materials_swap_brushes_only_and_bakes_swap_in_one_step() {
+    let (g, view, bake) = sampled_bake(45.0);
+    let mut graph = BakedGraph::realise(&bake, &g, &view);
+    let before: Vec<_> = graph.containers().to_vec();
+    let told = graph.set_brushes(|f| {
+        if f == 3 {
+            Brush::Solid([1, 2, 3, 255])
+        } else {
+            Brush::Palette
+        }
+    });
+    let expected = before
+        .iter()
+        .flat_map(|c| &c.sprites)
+        .filter(|s| s.face == 3)
+        .count();
+    assert_eq!(told, expected);
+    assert_eq!(graph.containers(), &before[..], "containers reused");
+    assert_eq!(graph.brush(3), Brush::Solid([1, 2, 3, 255]));
+    let slot = BakeSlot::new(graph);
+    let reader = slot.clone();
+    let (g2, view2, bake2) = sampled_bake(90.0);
+    let worker = std::thread::spawn(move || BakedGraph::realise(&bake2, &g2, &view2));
+    assert_eq!(
+        reader.load().containers().len(),
+        8,
+        "old bake shown while the new one builds"
+    );
+    slot.store(worker.join().expect("bake thread"));
+    assert_eq!(reader.load().containers().len(), 4);
+}
+
+#[test]
+fn convex_facing_predicates_match_culling() {
+    let g = support::geometry(&support::uv_sphere(6, 10));
+    for view in [
+        View::fit(&g.bounds(), 256, 256).with_yaw_pitch_roll(0.0, 25.0, 0.0),
+        View::fit(&g.bounds(), 256, 256)
+            .with_yaw_pitch_roll(0.0, -10.0, 0.0)
+            .with_perspective(300.0),
+    ] {
+        let predicates = convex_facing_predicates(&g, &view);
+        let pieces = g.pieces();
+        for yaw in [0.0, 17.0, 123.0, 271.0] {
+            let turned =
+                view.with_rotation(rotation_from_yaw_pitch_roll(yaw, 0.0, 0.0) * view.rotation());
+            for (i, p) in predicates.iter().enumerate() {
+                assert_eq!(
+                    p.is_drawn(yaw),
+                    turned.is_drawn(pieces.plane(i), pieces.corners(i)[0]),
+                    "piece {i} at {yaw}"
+                );
+            }
+        }
+        assert!(predicates[0].to_expression("a").contains("cos(a *"));
+    }
+}
