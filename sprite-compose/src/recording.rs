@@ -21,6 +21,10 @@ pub struct SceneSprite {
 
 /// What a retained compositor holds: sprites, their stacking order and the root transform.
 /// The SVG and HTML writers render a `Scene`.
+///
+/// # Panics
+/// As a [`Compositor`], on contract violations by the caller: an operation on a sprite that
+/// does not exist, creating a sprite twice, or moving a sprite before itself.
 #[derive(Clone, Debug, Default)]
 pub struct Scene {
     sprites: Vec<Option<SceneSprite>>,
