@@ -154,7 +154,7 @@ pub fn run(args: &BenchArgs) -> Result<ExitCode> {
             per_view: Duration::from_millis(40),
             scaling: &[1_000, 10_000, 100_000],
             peer_pieces: 20_000,
-            scaling_limit: Duration::from_secs(15),
+            scaling_limit: Duration::from_secs(30),
         }
     };
     let command = if args.smoke {
