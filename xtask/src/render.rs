@@ -88,10 +88,10 @@ pub struct RenderArgs {
     /// Texture (PNG) for a model with uvs but no material texture (the demo uses spot's).
     #[arg(long, value_name = "PNG")]
     texture: Option<PathBuf>,
-    /// Also write an SVG of the same draw list.
+    /// Also write an SVG of the same view (sprite-compose writer, palette colours).
     #[arg(long, value_name = "OUT.svg")]
     svg: Option<PathBuf>,
-    /// Also write an HTML/CSS 3D page of the same draw list.
+    /// Also write an HTML/CSS 3D page of the same view (sprite-compose writer).
     #[arg(long, value_name = "OUT.html")]
     html: Option<PathBuf>,
     /// Print one JSON object instead of the summary line.
@@ -289,7 +289,30 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
             .with_context(|| format!("creating {}", parent.display()))?;
     }
     if args.svg.is_some() || args.html.is_some() {
-        bail!("--svg and --html are not available yet: the sprite-compose writers have not landed");
+        // The sprite tree of the same geometry, sorter kind and view (palette colours).
+        let painter_sorter = kind.build(&geometry);
+        let mut painter = sprite_compose::SpritePainter::new(
+            &geometry,
+            painter_sorter,
+            view,
+            sprite_compose::RecordingCompositor::new(),
+        );
+        painter.frame();
+        let scene = painter.compositor().scene();
+        if let Some(path) = &args.svg {
+            let svg = sprite_compose::write_svg(
+                scene,
+                &sprite_compose::SvgOptions::DEFAULT.with_size(width, height),
+            );
+            std::fs::write(path, svg).with_context(|| format!("writing {}", path.display()))?;
+        }
+        if let Some(path) = &args.html {
+            let html = sprite_compose::write_html(
+                scene,
+                &sprite_compose::HtmlOptions::DEFAULT.with_size(width, height),
+            );
+            std::fs::write(path, html).with_context(|| format!("writing {}", path.display()))?;
+        }
     }
     let start = Instant::now();
     if args.ids {
