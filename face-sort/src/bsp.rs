@@ -12,6 +12,10 @@ use crate::{DrawList, FaceSorter, Geometry, PolygonSet, SorterStats, View};
 
 const NONE: u32 = u32::MAX;
 
+/// Sets of at most this many polygons are tested for convexity (every polygon on or behind
+/// every other's plane); a convex set becomes a leaf and is not split further.
+const CONVEX_LEAF_MAX: usize = 48;
+
 /// How the splitter of each node is chosen.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
@@ -54,6 +58,9 @@ struct Node {
     /// Fragments in the front and back subtrees.
     front_size: u32,
     back_size: u32,
+    /// A convex leaf: its `same` fragments need no order among themselves beyond "facing away
+    /// first" (front faces of a convex set never overlap, nor do its back faces).
+    leaf: bool,
 }
 
 /// The immutable tree, shareable between views and threads (`Arc`).
@@ -62,6 +69,10 @@ pub struct BspTree {
     planes: Vec<Plane>,
     /// The node planes as `[nx, ny, nz, offset]`, for the per-view side pass.
     plane_rows: Vec<[f64; 4]>,
+    /// The pieces' planes, likewise, for the per-view cull pass.
+    piece_rows: Vec<[f64; 4]>,
+    /// Source face of each fragment.
+    fragment_face: Vec<u32>,
     nodes: Vec<Node>,
     /// Fragments in pre-order: node by node, each node's own fragments contiguous.
     fragments: Arc<PolygonSet>,
@@ -77,9 +88,18 @@ impl BspTree {
     /// `PLANE_SIDE · L`.
     #[must_use]
     pub fn build(geometry: &Geometry, options: &BspOptions) -> Self {
-        let start = Instant::now();
-        let pieces = Arc::clone(geometry.pieces());
         let tolerance = PLANE_SIDE * geometry.bounds().diagonal();
+        Self::build_over(Arc::clone(geometry.pieces()), tolerance, options)
+    }
+
+    /// Builds a tree over any set of planar convex polygons (centred model space) with the
+    /// plane tolerance `tolerance` (model units).
+    pub(crate) fn build_over(
+        pieces: Arc<PolygonSet>,
+        tolerance: f64,
+        options: &BspOptions,
+    ) -> Self {
+        let start = Instant::now();
         let mut builder = Builder {
             work: PolygonSet::new(),
             work_piece: Vec::new(),
@@ -99,12 +119,15 @@ impl BspTree {
             builder.work_piece.push(i as u32);
         }
         let depth = builder.build_all((0..pieces.len() as u32).collect());
-        let plane_rows = builder
-            .planes
-            .iter()
-            .map(|p| [p.normal().x, p.normal().y, p.normal().z, p.offset()])
+        let row = |p: &Plane| [p.normal().x, p.normal().y, p.normal().z, p.offset()];
+        let plane_rows = builder.planes.iter().map(row).collect();
+        let piece_rows = pieces.planes().iter().map(row).collect();
+        let fragment_face = (0..builder.fragments.len())
+            .map(|i| builder.fragments.face(i))
             .collect();
         BspTree {
+            piece_rows,
+            fragment_face,
             plane_rows,
             planes: builder.planes,
             nodes: builder.nodes,
@@ -150,7 +173,8 @@ impl BspTree {
     #[must_use]
     pub fn heap_bytes(&self) -> usize {
         self.planes.capacity() * size_of::<Plane>()
-            + self.plane_rows.capacity() * size_of::<[f64; 4]>()
+            + (self.plane_rows.capacity() + self.piece_rows.capacity()) * size_of::<[f64; 4]>()
+            + self.fragment_face.capacity() * 4
             + self.nodes.capacity() * size_of::<Node>()
             + self.fragments.heap_bytes()
             + self.fragment_piece.capacity() * 4
@@ -200,6 +224,32 @@ impl Builder {
                     parent.back_child = index;
                 }
             }
+            if task.polygons.len() <= CONVEX_LEAF_MAX && self.is_convex(&task.polygons) {
+                let first = self.fragments.len() as u32;
+                for &p in &task.polygons {
+                    let p = p as usize;
+                    self.fragments.push(
+                        self.work.corners(p),
+                        self.work.face(p),
+                        *self.work.plane(p),
+                    );
+                    self.fragment_piece.push(self.work_piece[p]);
+                }
+                // A leaf has no plane of its own; keep the arrays aligned with a dummy.
+                self.planes
+                    .push(*self.work.plane(task.polygons[0] as usize));
+                self.nodes.push(Node {
+                    first,
+                    same: task.polygons.len() as u32,
+                    opposite: 0,
+                    front_child: NONE,
+                    back_child: NONE,
+                    front_size: 0,
+                    back_size: 0,
+                    leaf: true,
+                });
+                continue;
+            }
             let splitter = self.choose_splitter(&task.polygons);
             let plane = *self.work.plane(splitter as usize);
             let (mut same, mut opposite, mut front, mut back) =
@@ -243,6 +293,7 @@ impl Builder {
                 back_child: NONE,
                 front_size: 0,
                 back_size: 0,
+                leaf: false,
             });
             // Back pushed first so that the front subtree is built (numbered) first: pre-order.
             stack.push(Task {
@@ -299,6 +350,20 @@ impl Builder {
         (f, b)
     }
 
+    /// Whether every polygon lies on or behind every other's plane.
+    fn is_convex(&self, polygons: &[u32]) -> bool {
+        polygons.iter().all(|&p| {
+            let plane = self.work.plane(p as usize);
+            polygons.iter().all(|&q| {
+                q == p
+                    || matches!(
+                        plane.side_of_polygon(self.work.corners(q as usize), self.tolerance),
+                        Side::Back | Side::On
+                    )
+            })
+        })
+    }
+
     fn choose_splitter(&self, polygons: &[u32]) -> u32 {
         let n = polygons.len();
         if n <= 2 {
@@ -345,6 +410,7 @@ pub struct Bsp {
     base: Vec<u32>,
     order: Vec<u32>,
     piece_drawn: Vec<bool>,
+    piece_facing: Vec<bool>,
     viewer_in_front: Vec<bool>,
 }
 
@@ -362,6 +428,7 @@ impl Bsp {
             base: vec![0; tree.nodes.len()],
             order: vec![0; tree.fragments.len()],
             piece_drawn: vec![false; tree.pieces.len()],
+            piece_facing: vec![false; tree.pieces.len()],
             viewer_in_front: vec![false; tree.nodes.len()],
             tree,
         }
@@ -382,24 +449,50 @@ impl FaceSorter for Bsp {
     fn sort(&mut self, view: &View, out: &mut DrawList) {
         let tree = &*self.tree;
         let cull = view.cull_test();
-        let viewer = cull.viewer;
+        let (point, w) = cull.viewer_point();
+        let facing =
+            |row: &[f64; 4]| row[0] * point.x + row[1] * point.y + row[2] * point.z - w * row[3];
         // Cull per piece: fragments share their piece's plane, and each is culled by it.
-        for (i, plane) in tree.pieces.planes().iter().enumerate() {
-            self.piece_drawn[i] = cull.is_drawn(plane, tree.pieces.corners(i)[0]);
+        match cull.facing_rule() {
+            Some((keep_toward, keep_away)) => {
+                for ((drawn, toward), row) in self
+                    .piece_drawn
+                    .iter_mut()
+                    .zip(&mut self.piece_facing)
+                    .zip(&tree.piece_rows)
+                {
+                    let f = facing(row);
+                    *toward = f > 0.0;
+                    *drawn = (keep_toward & (f > 0.0)) | (keep_away & (f < 0.0));
+                }
+            }
+            None => {
+                for (i, plane) in tree.pieces.planes().iter().enumerate() {
+                    self.piece_drawn[i] = cull.is_drawn(plane, tree.pieces.corners(i)[0]);
+                    self.piece_facing[i] = cull.viewer.facing(plane) > 0.0;
+                }
+            }
         }
         // Which side of every node plane the viewer is on: one branch-free pass.
-        let (point, w) = match viewer {
-            crate::Viewer::Direction(d) => (d, 0.0),
-            crate::Viewer::Eye(e) => (e, 1.0),
-        };
         for (side, row) in self.viewer_in_front.iter_mut().zip(&tree.plane_rows) {
-            *side = row[0] * point.x + row[1] * point.y + row[2] * point.z - w * row[3] >= 0.0;
+            *side = facing(row) >= 0.0;
         }
         if let Some(first) = self.base.first_mut() {
             *first = 0;
         }
         for (k, node) in tree.nodes.iter().enumerate() {
             let b = self.base[k];
+            if node.leaf {
+                // Facing away first, then facing the viewer.
+                let range = node.first..node.first + node.same;
+                let piece_of = |f: &u32| tree.fragment_piece[*f as usize] as usize;
+                let away = range.clone().filter(|f| !self.piece_facing[piece_of(f)]);
+                let toward = range.filter(|f| self.piece_facing[piece_of(f)]);
+                for (slot, f) in self.order[b as usize..].iter_mut().zip(away.chain(toward)) {
+                    *slot = f;
+                }
+                continue;
+            }
             let in_front = self.viewer_in_front[k];
             let (first_child, second_child, first_size) = if in_front {
                 (node.back_child, node.front_child, node.back_size)
@@ -428,10 +521,11 @@ impl FaceSorter for Bsp {
         out.begin(&tree.fragments);
         let items = out.items_mut();
         for &f in &self.order {
-            if self.piece_drawn[tree.fragment_piece[f as usize] as usize] {
+            let f = f as usize;
+            if self.piece_drawn[tree.fragment_piece[f] as usize] {
                 items.push(crate::DrawItem {
-                    polygon: f,
-                    face: tree.fragments.face(f as usize),
+                    polygon: f as u32,
+                    face: tree.fragment_face[f],
                 });
             }
         }
@@ -445,6 +539,7 @@ impl FaceSorter for Bsp {
                 + self.base.capacity() * 4
                 + self.order.capacity() * 4
                 + self.piece_drawn.capacity()
+                + self.piece_facing.capacity()
                 + self.viewer_in_front.capacity(),
             depth: self.tree.depth,
             fallbacks: 0,

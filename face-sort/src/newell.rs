@@ -9,6 +9,7 @@ use crate::plane::{Plane, Side};
 use crate::polygon::{Box2, clip_convex_2d, signed_area_2d, split_polygon};
 use crate::tolerance::{OVERLAP_AREA, PLANE_SIDE};
 use crate::view::Viewer;
+use crate::{Bsp, BspOptions, BspTree};
 use crate::{
     DrawItem, DrawList, FaceSorter, Geometry, PolygonSet, ProjectionScratch, SorterStats, View,
 };
@@ -27,8 +28,13 @@ struct Work {
 }
 
 /// The classic cascade per pair (depth extents, screen boxes, plane sides both ways, exact 2D
-/// overlap), moving a polygon ahead when it must be drawn first and splitting by a plane when
-/// a cycle or an interpenetration is found.
+/// overlap), moving a polygon ahead when it must be drawn first, and splitting one polygon by
+/// the other's plane when they interpenetrate or their planes cross.
+///
+/// A cycle (a polygon that was moved ahead must move ahead again) is broken by a small BSP over
+/// the polygons of the cycle, whose fragments replace them: cutting one pair by its own planes
+/// does not always break a cycle through several polygons (fuzzing found such cases among 60
+/// crossing quads). Frames that break a cycle allocate; others do not.
 ///
 /// Exact: the property tests and the book grid check zero order violations. Cost grows with
 /// the number of pairs whose depth extents overlap; it has no cached state.
@@ -58,7 +64,15 @@ pub struct Newell {
 enum Action {
     Draw,
     MoveAhead(u32),
-    Split { polygon: u32, by: Plane },
+    Split {
+        polygon: u32,
+        by: Plane,
+    },
+    /// A cycle: the stack from this position to the top. Replaced by the fragments of a
+    /// local BSP over its members, which cannot form a cycle among themselves.
+    Untangle {
+        from: usize,
+    },
 }
 
 impl Newell {
@@ -193,7 +207,11 @@ impl Newell {
             if q_first && !wq.marked {
                 return Action::MoveAhead(q);
             }
-            // A cycle (Q was moved ahead before) or an interpenetration: cut.
+            // A cycle (Q was moved ahead before, so it waits on the stack below P)?
+            if q_first && let Some(from) = self.stack.iter().rposition(|&x| x == q) {
+                return Action::Untangle { from };
+            }
+            // An interpenetration, or planes that cross: cut one by the other's plane.
             if p_vs_q == Side::Spanning {
                 return Action::Split {
                     polygon: p,
@@ -206,30 +224,41 @@ impl Newell {
                     by: plane_p,
                 };
             }
-            // A longer cycle through P and Q: cut P by the plane of another marked polygon
-            // that P spans and overlaps.
-            for ri in first..self.remaining.len() {
-                let r = self.remaining[ri];
-                let wr = self.work[r as usize];
-                if wr.z_min >= wp.z_max {
-                    break;
-                }
-                if r == p || self.done[r as usize] || !wr.marked || !wp.bounds.overlaps(&wr.bounds)
-                {
-                    continue;
-                }
-                let plane_r = self.plane_of(out, r);
-                if self.side_seen(out, p, &plane_r, viewer) == Side::Spanning {
-                    return Action::Split {
-                        polygon: p,
-                        by: plane_r,
-                    };
-                }
+            // A cycle: Q is marked and not drawn, so it waits on the stack below P, and every
+            // member above it must be drawn before the one below.
+            if let Some(from) = self.stack.iter().rposition(|&x| x == q) {
+                return Action::Untangle { from };
             }
             self.fallbacks += 1;
             return Action::Draw;
         }
         Action::Draw
+    }
+
+    /// Replaces the cycle `stack[from..]` by the fragments of a local BSP over its members.
+    /// (Allocates: cycles are rare in meshes, and a frame with one is not a steady state.)
+    fn untangle(&mut self, view: &View, out: &mut DrawList, from: usize, first: usize) {
+        let mut members = PolygonSet::new();
+        for &w in &self.stack[from..] {
+            let work = self.work[w as usize];
+            let item = DrawItem {
+                polygon: work.polygon,
+                face: work.face,
+            };
+            members.push(out.corners(item), work.face, *out.plane(item));
+            self.done[w as usize] = true;
+        }
+        self.stack.truncate(from);
+        let tree = BspTree::build_over(Arc::new(members), self.tolerance, &BspOptions::DEFAULT);
+        let mut local = Bsp::from_tree(Arc::new(tree));
+        let mut fragments = DrawList::new();
+        local.sort(view, &mut fragments);
+        for &item in fragments.items() {
+            let polygon =
+                out.add_frame_polygon(fragments.corners(item), item.face, *fragments.plane(item));
+            let new = self.add_work(view, out, polygon, item.face);
+            self.insert_sorted(first, new);
+        }
     }
 
     /// Inserts work item `w` into the remaining list at or after `first`, keeping it sorted.
@@ -291,6 +320,9 @@ impl FaceSorter for Newell {
                     let w = self.work[p as usize];
                     out.push(w.polygon, w.face);
                     self.done[p as usize] = true;
+                }
+                Action::Untangle { from } => {
+                    self.untangle(view, out, from, first);
                 }
                 Action::MoveAhead(q) => {
                     self.work[q as usize].marked = true;

@@ -193,6 +193,16 @@ pub fn interpenetrating_scene() -> impl Strategy<Value = PolygonMesh> {
         .prop_map(|(polygons, (e, o))| mesh_of(rescale(polygons, e, o)))
 }
 
+/// Many random polygons (10 to 60) crossing each other in a cube: long cycles through
+/// several polygons, the case where splitting one pair by its own planes is not enough.
+pub fn crossing_scene() -> impl Strategy<Value = PolygonMesh> {
+    (
+        prop::collection::vec(convex_polygon(), 10..60),
+        scale_and_offset(),
+    )
+        .prop_map(|(polygons, (e, o))| mesh_of(rescale(polygons, e, o)))
+}
+
 /// Three to five long quads each lying over the next and under the previous one: a cyclic
 /// overlap no order of whole faces can paint, randomly perturbed and rotated.
 pub fn cyclic_scene() -> impl Strategy<Value = PolygonMesh> {

@@ -379,6 +379,34 @@ impl CullTest {
     pub fn is_drawn(&self, plane: &Plane, corner0: DVec3) -> bool {
         is_drawn_for(self, plane, corner0)
     }
+
+    /// The viewer as `(point, w)` such that a plane's facing value is
+    /// `normal · point − w · offset` ([`Viewer::facing`]), for loops over plane arrays.
+    #[inline]
+    #[must_use]
+    pub fn viewer_point(&self) -> (DVec3, f64) {
+        match self.viewer {
+            Viewer::Direction(d) => (d, 0.0),
+            Viewer::Eye(e) => (e, 1.0),
+        }
+    }
+
+    /// When the view has no cull margin, the cull decision follows from a piece's facing value
+    /// alone: returns `(keep when facing > 0, keep when facing < 0)`; `None` with a margin.
+    /// (For planar pieces, `n · (e − v₀)` equals the facing value `n · e − offset`.)
+    #[inline]
+    #[must_use]
+    pub fn facing_rule(&self) -> Option<(bool, bool)> {
+        if self.sin_margin > 0.0 {
+            return None;
+        }
+        let (front, back) = if self.sign > 0.0 {
+            (self.keep_front, self.keep_back)
+        } else {
+            (self.keep_back, self.keep_front)
+        };
+        Some((front, back))
+    }
 }
 
 #[inline]

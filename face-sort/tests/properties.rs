@@ -3,7 +3,8 @@
 //! drawn pieces). `PROPTEST_CASES` raises the case count; `cargo xtask fuzz` runs many more.
 
 use face_sort::strategies::{
-    any_scene, cyclic_scene, interpenetrating_scene, non_intersecting_scene, view_spec,
+    any_scene, crossing_scene, cyclic_scene, interpenetrating_scene, non_intersecting_scene,
+    view_spec,
 };
 use face_sort::{DrawList, Geometry, PolygonMesh, SorterKind, oracle};
 use proptest::prelude::*;
@@ -46,6 +47,11 @@ proptest! {
 
     #[test]
     fn exact_on_cyclic_scenes(scene in cyclic_scene(), spec in view_spec()) {
+        exact_sorters_leave_no_violation(&scene, &spec)?;
+    }
+
+    #[test]
+    fn exact_on_crossing_scenes(scene in crossing_scene(), spec in view_spec()) {
         exact_sorters_leave_no_violation(&scene, &spec)?;
     }
 
