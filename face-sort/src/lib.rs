@@ -34,6 +34,7 @@
 
 mod bsp;
 mod centroid;
+pub mod colours;
 mod draw_list;
 mod error;
 pub mod generate;

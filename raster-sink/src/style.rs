@@ -171,29 +171,6 @@ impl Style {
     }
 }
 
-/// Saturation of the palette.
-pub const PALETTE_SATURATION: f64 = 0.55;
-/// Value (brightness) of the palette.
-pub const PALETTE_VALUE: f64 = 0.92;
-/// The palette's hue step per face, in degrees (the golden angle).
-pub const GOLDEN_ANGLE_DEG: f64 = 137.508;
-
-/// The seed's fallback palette: hue `face · 137.508°`, fixed saturation and value, opaque.
-#[must_use]
-pub fn golden_angle_colour(face: u32) -> [u8; 4] {
-    let hue = (f64::from(face) * GOLDEN_ANGLE_DEG).rem_euclid(360.0) / 60.0;
-    let (s, v) = (PALETTE_SATURATION, PALETTE_VALUE);
-    let c = v * s;
-    let x = c * (1.0 - (hue % 2.0 - 1.0).abs());
-    let (r, g, b) = match hue as u32 {
-        0 => (c, x, 0.0),
-        1 => (x, c, 0.0),
-        2 => (0.0, c, x),
-        3 => (0.0, x, c),
-        4 => (x, 0.0, c),
-        _ => (c, 0.0, x),
-    };
-    let m = v - c;
-    let to8 = |f: f64| ((f + m) * 255.0).round().clamp(0.0, 255.0) as u8;
-    [to8(r), to8(g), to8(b), 255]
-}
+pub use face_sort::colours::{
+    GOLDEN_ANGLE_DEG, PALETTE_SATURATION, PALETTE_VALUE, golden_angle_colour,
+};

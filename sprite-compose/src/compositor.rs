@@ -53,34 +53,7 @@ impl Brush {
     }
 }
 
-/// The seed's fallback palette (the same as `raster-sink`'s): hue `face · 137.508°` (the golden
-/// angle), saturation 0.55, value 0.92, opaque. Neighbouring faces get clearly different colours.
-#[must_use]
-pub fn golden_angle_colour(face: u32) -> [u8; 4] {
-    const GOLDEN_ANGLE_DEG: f64 = 137.508;
-    let hue = (f64::from(face) * GOLDEN_ANGLE_DEG).rem_euclid(360.0) / 60.0;
-    let (s, v) = (0.55, 0.92);
-    let c = v * s;
-    let x = c * (1.0 - (hue % 2.0 - 1.0).abs());
-    let (r, g, b) = match hue as u32 {
-        0 => (c, x, 0.0),
-        1 => (x, c, 0.0),
-        2 => (0.0, c, x),
-        3 => (0.0, x, c),
-        4 => (x, 0.0, c),
-        _ => (c, 0.0, x),
-    };
-    let m = v - c;
-    let to_byte = |f: f64| ((f + m) * 255.0).round().clamp(0.0, 255.0) as u8;
-    [to_byte(r), to_byte(g), to_byte(b), 255]
-}
-
-/// The ID colour of a face (CONVENTIONS.md): `face + 1` as 24-bit RGB, R the high byte, opaque.
-#[must_use]
-pub fn id_colour(face: u32) -> [u8; 4] {
-    let id = face.wrapping_add(1);
-    [(id >> 16) as u8, (id >> 8) as u8, id as u8, 255]
-}
+pub use face_sort::colours::{golden_angle_colour, id_colour};
 
 /// A retained compositor without a depth buffer: a stack of sprites (bottom first, painted in
 /// stack order) under one root transform.
