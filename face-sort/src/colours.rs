@@ -45,7 +45,7 @@ mod tests {
     #[test]
     fn id_colour_is_face_plus_one() {
         assert_eq!(id_colour(0), [0, 0, 1, 255]);
-        assert_eq!(id_colour(0x0102_02), [1, 2, 3, 255]);
+        assert_eq!(id_colour(0x01_0202), [1, 2, 3, 255]);
     }
 
     #[test]
