@@ -46,6 +46,15 @@ pub struct Light {
 }
 
 impl Light {
+    /// The Lambert factor `ambient + (1 − ambient) · max(0, n · l)` of a surface whose unit
+    /// normal (view space, turned toward the viewer) is `normal`.
+    #[must_use]
+    pub fn factor(&self, normal: DVec3) -> f64 {
+        let l = self.direction.normalize_or_zero();
+        let ambient = self.ambient.clamp(0.0, 1.0);
+        ambient + (1.0 - ambient) * normal.dot(l).max(0.0)
+    }
+
     /// Light from the upper left front, ambient 0.3.
     pub const DEFAULT: Light = Light {
         direction: DVec3::new(-0.4, 0.6, 1.0),
@@ -685,9 +694,7 @@ fn lambert(view: &View, list: &DrawList, item: DrawItem, light: &Light) -> f64 {
     if toward_viewer < 0.0 {
         n = -n;
     }
-    let l = light.direction.normalize_or_zero();
-    let ambient = light.ambient.clamp(0.0, 1.0);
-    ambient + (1.0 - ambient) * n.dot(l).max(0.0)
+    light.factor(n)
 }
 
 /// `src` (premultiplied, 0..1) over `dst`.

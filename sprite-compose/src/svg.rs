@@ -27,6 +27,13 @@ pub struct SvgOptions {
     /// Extra SVG markup appended on top (e.g. [`outline_svg_path`](crate::outline_svg_path)).
     /// Default: empty.
     pub overlay: String,
+    /// Width in pixels of a stroke in each solid polygon's own colour, which hides the
+    /// hairlines of background that anti-aliased neighbours leave along shared edges
+    /// (conflation). It also moves every visible boundary outward by half of it (silhouettes,
+    /// intersection lines), so it is off by default: an export for people to look at wants
+    /// 1.0 (half a pixel still lets hairlines through in resvg), a measurement wants 0.
+    /// ID mode never strokes. Default: 0.
+    pub seam_stroke: f64,
 }
 
 impl SvgOptions {
@@ -38,7 +45,15 @@ impl SvgOptions {
         background: None,
         textures: Vec::new(),
         overlay: String::new(),
+        seam_stroke: 0.0,
     };
+
+    /// Seam stroke width in pixels (0: off).
+    #[must_use]
+    pub fn with_seam_stroke(mut self, width: f64) -> Self {
+        self.seam_stroke = width;
+        self
+    }
 
     /// Image size.
     #[must_use]
@@ -191,9 +206,18 @@ pub fn write_svg(scene: &Scene, options: &SvgOptions) -> String {
         } else {
             sprite.brush.solid_colour(sprite.face)
         };
+        let stroke = if !options.ids && options.seam_stroke > 0.0 && colour[3] == 255 {
+            format!(
+                " stroke=\"{}\" stroke-width=\"{}\" stroke-linejoin=\"round\"",
+                hex(colour),
+                options.seam_stroke
+            )
+        } else {
+            String::new()
+        };
         let _ = writeln!(
             svg,
-            "<polygon points=\"{points}\" fill=\"{}\"{}/>",
+            "<polygon points=\"{points}\" fill=\"{}\"{}{stroke}/>",
             hex(colour),
             opacity(colour)
         );

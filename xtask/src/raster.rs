@@ -48,9 +48,7 @@ pub struct ColourOptions {
     pub texture: Option<PathBuf>,
 }
 
-/// Paints `list` in order with raster-sink: material textures (or `options.texture`) where
-/// the mesh has uvs, material diffuse colours, else the golden-angle palette; the ground
-/// grid on its face.
+/// Paints `list` in order with raster-sink in the colours of [`face_style`].
 pub fn render_colour(
     view: &View,
     geometry: &Geometry,
@@ -58,6 +56,69 @@ pub fn render_colour(
     mesh: &obj_quads::Mesh,
     options: &ColourOptions,
 ) -> Result<Pixmap> {
+    let style = face_style(geometry, mesh, options)?;
+    let raster_options = RasterOptions::DEFAULT
+        .with_anti_alias(options.anti_alias)
+        .with_shading(options.shade.then_some(Light::DEFAULT));
+    raster_sink::render_colour(view, list, &style, &raster_options)
+        .map_err(|e| anyhow::anyhow!("raster: {e}"))
+}
+
+/// The sprite brush closest to a raster brush, for the SVG and HTML writers: solid colours
+/// as they are, a texture as its mean colour, the ground grid transparent; with `shading`,
+/// solid colours are flat-shaded for this view (`normal`: the face's model-space normal).
+pub fn sprite_brush(
+    style: &Style,
+    face: u32,
+    shading: Option<(&View, DVec3)>,
+) -> sprite_compose::Brush {
+    let shaded = |colour: [u8; 4]| match shading {
+        Some((view, normal)) => {
+            let mut n = view.to_view(normal.normalize_or_zero());
+            if n.z < 0.0 {
+                n = -n;
+            }
+            let k = Light::DEFAULT.factor(n);
+            let c = |v: u8| (f64::from(v) * k).round().clamp(0.0, 255.0) as u8;
+            [c(colour[0]), c(colour[1]), c(colour[2]), colour[3]]
+        }
+        None => colour,
+    };
+    match style.brush(face) {
+        Some(Brush::Solid(colour)) => sprite_compose::Brush::Solid(shaded(*colour)),
+        Some(Brush::Texture(texture)) => {
+            sprite_compose::Brush::Solid(shaded(mean_colour(&texture.image)))
+        }
+        Some(Brush::Grid(_)) => sprite_compose::Brush::Solid([0, 0, 0, 0]),
+        _ => sprite_compose::Brush::Palette,
+    }
+}
+
+fn mean_colour(image: &Pixmap) -> [u8; 4] {
+    let mut sum = [0u64; 3];
+    let pixels = image.pixels();
+    for p in pixels {
+        let c = p.demultiply();
+        sum[0] += u64::from(c.red());
+        sum[1] += u64::from(c.green());
+        sum[2] += u64::from(c.blue());
+    }
+    let n = pixels.len().max(1) as u64;
+    [
+        (sum[0] / n) as u8,
+        (sum[1] / n) as u8,
+        (sum[2] / n) as u8,
+        255,
+    ]
+}
+
+/// Per-face brushes: material textures (or `options.texture`) where the mesh has uvs,
+/// material diffuse colours, else the golden-angle palette; the ground grid on its face.
+pub fn face_style(
+    geometry: &Geometry,
+    mesh: &obj_quads::Mesh,
+    options: &ColourOptions,
+) -> Result<Style> {
     let mut style = Style::palette();
     let mut textures: HashMap<PathBuf, Option<Arc<Pixmap>>> = HashMap::new();
     let mut load = |path: &Path| -> Result<Option<Arc<Pixmap>>> {
@@ -121,11 +182,7 @@ pub fn render_colour(
     if let Some((face, grid)) = &options.grid {
         style.set_face(*face, Brush::Grid(Arc::new(grid.clone())));
     }
-    let raster_options = RasterOptions::DEFAULT
-        .with_anti_alias(options.anti_alias)
-        .with_shading(options.shade.then_some(Light::DEFAULT));
-    raster_sink::render_colour(view, list, &style, &raster_options)
-        .map_err(|e| anyhow::anyhow!("raster: {e}"))
+    Ok(style)
 }
 
 /// Writes a colour image as PNG.

@@ -288,8 +288,21 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
         std::fs::create_dir_all(parent)
             .with_context(|| format!("creating {}", parent.display()))?;
     }
+    let texture = match (&args.texture, demo) {
+        (Some(path), _) => Some(path.clone()),
+        (None, true) => Some(scenes::asset(DEMO_TEXTURE)),
+        (None, false) => None,
+    };
+    let colour_options = raster::ColourOptions {
+        anti_alias: !args.no_aa,
+        shade: args.shade || demo,
+        grid: grid.clone(),
+        texture,
+    };
     if args.svg.is_some() || args.html.is_some() {
-        // The sprite tree of the same geometry, sorter kind and view (palette colours).
+        // The sprite tree of the same geometry, sorter kind and view, in the materials'
+        // colours (a texture as its mean colour), or ID colours with --ids.
+        let style = raster::face_style(&geometry, &mesh, &colour_options)?;
         let painter_sorter = kind.build(&geometry);
         let mut painter = sprite_compose::SpritePainter::new(
             &geometry,
@@ -297,19 +310,30 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
             view,
             sprite_compose::RecordingCompositor::new(),
         );
+        let shade = colour_options.shade;
+        painter.set_brushes(|face| {
+            let normal = mesh.face_normal(face as usize);
+            let shading = normal.filter(|_| shade).map(|n| (&view, n));
+            raster::sprite_brush(&style, face, shading)
+        });
         painter.frame();
         let scene = painter.compositor().scene();
         if let Some(path) = &args.svg {
             let svg = sprite_compose::write_svg(
                 scene,
-                &sprite_compose::SvgOptions::DEFAULT.with_size(width, height),
+                &sprite_compose::SvgOptions::DEFAULT
+                    .with_size(width, height)
+                    .with_ids(args.ids)
+                    .with_seam_stroke(1.0),
             );
             std::fs::write(path, svg).with_context(|| format!("writing {}", path.display()))?;
         }
         if let Some(path) = &args.html {
             let html = sprite_compose::write_html(
                 scene,
-                &sprite_compose::HtmlOptions::DEFAULT.with_size(width, height),
+                &sprite_compose::HtmlOptions::DEFAULT
+                    .with_size(width, height)
+                    .with_ids(args.ids),
             );
             std::fs::write(path, html).with_context(|| format!("writing {}", path.display()))?;
         }
@@ -328,18 +352,7 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
             .save_png(&output)
             .map_err(|e| anyhow::anyhow!("{}: {e}", output.display()))?;
     } else {
-        let texture = match (&args.texture, demo) {
-            (Some(path), _) => Some(path.clone()),
-            (None, true) => Some(scenes::asset(DEMO_TEXTURE)),
-            (None, false) => None,
-        };
-        let options = raster::ColourOptions {
-            anti_alias: !args.no_aa,
-            shade: args.shade || demo,
-            grid: grid.clone(),
-            texture,
-        };
-        let image = raster::render_colour(&view, &geometry, &list, &mesh, &options)?;
+        let image = raster::render_colour(&view, &geometry, &list, &mesh, &colour_options)?;
         raster::save_colour(&image, &output)?;
     }
     let raster_ms = ms(start);

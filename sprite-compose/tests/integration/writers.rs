@@ -224,3 +224,52 @@ fn textured_sprites_become_clipped_images() {
     assert_eq!(svg.matches("<clipPath").count(), p.draw_list().len());
     let _ = rasterise_svg(&svg);
 }
+
+/// Pixels deep inside the silhouette (5×5 neighbourhood covered in the truth) whose colour
+/// shows background tint: any channel more than 10 above the mesh colour's (8-bit
+/// premultiplied blending of a colour over itself drifts by a few units; a hairline of white
+/// background shows as 40 and more).
+fn tinted_inside(svg: &str, t: &Truth, colour: [u8; 4]) -> usize {
+    let pixmap = rasterise_svg(svg);
+    let (w, h) = (t.width as usize, t.height as usize);
+    let mut tinted = 0;
+    for y in 2..h - 2 {
+        for x in 2..w - 2 {
+            let inside =
+                (0..5).all(|dy| (0..5).all(|dx| t.ids[(y + dy - 2) * w + x + dx - 2] != 0));
+            if !inside {
+                continue;
+            }
+            let px = &pixmap.data()[4 * (y * w + x)..4 * (y * w + x) + 4];
+            if (0..3).any(|c| px[c] > colour[c].saturating_add(10)) {
+                tinted += 1;
+            }
+        }
+    }
+    tinted
+}
+
+#[test]
+fn svg_seam_stroke_hides_conflation_hairlines() {
+    // A closed mesh in one dark colour on white: anti-aliased neighbours let the background
+    // through along shared edges unless each polygon is stroked in its own colour.
+    let g = support::geometry(&support::uv_sphere(12, 24));
+    let view = View::fit(&g.bounds(), SIZE, SIZE).with_yaw_pitch_roll(30.0, 20.0, 0.0);
+    let mut p = SpritePainter::new(
+        &g,
+        SorterKind::Bsp.build(&g),
+        view,
+        RecordingCompositor::new(),
+    );
+    let colour = [40, 60, 90, 255];
+    p.set_brushes(|_| Brush::Solid(colour));
+    p.frame();
+    let t = truth(p.view(), &g);
+    let options = SvgOptions::DEFAULT.with_background(Some([255, 255, 255, 255]));
+    let stroked = options.clone().with_seam_stroke(1.0);
+    let with = tinted_inside(&write_svg(p.compositor().scene(), &stroked), &t, colour);
+    let without = tinted_inside(&write_svg(p.compositor().scene(), &options), &t, colour);
+    println!("svg seams: {with} tinted pixels with the stroke, {without} without");
+    assert_eq!(with, 0);
+    assert!(without > 0, "the test must be able to see seams");
+}
