@@ -45,6 +45,7 @@ pub mod oracle;
 mod plane;
 mod polygon;
 mod polygon_set;
+mod screen_grid;
 mod sorter;
 #[cfg(any(test, feature = "proptest"))]
 pub mod strategies;

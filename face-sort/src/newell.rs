@@ -7,6 +7,7 @@ use glam::{DVec2, DVec3};
 
 use crate::plane::{Plane, Side};
 use crate::polygon::{Box2, clip_convex_2d, signed_area_2d, split_polygon};
+use crate::screen_grid::ScreenGrid;
 use crate::tolerance::{OVERLAP_AREA, PLANE_SIDE};
 use crate::view::Viewer;
 use crate::{Bsp, BspOptions, BspTree};
@@ -56,6 +57,9 @@ pub struct Newell {
     corners: Vec<DVec3>,
     split_front: Vec<DVec3>,
     split_back: Vec<DVec3>,
+    /// Screen grid over the work items' boxes, and the candidates of the current query.
+    grid: ScreenGrid,
+    candidates: Vec<u32>,
     tolerance: f64,
     min_area: f64,
     fallbacks: usize,
@@ -94,6 +98,8 @@ impl Newell {
             corners: Vec::new(),
             split_front: Vec::new(),
             split_back: Vec::new(),
+            grid: ScreenGrid::default(),
+            candidates: Vec::new(),
             tolerance: PLANE_SIDE * l,
             min_area: OVERLAP_AREA * l * l,
             fallbacks: 0,
@@ -178,18 +184,41 @@ impl Newell {
     }
 
     /// What to do with candidate `p`, scanning the remaining items from `first`.
-    fn decide(&mut self, out: &DrawList, p: u32, first: usize, viewer: &Viewer) -> Action {
+    fn decide(&mut self, out: &DrawList, p: u32, viewer: &Viewer) -> Action {
         let plane_p = self.plane_of(out, p);
         let wp = self.work[p as usize];
-        for qi in first..self.remaining.len() {
-            let q = self.remaining[qi];
+        // Candidates: not drawn, overlapping P in depth extent and screen box.
+        let mut candidates = std::mem::take(&mut self.candidates);
+        candidates.clear();
+        {
+            let (work, done) = (&self.work, &self.done);
+            self.grid.for_each_candidate(&wp.bounds, |q| {
+                let wq = &work[q as usize];
+                if q != p
+                    && !done[q as usize]
+                    && wq.z_min < wp.z_max
+                    && wp.bounds.overlaps(&wq.bounds)
+                {
+                    candidates.push(q);
+                }
+            });
+        }
+        let action = self.decide_among(out, p, &plane_p, &candidates, viewer);
+        self.candidates = candidates;
+        action
+    }
+
+    fn decide_among(
+        &mut self,
+        out: &DrawList,
+        p: u32,
+        plane_p: &Plane,
+        candidates: &[u32],
+        viewer: &Viewer,
+    ) -> Action {
+        let plane_p = *plane_p;
+        for &q in candidates {
             let wq = self.work[q as usize];
-            if wq.z_min >= wp.z_max {
-                break;
-            }
-            if q == p || self.done[q as usize] || !wp.bounds.overlaps(&wq.bounds) {
-                continue;
-            }
             let plane_q = self.plane_of(out, q);
             let p_vs_q = self.side_seen(out, p, &plane_q, viewer);
             if matches!(p_vs_q, Side::Back | Side::On) {
@@ -257,6 +286,7 @@ impl Newell {
             let polygon =
                 out.add_frame_polygon(fragments.corners(item), item.face, *fragments.plane(item));
             let new = self.add_work(view, out, polygon, item.face);
+            self.grid.insert(new, &self.work[new as usize].bounds);
             self.insert_sorted(first, new);
         }
     }
@@ -294,6 +324,17 @@ impl FaceSorter for Newell {
         let work = &self.work;
         self.remaining
             .sort_unstable_by(|&a, &b| work[a as usize].z_min.total_cmp(&work[b as usize].z_min));
+        let mut all = Box2::EMPTY;
+        for w in &self.work {
+            if w.projected_len > 0 {
+                all.min = all.min.min(w.bounds.min);
+                all.max = all.max.max(w.bounds.max);
+            }
+        }
+        self.grid.reset(all, self.work.len());
+        for (i, w) in self.work.iter().enumerate() {
+            self.grid.insert(i as u32, &w.bounds);
+        }
         // Every move or split costs a step; the budget bounds time on adversarial input.
         let mut budget = 64 * self.remaining.len() + 1024;
         let mut first = 0;
@@ -313,7 +354,7 @@ impl FaceSorter for Newell {
                 Action::Draw
             } else {
                 budget -= 1;
-                self.decide(out, p, first, &viewer)
+                self.decide(out, p, &viewer)
             };
             match action {
                 Action::Draw => {
@@ -356,6 +397,7 @@ impl FaceSorter for Newell {
                         if corners.len() >= 3 {
                             let polygon = out.add_frame_polygon(corners, work.face, plane);
                             let new = self.add_work(view, out, polygon, work.face);
+                            self.grid.insert(new, &self.work[new as usize].bounds);
                             self.insert_sorted(first, new);
                         }
                     }
