@@ -453,6 +453,7 @@ impl FaceSorter for Bsp {
         let facing =
             |row: &[f64; 4]| row[0] * point.x + row[1] * point.y + row[2] * point.z - w * row[3];
         // Cull per piece: fragments share their piece's plane, and each is culled by it.
+        let only_toward = cull.facing_rule() == Some((true, false));
         match cull.facing_rule() {
             Some((keep_toward, keep_away)) => {
                 for ((drawn, toward), row) in self
@@ -483,8 +484,15 @@ impl FaceSorter for Bsp {
         for (k, node) in tree.nodes.iter().enumerate() {
             let b = self.base[k];
             if node.leaf {
-                // Facing away first, then facing the viewer.
                 let range = node.first..node.first + node.same;
+                if only_toward {
+                    // Only pieces facing the viewer are drawn: any order within the leaf.
+                    for (slot, f) in self.order[b as usize..].iter_mut().zip(range) {
+                        *slot = f;
+                    }
+                    continue;
+                }
+                // Facing away first, then facing the viewer.
                 let piece_of = |f: &u32| tree.fragment_piece[*f as usize] as usize;
                 let away = range.clone().filter(|f| !self.piece_facing[piece_of(f)]);
                 let toward = range.filter(|f| self.piece_facing[piece_of(f)]);
@@ -519,16 +527,25 @@ impl FaceSorter for Bsp {
             }
         }
         out.begin(&tree.fragments);
+        // Branch-free compaction: write every fragment, advance past the drawn ones only.
         let items = out.items_mut();
+        items.resize(
+            self.order.len(),
+            crate::DrawItem {
+                polygon: 0,
+                face: 0,
+            },
+        );
+        let mut drawn = 0;
         for &f in &self.order {
             let f = f as usize;
-            if self.piece_drawn[tree.fragment_piece[f] as usize] {
-                items.push(crate::DrawItem {
-                    polygon: f as u32,
-                    face: tree.fragment_face[f],
-                });
-            }
+            items[drawn] = crate::DrawItem {
+                polygon: f as u32,
+                face: tree.fragment_face[f],
+            };
+            drawn += usize::from(self.piece_drawn[tree.fragment_piece[f] as usize]);
         }
+        items.truncate(drawn);
     }
 
     fn stats(&self) -> SorterStats {
