@@ -25,13 +25,14 @@ fn main() {
             sorter.sort(&View::fit(&geometry.bounds(), 512, 512), &mut list);
             let stats = sorter.stats();
             println!(
-                "  {:<12} build {:>8.1} ms  polygons {:>6} ({:.2}x pieces)  depth {:>4}  cached {:>6.0} B/face",
+                "  {:<12} build {:>8.1} ms  polygons {:>6} ({:.2}x pieces)  depth {:>4}  cached {:>6.0} B/face  fallbacks {}",
                 kind.name(),
                 build_ms,
                 stats.polygons,
                 stats.polygons as f64 / pieces as f64,
                 stats.depth,
-                stats.cached_bytes as f64 / faces as f64
+                stats.cached_bytes as f64 / faces as f64,
+                stats.fallbacks
             );
         }
     }
