@@ -9,7 +9,7 @@ use std::hint::black_box;
 use std::path::PathBuf;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use raster_sink::face_sort::glam::{DVec2, DVec3};
+use raster_sink::face_sort::glam::DVec2;
 use raster_sink::face_sort::{
     Centroid, DrawList, FaceSorter, Geometry, PolygonMesh, ProjectionScratch, View,
 };
@@ -20,32 +20,9 @@ use raster_sink::{RasterOptions, Style, render_colour, render_ids, truth};
 fn spot() -> PolygonMesh {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
         .join("../assets/models/keenan-crane/spot/spot_quadrangulated.obj");
-    let text = std::fs::read_to_string(path).expect("spot");
-    let mut positions = Vec::new();
-    let mut faces: Vec<Vec<u32>> = Vec::new();
-    for line in text.lines() {
-        let mut parts = line.split_whitespace();
-        match parts.next() {
-            Some("v") => {
-                let c: Vec<f64> = parts.take(3).map(|s| s.parse().expect("number")).collect();
-                positions.push(DVec3::new(c[0], c[1], c[2]));
-            }
-            Some("f") => faces.push(
-                parts
-                    .map(|c| {
-                        c.split('/')
-                            .next()
-                            .expect("v")
-                            .parse::<u32>()
-                            .expect("index")
-                            - 1
-                    })
-                    .collect(),
-            ),
-            _ => {}
-        }
-    }
-    PolygonMesh::new(positions, faces).expect("mesh")
+    let (mesh, _) = obj_quads::load(&path, &obj_quads::LoadOptions::default())
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    PolygonMesh::new(mesh.positions().to_vec(), mesh.faces()).expect("valid mesh")
 }
 
 fn bench(c: &mut Criterion) {

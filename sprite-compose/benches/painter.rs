@@ -8,7 +8,7 @@ use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use sprite_compose::face_sort::{DrawList, FaceSorter, Geometry, PolygonMesh, SorterKind, View};
-use sprite_compose::glam::{DMat4, DVec2, DVec3};
+use sprite_compose::glam::{DMat4, DVec2};
 use sprite_compose::{
     Brush, Compositor, OpCounts, PieceMaps, SpriteId, SpritePainter, SpriteTransform,
     rotation_from_yaw_pitch_roll,
@@ -56,30 +56,9 @@ fn spot() -> Geometry {
         env!("CARGO_MANIFEST_DIR"),
         "/../assets/models/keenan-crane/spot/spot_quadrangulated.obj"
     );
-    let text = std::fs::read_to_string(path).expect("spot");
-    let mut positions = Vec::new();
-    let mut faces: Vec<Vec<u32>> = Vec::new();
-    for line in text.lines() {
-        let mut w = line.split_whitespace();
-        match w.next() {
-            Some("v") => {
-                let c: Vec<f64> = w.take(3).map(|s| s.parse().expect("number")).collect();
-                positions.push(DVec3::new(c[0], c[1], c[2]));
-            }
-            Some("f") => faces.push(
-                w.map(|s| {
-                    s.split('/')
-                        .next()
-                        .and_then(|i| i.parse::<u32>().ok())
-                        .expect("index")
-                        - 1
-                })
-                .collect(),
-            ),
-            _ => {}
-        }
-    }
-    Geometry::new(&PolygonMesh::new(positions, faces).expect("mesh")).expect("geometry")
+    let (mesh, _) = obj_quads::load(path, &obj_quads::LoadOptions::default()).expect("spot");
+    let mesh = PolygonMesh::new(mesh.positions().to_vec(), mesh.faces()).expect("mesh");
+    Geometry::new(&mesh).expect("geometry")
 }
 
 /// The naive update: sort, then destroy every sprite and re-add the drawn ones in order.

@@ -1,8 +1,7 @@
-//! Test helpers: a minimal OBJ reader (face-sort does not depend on a loader) and runners.
+//! Test helpers: models read with `obj-quads`, and runners.
 
 #![allow(dead_code)]
 
-use face_sort::glam::DVec3;
 use face_sort::{DrawList, FaceSorter, Geometry, PolygonMesh, SorterKind, View, oracle};
 
 /// Path of a model in the repository's assets.
@@ -10,36 +9,12 @@ pub fn asset(path: &str) -> String {
     format!("{}/../assets/models/{path}", env!("CARGO_MANIFEST_DIR"))
 }
 
-/// Reads `v` and `f` lines (ignoring texture/normal indices; negative indices supported).
+/// Reads an OBJ model with `obj-quads` (a dev-dependency only: face-sort itself knows no loader).
 pub fn read_obj(path: &str) -> PolygonMesh {
-    let text = std::fs::read_to_string(path).expect("asset readable");
-    let mut positions = Vec::new();
-    let mut faces: Vec<Vec<u32>> = Vec::new();
-    for line in text.lines() {
-        let line = line.split('#').next().unwrap_or("");
-        let mut words = line.split_whitespace();
-        match words.next() {
-            Some("v") => {
-                let c: Vec<f64> = words.take(3).map(|w| w.parse().unwrap()).collect();
-                positions.push(DVec3::new(c[0], c[1], c[2]));
-            }
-            Some("f") => {
-                let face = words
-                    .map(|w| {
-                        let i: i64 = w.split('/').next().unwrap().parse().unwrap();
-                        if i < 0 {
-                            (positions.len() as i64 + i) as u32
-                        } else {
-                            (i - 1) as u32
-                        }
-                    })
-                    .collect();
-                faces.push(face);
-            }
-            _ => {}
-        }
-    }
-    PolygonMesh::new(positions, faces).expect("valid mesh")
+    let path = std::path::PathBuf::from(path);
+    let (mesh, _) = obj_quads::load(&path, &obj_quads::LoadOptions::default())
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    PolygonMesh::new(mesh.positions().to_vec(), mesh.faces()).expect("valid mesh")
 }
 
 /// Sorts with `sorter` and returns the oracle's violation count.

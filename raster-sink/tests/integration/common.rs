@@ -36,7 +36,8 @@ pub fn workspace_root() -> PathBuf {
         .to_path_buf()
 }
 
-/// A tiny OBJ reader for tests: `v`, `vt` and `f` lines (`f a/b/c` forms, 1-based or negative).
+/// An OBJ model for tests, read with `obj-quads`: positions, uvs, and per face its corners
+/// as (position index, uv index if any).
 pub struct Obj {
     pub positions: Vec<DVec3>,
     pub uvs: Vec<DVec2>,
@@ -45,47 +46,28 @@ pub struct Obj {
 }
 
 pub fn read_obj(path: &std::path::Path) -> Obj {
-    let text = std::fs::read_to_string(path).expect("model readable");
+    let (mesh, _) = obj_quads::load(path, &obj_quads::LoadOptions::default()).expect("model loads");
     let mut obj = Obj {
-        positions: Vec::new(),
+        positions: mesh.positions().to_vec(),
         uvs: Vec::new(),
         faces: Vec::new(),
     };
-    for line in text.lines() {
-        let mut parts = line.split_whitespace();
-        match parts.next() {
-            Some("v") => {
-                let c: Vec<f64> = parts.take(3).map(|s| s.parse().expect("number")).collect();
-                obj.positions.push(DVec3::new(c[0], c[1], c[2]));
-            }
-            Some("vt") => {
-                let c: Vec<f64> = parts.take(2).map(|s| s.parse().expect("number")).collect();
-                obj.uvs.push(DVec2::new(c[0], c[1]));
-            }
-            Some("f") => {
-                let resolve = |s: &str, n: usize| -> u32 {
-                    let i: i64 = s.parse().expect("index");
-                    if i < 0 {
-                        (n as i64 + i) as u32
-                    } else {
-                        (i - 1) as u32
-                    }
-                };
-                let face = parts
-                    .map(|corner| {
-                        let mut it = corner.split('/');
-                        let v = resolve(it.next().expect("v"), obj.positions.len());
-                        let t = it
-                            .next()
-                            .filter(|s| !s.is_empty())
-                            .map(|s| resolve(s, obj.uvs.len()));
-                        (v, t)
-                    })
-                    .collect();
-                obj.faces.push(face);
-            }
-            _ => {}
-        }
+    for face in 0..mesh.face_count() {
+        let corners = mesh.face(face).expect("face in range");
+        let uvs = mesh.face_uvs(face);
+        let face = corners
+            .iter()
+            .enumerate()
+            .map(|(k, &v)| {
+                let t = uvs.map(|uvs| {
+                    obj.uvs
+                        .push(DVec2::new(f64::from(uvs[k].x), f64::from(uvs[k].y)));
+                    (obj.uvs.len() - 1) as u32
+                });
+                (v, t)
+            })
+            .collect();
+        obj.faces.push(face);
     }
     obj
 }

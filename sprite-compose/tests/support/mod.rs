@@ -1,4 +1,4 @@
-//! Test support: a tiny OBJ reader (`v` and `f` lines only) and generated meshes.
+//! Test support: models read with `obj-quads`, and generated meshes.
 
 #![allow(dead_code, reason = "each test binary uses part of the support module")]
 
@@ -14,42 +14,12 @@ pub fn model_path(relative: &str) -> PathBuf {
         .join(relative)
 }
 
-/// Reads `v` and `f` lines of an OBJ file (1-based or negative indices, `v/vt/vn` corners).
+/// Reads an OBJ model under `assets/models` with `obj-quads`.
 pub fn load_obj(relative: &str) -> PolygonMesh {
     let path = model_path(relative);
-    let text = std::fs::read_to_string(&path)
-        .unwrap_or_else(|e| panic!("cannot read {}: {e}", path.display()));
-    let mut positions = Vec::new();
-    let mut faces: Vec<Vec<u32>> = Vec::new();
-    for (n, line) in text.lines().enumerate() {
-        let mut words = line.split_whitespace();
-        match words.next() {
-            Some("v") => {
-                let c: Vec<f64> = words.take(3).map(|w| w.parse().expect("number")).collect();
-                assert_eq!(c.len(), 3, "line {}", n + 1);
-                positions.push(DVec3::new(c[0], c[1], c[2]));
-            }
-            Some("f") => {
-                let face = words
-                    .map(|w| {
-                        let i: i64 = w
-                            .split('/')
-                            .next()
-                            .and_then(|s| s.parse().ok())
-                            .expect("index");
-                        if i < 0 {
-                            (positions.len() as i64 + i) as u32
-                        } else {
-                            (i - 1) as u32
-                        }
-                    })
-                    .collect();
-                faces.push(face);
-            }
-            _ => {}
-        }
-    }
-    PolygonMesh::new(positions, faces).expect("valid mesh")
+    let (mesh, _) = obj_quads::load(&path, &obj_quads::LoadOptions::default())
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    PolygonMesh::new(mesh.positions().to_vec(), mesh.faces()).expect("valid mesh")
 }
 
 /// A UV sphere of planar quads (isosceles trapezoids: projective maps) with triangle caps.
