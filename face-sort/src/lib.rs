@@ -65,7 +65,9 @@ pub use polygon::{Box2, clip_convex_2d, signed_area_2d, split_polygon};
 pub use polygon_set::PolygonSet;
 pub use sorter::{FaceSorter, SorterStats};
 pub use topological::Topological;
-pub use view::{CullMode, CullTest, FrontFace, Projection, ProjectionScratch, View, Viewer};
+pub use view::{
+    CullMode, CullTest, FrontFace, PixelRays, Projection, ProjectionScratch, View, Viewer,
+};
 
 pub use glam;
 

@@ -8,7 +8,7 @@ use glam::{DVec2, DVec3};
 
 use crate::polygon::{Box2, clip_convex_2d, signed_area_2d};
 use crate::tolerance::{ORACLE_DEPTH, OVERLAP_AREA};
-use crate::{DrawList, ProjectionScratch, View};
+use crate::{DrawList, PixelRays, ProjectionScratch, View};
 
 /// One violating pair.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -75,31 +75,6 @@ fn project_all(view: &View, list: &DrawList) -> Projected {
     p
 }
 
-/// View depth (view-space z, larger is nearer) where the ray through pixel `pixel` meets the
-/// plane `n · v = k` (view space); `None` when the ray is parallel to it.
-fn depth_at(view: &View, pixel: DVec2, n: DVec3, k: f64) -> Option<f64> {
-    let s = view.scale();
-    let x = (pixel.x - f64::from(view.width()) * 0.5) / s;
-    let y = -(pixel.y - f64::from(view.height()) * 0.5) / s;
-    match view.eye_in_view() {
-        None => {
-            if n.z.abs() < 1e-300 {
-                return None;
-            }
-            Some((k - n.x * x - n.y * y) / n.z)
-        }
-        Some(eye) => {
-            let dir = DVec3::new(x, y, 0.0) - eye;
-            let denom = n.dot(dir);
-            if denom.abs() < 1e-300 {
-                return None;
-            }
-            let t = (k - n.dot(eye)) / denom;
-            Some(eye.z + t * dir.z)
-        }
-    }
-}
-
 fn for_each_violation(view: &View, list: &DrawList, mut report: impl FnMut(Violation)) {
     let projected = project_all(view, list);
     let n = list.len();
@@ -115,6 +90,7 @@ fn for_each_violation(view: &View, list: &DrawList, mut report: impl FnMut(Viola
             .x
             .total_cmp(&projected.boxes[b].min.x)
     });
+    let rays = PixelRays::new(view);
     let (mut overlap, mut scratch) = (Vec::new(), Vec::new());
     let poly = |i: usize| &projected.points[projected.starts[i]..projected.starts[i + 1]];
     for (pos, &a) in by_x.iter().enumerate() {
@@ -139,10 +115,9 @@ fn for_each_violation(view: &View, list: &DrawList, mut report: impl FnMut(Viola
             for &corner in overlap.iter().chain(std::iter::once(&centroid)) {
                 // A hair inside the overlap, so the point is interior.
                 let point = corner + (centroid - corner) * 1e-9;
-                if let (Some(de), Some(dl)) =
-                    (depth_at(view, point, ne, ke), depth_at(view, point, nl, kl))
-                {
-                    worst = worst.max(de - dl);
+                let gap = rays.depth(point, ne, ke) - rays.depth(point, nl, kl);
+                if gap.is_finite() {
+                    worst = worst.max(gap);
                 }
             }
             if worst > tolerance {

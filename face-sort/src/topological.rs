@@ -257,20 +257,18 @@ fn apart(screen: &[DVec3], a: usize, b: usize) -> bool {
 /// A conservative screen circle (view units, `(x, y, radius)`) of a sphere in centred model space.
 fn screen_circle(view: &View, centre: DVec3, radius: f64) -> DVec3 {
     let v = view.to_view(centre);
-    match view.eye_in_view() {
-        None => DVec3::new(v.x, v.y, radius),
-        Some(eye) => {
-            // w of the sphere's nearest and farthest points.
-            let w_near = 1.0 - (v.z + radius) / eye.z;
-            let w = 1.0 - v.z / eye.z;
-            if w_near <= crate::tolerance::NEAR_W {
-                return DVec3::new(v.x, v.y, f64::INFINITY);
-            }
-            let xy = v.truncate() / w;
-            let spread = v.truncate().length() * (1.0 / w_near - 1.0 / w).abs();
-            DVec3::new(xy.x, xy.y, radius / w_near + spread)
-        }
+    if view.eye_in_view().is_none() {
+        return DVec3::new(v.x, v.y, radius);
     }
+    // w of the sphere's centre and of its point nearest the eye.
+    let w = view.w_of_view_point(v);
+    let w_near = view.w_of_view_point(v + DVec3::Z * radius);
+    if w_near <= crate::tolerance::NEAR_W {
+        return DVec3::new(v.x, v.y, f64::INFINITY);
+    }
+    let xy = v.truncate() / w;
+    let spread = v.truncate().length() * (1.0 / w_near - 1.0 / w).abs();
+    DVec3::new(xy.x, xy.y, radius / w_near + spread)
 }
 
 /// Compressed adjacency lists from (from, to) pairs.

@@ -243,13 +243,16 @@ impl View {
     #[inline]
     #[must_use]
     pub fn project_view_point(&self, v: DVec3) -> Option<DVec2> {
+        let w = self.w_of_view_point(v);
+        (w >= NEAR_W).then(|| self.pixel_of(v, w))
+    }
+
+    /// Pixel position of view-space point `v` whose `w` is `w`.
+    #[inline]
+    fn pixel_of(&self, v: DVec3, w: f64) -> DVec2 {
         let half = DVec2::new(f64::from(self.width), f64::from(self.height)) * 0.5;
         let q = v * self.scale;
-        let w = self.w_of_view_point(v);
-        if w < NEAR_W * (1.0 - 1e-12) {
-            return None;
-        }
-        Some(DVec2::new(half.x + q.x / w, half.y - q.y / w))
+        DVec2::new(half.x + q.x / w, half.y - q.y / w)
     }
 
     /// `w = 1 − q.z/d` for perspective, 1 for orthographic.
@@ -299,11 +302,11 @@ impl View {
                 );
             }
         }
-        for &v in view.iter() {
-            if let Some(p) = self.project_view_point(v) {
-                out.push(p);
-            }
-        }
+        // After clipping every corner has w ≥ NEAR_W up to round-off; clamp that away.
+        out.extend(
+            view.iter()
+                .map(|&v| self.pixel_of(v, self.w_of_view_point(v).max(NEAR_W))),
+        );
         if out.len() < 3 {
             out.clear();
         }
@@ -442,4 +445,62 @@ pub struct ProjectionScratch {
     view: Vec<DVec3>,
     kept: Vec<DVec3>,
     dropped: Vec<DVec3>,
+}
+
+/// Pixel rays of one view: where the ray through a pixel point meets a plane, in f64. The one
+/// place that turns pixels back into view space, shared by the oracle and the z-buffer truth.
+///
+/// Orthographic rays run along −Z from the `z = 0` plane; perspective rays start at the eye
+/// `(0, 0, d/s)`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PixelRays {
+    half: DVec2,
+    inverse_scale: f64,
+    /// Eye height `d/s` in view units, for perspective.
+    eye: Option<f64>,
+}
+
+impl PixelRays {
+    /// The rays of `view`.
+    #[must_use]
+    pub fn new(view: &View) -> Self {
+        PixelRays {
+            half: DVec2::new(f64::from(view.width()), f64::from(view.height())) * 0.5,
+            inverse_scale: 1.0 / view.scale(),
+            eye: view.eye_in_view().map(|e| e.z),
+        }
+    }
+
+    /// The view-space point on the `z = 0` plane that the ray through pixel point `p` crosses.
+    #[inline]
+    #[must_use]
+    pub fn base(&self, p: DVec2) -> DVec2 {
+        DVec2::new(p.x - self.half.x, self.half.y - p.y) * self.inverse_scale
+    }
+
+    /// View-space ray through pixel point `p`: origin and direction.
+    #[inline]
+    #[must_use]
+    pub fn ray(&self, p: DVec2) -> (DVec3, DVec3) {
+        let a = self.base(p);
+        match self.eye {
+            None => (a.extend(0.0), DVec3::NEG_Z),
+            Some(e) => (DVec3::new(0.0, 0.0, e), DVec3::new(a.x, a.y, -e)),
+        }
+    }
+
+    /// View depth (view-space `z`, larger is nearer) where the ray through pixel point `p`
+    /// meets the view-space plane `n · v = offset`; not finite when the ray is parallel to it.
+    #[inline]
+    #[must_use]
+    pub fn depth(&self, p: DVec2, n: DVec3, offset: f64) -> f64 {
+        let a = self.base(p);
+        match self.eye {
+            None => (offset - n.x * a.x - n.y * a.y) / n.z,
+            Some(e) => {
+                let t = (offset - n.z * e) / (n.x * a.x + n.y * a.y - n.z * e);
+                e * (1.0 - t)
+            }
+        }
+    }
 }

@@ -670,7 +670,7 @@ fn subdivide(corners: &[DVec3], n: u32, mut emit: impl FnMut(&[DVec3; 3], [Optio
 
 /// The point of an item's plane (centred model space) seen at view pixel `p`.
 fn unproject(view: &View, list: &DrawList, item: DrawItem, p: DVec2) -> DVec3 {
-    let caster = crate::truth::RayCaster::new(view);
+    let caster = face_sort::PixelRays::new(view);
     let (n, offset) = crate::truth::view_plane(view, list.plane(item));
     let (o, d) = caster.ray(p);
     let t = (offset - n.dot(o)) / n.dot(d);

@@ -3,7 +3,7 @@
 use face_sort::glam::{DVec2, DVec3};
 use face_sort::{Bounds, View};
 
-use crate::truth::RayCaster;
+use face_sort::PixelRays;
 
 /// A square grid on the model's ground plane `y = bounds.min.y`, centred under the model.
 ///
@@ -119,7 +119,7 @@ impl GroundGrid {
 /// Per-view precomputation of the grid shader.
 pub(crate) struct GridShader<'a> {
     grid: &'a GroundGrid,
-    caster: RayCaster,
+    caster: PixelRays,
     /// Ground normal (+Y) in view space.
     normal: DVec3,
     /// Ground plane offset in view space (`normal · v = offset`).
@@ -148,7 +148,7 @@ impl<'a> GridShader<'a> {
         let normal = view.to_view(DVec3::Y);
         GridShader {
             grid,
-            caster: RayCaster::new(view),
+            caster: PixelRays::new(view),
             normal,
             offset: origin.y,
             inverse_rotation: view.rotation().transpose(),

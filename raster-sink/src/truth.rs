@@ -1,7 +1,7 @@
 //! The z-buffer truth and the pixel error of a painter order (CONVENTIONS.md).
 
 use face_sort::glam::{DVec2, DVec3};
-use face_sort::{Geometry, Plane, Projection, View};
+use face_sort::{Geometry, PixelRays, Plane, Projection, View};
 
 use crate::fill::{for_each_pixel_near_segment, for_each_span};
 use crate::ids::IdImage;
@@ -44,59 +44,6 @@ impl Truth {
     }
 }
 
-/// Depth (view-space `z`, larger is nearer) where pixel rays meet planes, for one view.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct RayCaster {
-    half: DVec2,
-    inv_scale: f64,
-    /// Eye height `d/s` in view units, for perspective.
-    eye: Option<f64>,
-}
-
-impl RayCaster {
-    pub(crate) fn new(view: &View) -> Self {
-        RayCaster {
-            half: DVec2::new(f64::from(view.width()), f64::from(view.height())) * 0.5,
-            inv_scale: 1.0 / view.scale(),
-            eye: match view.projection() {
-                Projection::Orthographic => None,
-                Projection::Perspective { distance } => Some(distance / view.scale()),
-            },
-        }
-    }
-
-    /// The view-space point on the `z = 0` plane that the ray through pixel point `p` crosses.
-    #[inline]
-    pub(crate) fn base(&self, p: DVec2) -> DVec2 {
-        DVec2::new(p.x - self.half.x, self.half.y - p.y) * self.inv_scale
-    }
-
-    /// View-space ray through pixel point `p`: origin and direction. Orthographic rays start
-    /// on `z = 0` and point along −Z; perspective rays start at the eye.
-    #[inline]
-    pub(crate) fn ray(&self, p: DVec2) -> (DVec3, DVec3) {
-        let a = self.base(p);
-        match self.eye {
-            None => (a.extend(0.0), DVec3::NEG_Z),
-            Some(e) => (DVec3::new(0.0, 0.0, e), DVec3::new(a.x, a.y, -e)),
-        }
-    }
-
-    /// View `z` where the ray through pixel point `p` meets the view-space plane
-    /// `n · v = offset`; not finite when the ray is parallel to it.
-    #[inline]
-    pub(crate) fn depth(&self, p: DVec2, n: DVec3, offset: f64) -> f64 {
-        let a = self.base(p);
-        match self.eye {
-            None => (offset - n.x * a.x - n.y * a.y) / n.z,
-            Some(e) => {
-                let t = (offset - n.z * e) / (n.x * a.x + n.y * a.y - n.z * e);
-                e * (1.0 - t)
-            }
-        }
-    }
-}
-
 /// The view-space normal and offset of a centred-model-space plane.
 #[inline]
 pub(crate) fn view_plane(view: &View, plane: &Plane) -> (DVec3, f64) {
@@ -119,7 +66,7 @@ pub fn truth(view: &View, geometry: &Geometry) -> Truth {
     let mut second = vec![f64::NEG_INFINITY; n_pixels];
     let mut ids = vec![0u32; n_pixels];
     let mut near_edge = vec![false; n_pixels];
-    let caster = RayCaster::new(view);
+    let caster = PixelRays::new(view);
     let cull = view.cull_test();
     let pieces = geometry.pieces();
     let mut projector = Projector::default();
