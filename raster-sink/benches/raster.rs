@@ -39,16 +39,7 @@ fn bench(c: &mut Criterion) {
             .iter()
             .filter_map(|&item| {
                 view.project_polygon(list.corners(item), &mut points, &mut scratch);
-                let mut b = PathBuilder::new();
-                for (i, p) in points.iter().enumerate() {
-                    if i == 0 {
-                        b.move_to(p.x as f32, p.y as f32);
-                    } else {
-                        b.line_to(p.x as f32, p.y as f32);
-                    }
-                }
-                b.close();
-                b.finish()
+                raster_sink::polygon_path(&points)
             })
             .collect();
         let style = Style::solid([230, 120, 40, 255]);

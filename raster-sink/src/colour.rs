@@ -373,7 +373,9 @@ fn paint_for(colour: [u8; 4], anti_alias: bool) -> Paint<'static> {
     paint
 }
 
-fn fill(canvas: &mut Pixmap, points: &[DVec2], paint: &Paint<'_>) {
+/// A closed tiny-skia path through pixel-space points; `None` when tiny-skia finds it empty.
+#[must_use]
+pub fn polygon_path(points: &[DVec2]) -> Option<tiny_skia::Path> {
     let mut builder = PathBuilder::new();
     for (i, p) in points.iter().enumerate() {
         if i == 0 {
@@ -383,7 +385,11 @@ fn fill(canvas: &mut Pixmap, points: &[DVec2], paint: &Paint<'_>) {
         }
     }
     builder.close();
-    if let Some(path) = builder.finish() {
+    builder.finish()
+}
+
+fn fill(canvas: &mut Pixmap, points: &[DVec2], paint: &Paint<'_>) {
+    if let Some(path) = polygon_path(points) {
         canvas.fill_path(&path, paint, FillRule::Winding, Transform::identity(), None);
     }
 }

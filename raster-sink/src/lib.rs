@@ -70,7 +70,7 @@ mod truth;
 
 pub use colour::{
     Light, MAX_SUPERSAMPLE, MAX_TEXTURE_SUBDIVISION, Override, RasterOptions, Step, default_steps,
-    new_pixmap, render_colour, run_steps, save_png,
+    new_pixmap, polygon_path, render_colour, run_steps, save_png,
 };
 pub use error::RasterError;
 pub use fill::{for_each_pixel_near_segment, for_each_span};
