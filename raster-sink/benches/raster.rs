@@ -13,7 +13,7 @@ use raster_sink::face_sort::glam::DVec2;
 use raster_sink::face_sort::{
     Centroid, DrawList, FaceSorter, Geometry, PolygonMesh, ProjectionScratch, View,
 };
-use raster_sink::tiny_skia::{FillRule, Paint, PathBuilder, Pixmap, Transform};
+use raster_sink::tiny_skia::{FillRule, Paint, Pixmap, Transform};
 use raster_sink::{RasterOptions, Style, render_colour, render_ids, truth};
 
 /// `v` and `f` lines only.
