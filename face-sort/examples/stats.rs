@@ -1,6 +1,10 @@
 //! Build time, fragments, tree depth and cached bytes per face of every sorter on spot and blub.
 //!
 //! `cargo run --release -p face-sort --example stats`
+//!
+//! With arguments `WEIGHT,CANDIDATES,SAMPLE …` it instead builds spot's BSP with those splitter
+//! options and prints fragments, depth and build time for each (the tuning behind the README):
+//! `cargo run --release -p face-sort --example stats -- 8,12,1024 8,48,8000 32,12,1024`
 
 #[path = "../tests/common/mod.rs"]
 mod common;
@@ -8,6 +12,18 @@ mod common;
 use face_sort::{DrawList, Geometry, SorterKind, View};
 
 fn main() {
+    let tunings: Vec<Vec<f64>> = std::env::args()
+        .skip(1)
+        .map(|a| {
+            a.split(',')
+                .map(|v| v.parse().expect("WEIGHT,CANDIDATES,SAMPLE"))
+                .collect()
+        })
+        .collect();
+    if !tunings.is_empty() {
+        tune_bsp(&tunings);
+        return;
+    }
     for model in [
         "keenan-crane/spot/spot_quadrangulated.obj",
         "keenan-crane/blub/blub_quadrangulated.obj",
@@ -35,5 +51,28 @@ fn main() {
                 stats.fallbacks
             );
         }
+    }
+}
+
+fn tune_bsp(tunings: &[Vec<f64>]) {
+    let mesh = common::read_obj(&common::asset("keenan-crane/spot/spot_quadrangulated.obj"));
+    let geometry = Geometry::new(&mesh).expect("valid model");
+    let pieces = geometry.pieces().len() as f64;
+    for t in tunings {
+        let [weight, candidates, sample] = t[..] else {
+            panic!("expected WEIGHT,CANDIDATES,SAMPLE, got {t:?}");
+        };
+        let mut options = face_sort::BspOptions::DEFAULT;
+        options.split_weight = weight;
+        options.candidates = candidates as usize;
+        options.score_sample = sample as usize;
+        let tree = face_sort::BspTree::build(&geometry, &options);
+        println!(
+            "spot bsp weight {weight} candidates {candidates} sample {sample}: {:.2}x pieces, depth {}, {} nodes, build {:.1} ms",
+            tree.fragment_count() as f64 / pieces,
+            tree.depth(),
+            tree.node_count(),
+            tree.build_ms()
+        );
     }
 }
