@@ -303,10 +303,10 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
         // The sprite tree of the same geometry, sorter kind and view, in the materials'
         // colours (a texture as its mean colour), or ID colours with --ids.
         let style = raster::face_style(&geometry, &mesh, &colour_options)?;
-        let painter_sorter = kind.build(&geometry);
+        // The painter takes the sorter already built (a BSP build is the costly part).
         let mut painter = sprite_compose::SpritePainter::new(
             &geometry,
-            painter_sorter,
+            sorter,
             view,
             sprite_compose::RecordingCompositor::new(),
         );
