@@ -1,0 +1,444 @@
+//! The planner: look at a geometry once and pick the cheapest exact way to order it.
+//!
+//! [`Plan::analyse`] proves what it can about a geometry and records the strategy with its
+//! reason; [`Auto`] is the [`FaceSorter`] that follows the plan.
+//!
+//! - **Convex position → [`CullOnly`].** When every piece's plane has all of the geometry's
+//!   vertices on one side (all on the back side: outward normals; all on the front side:
+//!   inward normals), the pieces lie on the boundary of one convex body. A ray meets that
+//!   boundary at most twice: once where it enters (the entry piece faces the viewer when
+//!   normals point outward) and once where it leaves. So no two entry pieces overlap on
+//!   screen, no two exit pieces do, and every exit piece lies behind every entry piece it
+//!   overlaps: drawing the drawn exit pieces first, then the drawn entry pieces, is exact for
+//!   every view, projection and cull mode. Under back-face culling with no margin only entry
+//!   pieces are drawn, so this is culling alone: no sort, no fragments. The proof is exact up
+//!   to [`PLANE_SIDE`] and costs one support query per piece against a bounding-volume
+//!   hierarchy of the vertices.
+//! - **Otherwise the cheaper exact sorter for the frames the caller will draw.** [`Newell`]
+//!   needs no build and draws almost no extra items; [`Bsp`] pays a build once and then
+//!   traverses cheaply. [`PlanHint::frames`] says how many frames the build is spread over:
+//!   one picture (an export) is [`PlanHint::ONE_FRAME`]. The cost model and its measured
+//!   constants are [`CostModel`].
+
+use std::sync::Arc;
+
+use glam::DVec3;
+
+use crate::tolerance::PLANE_SIDE;
+use crate::{Bsp, DrawList, FaceSorter, Geometry, Newell, PolygonSet, SorterStats, View};
+
+/// What the caller will do with the sorter, for the planner's cost model.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PlanHint {
+    /// Frames the caller expects to draw with one sorter (at least 1).
+    pub frames: u64,
+}
+
+impl PlanHint {
+    /// One picture: an export, a one-shot render.
+    pub const ONE_FRAME: PlanHint = PlanHint { frames: 1 };
+    /// An animation or an interactive view: many frames share one build.
+    pub const ANIMATION: PlanHint = PlanHint { frames: 10_000 };
+}
+
+impl Default for PlanHint {
+    fn default() -> Self {
+        PlanHint::ANIMATION
+    }
+}
+
+/// Which way the planner orders.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Strategy {
+    /// [`CullOnly`]: the geometry is in convex position; culling (exit pieces, then entry
+    /// pieces) is the whole order.
+    CullOnly,
+    /// [`Newell`]: no build; cheapest for few frames.
+    Newell,
+    /// [`Bsp`]: a build amortised over many frames.
+    Bsp,
+}
+
+impl Strategy {
+    /// Lower-case name, as the sorters name themselves.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Strategy::CullOnly => "cull-only",
+            Strategy::Newell => "newell",
+            Strategy::Bsp => "bsp",
+        }
+    }
+}
+
+/// Per-piece costs of the exact sorters, in nanoseconds on the reference machine, from
+/// which the planner predicts the cheaper one. Only their ratios matter.
+///
+/// Measured with `cargo run --release -p face-sort --example plan_costs` (spot, blub and
+/// generated tori, orthographic; the example prints these medians). On that run the build
+/// per piece and level grew from 824 ns (spot) to 2,020 ns (a 40k-piece torus): the model
+/// under-predicts the build of very large meshes, which only delays the switch to BSP. The
+/// break-even is about 55 frames for spot.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CostModel {
+    /// BSP build, per piece and per level (`n · log2 n` pieces·levels).
+    pub bsp_build_per_piece_level: f64,
+    /// BSP traversal per frame, per piece.
+    pub bsp_frame_per_piece: f64,
+    /// Newell per frame, per piece.
+    pub newell_frame_per_piece: f64,
+}
+
+impl CostModel {
+    /// The constants measured on this repository's models (see the type's docs).
+    pub const MEASURED: CostModel = CostModel {
+        bsp_build_per_piece_level: 1_126.0,
+        bsp_frame_per_piece: 16.0,
+        newell_frame_per_piece: 272.0,
+    };
+
+    /// Predicted nanoseconds for `pieces` pieces over `frames` frames.
+    #[must_use]
+    pub fn predict(&self, strategy: Strategy, pieces: usize, frames: u64) -> f64 {
+        let n = pieces.max(1) as f64;
+        let frames = frames.max(1) as f64;
+        match strategy {
+            Strategy::CullOnly => 0.0,
+            Strategy::Newell => frames * self.newell_frame_per_piece * n,
+            Strategy::Bsp => {
+                self.bsp_build_per_piece_level * n * n.log2().max(1.0)
+                    + frames * self.bsp_frame_per_piece * n
+            }
+        }
+    }
+}
+
+/// The planner's decision and why.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Plan {
+    /// What to run.
+    pub strategy: Strategy,
+    /// One line a person can read, e.g. `convex position → cull only`.
+    pub reason: String,
+    /// For [`Strategy::CullOnly`]: whether exit pieces are the back-facing ones (outward
+    /// normals) rather than the front-facing ones (inward normals).
+    exits_face_away: bool,
+}
+
+impl Plan {
+    /// Analyses `geometry` once, with the measured [`CostModel`].
+    #[must_use]
+    pub fn analyse(geometry: &Geometry, hint: PlanHint) -> Plan {
+        Plan::analyse_with(geometry, hint, &CostModel::MEASURED)
+    }
+
+    /// Analyses `geometry` once, with a caller's cost model.
+    #[must_use]
+    pub fn analyse_with(geometry: &Geometry, hint: PlanHint, costs: &CostModel) -> Plan {
+        let pieces = geometry.pieces();
+        if let Some(exits_face_away) = convex_position(pieces, geometry.bounds().diagonal()) {
+            let normals = if exits_face_away { "outward" } else { "inward" };
+            return Plan {
+                strategy: Strategy::CullOnly,
+                reason: format!(
+                    "convex position ({} pieces, normals {normals}) → cull only: no sort, no fragments",
+                    pieces.len()
+                ),
+                exits_face_away,
+            };
+        }
+        let n = pieces.len();
+        let frames = hint.frames.max(1);
+        let newell = costs.predict(Strategy::Newell, n, frames);
+        let bsp = costs.predict(Strategy::Bsp, n, frames);
+        let frame_words = if frames == 1 {
+            "one frame".to_owned()
+        } else {
+            format!("{frames} frames")
+        };
+        let (strategy, cheaper, dearer) = if newell <= bsp {
+            (Strategy::Newell, newell, bsp)
+        } else {
+            (Strategy::Bsp, bsp, newell)
+        };
+        Plan {
+            strategy,
+            reason: format!(
+                "not convex; {frame_words}, {n} pieces → {} (predicted {:.1} ms against {:.1} ms)",
+                strategy.name(),
+                cheaper * 1e-6,
+                dearer * 1e-6
+            ),
+            exits_face_away: true,
+        }
+    }
+
+    /// Builds the sorter this plan names.
+    #[must_use]
+    pub fn build(&self, geometry: &Geometry) -> Box<dyn FaceSorter> {
+        match self.strategy {
+            Strategy::CullOnly => Box::new(CullOnly {
+                pieces: Arc::clone(geometry.pieces()),
+                exits_face_away: self.exits_face_away,
+            }),
+            Strategy::Newell => Box::new(Newell::new(geometry)),
+            Strategy::Bsp => Box::new(Bsp::new(geometry)),
+        }
+    }
+}
+
+/// The order of a geometry in convex position (see the [module docs](self)): drawn exit
+/// pieces, then drawn entry pieces, each group in piece order. Built only by a [`Plan`] that
+/// proved convex position; exact for every view.
+#[derive(Debug)]
+pub struct CullOnly {
+    pieces: Arc<PolygonSet>,
+    exits_face_away: bool,
+}
+
+impl FaceSorter for CullOnly {
+    fn name(&self) -> &'static str {
+        "cull-only"
+    }
+
+    fn sort(&mut self, view: &View, out: &mut DrawList) {
+        let cull = view.cull_test();
+        out.begin(&self.pieces);
+        // Pass 0 draws the exit pieces (behind), pass 1 the entry pieces. A piece exactly
+        // edge-on projects to nothing and is never drawn (CONVENTIONS.md), so it may go in
+        // either pass.
+        for entry_pass in [false, true] {
+            for (i, plane) in self.pieces.planes().iter().enumerate() {
+                let corner0 = self.pieces.corners(i)[0];
+                let faces_viewer = cull.viewer.facing(plane) > 0.0;
+                let is_entry = faces_viewer == self.exits_face_away;
+                if is_entry == entry_pass && cull.is_drawn(plane, corner0) {
+                    out.push(i as u32, self.pieces.face(i));
+                }
+            }
+        }
+    }
+
+    fn stats(&self) -> SorterStats {
+        SorterStats {
+            polygons: self.pieces.len(),
+            ..SorterStats::default()
+        }
+    }
+}
+
+/// The planner's sorter: analyses the geometry once ([`Plan::analyse`]) and runs what the
+/// plan names. The default of the command line.
+pub struct Auto {
+    plan: Plan,
+    inner: Box<dyn FaceSorter>,
+}
+
+impl std::fmt::Debug for Auto {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Auto").field("plan", &self.plan).finish()
+    }
+}
+
+impl Auto {
+    /// Plans and builds for `geometry`.
+    #[must_use]
+    pub fn new(geometry: &Geometry, hint: PlanHint) -> Self {
+        let plan = Plan::analyse(geometry, hint);
+        let inner = plan.build(geometry);
+        Auto { plan, inner }
+    }
+
+    /// The plan followed.
+    #[must_use]
+    pub fn plan(&self) -> &Plan {
+        &self.plan
+    }
+}
+
+impl FaceSorter for Auto {
+    fn name(&self) -> &'static str {
+        self.inner.name()
+    }
+
+    fn sort(&mut self, view: &View, out: &mut DrawList) {
+        self.inner.sort(view, out);
+    }
+
+    fn stats(&self) -> SorterStats {
+        self.inner.stats()
+    }
+}
+
+/// Whether every piece's plane has all vertices of `pieces` on one side, the same side for
+/// every piece, within `PLANE_SIDE · diagonal`. `Some(true)`: all behind (outward normals);
+/// `Some(false)`: all in front (inward normals); `None`: not in convex position.
+fn convex_position(pieces: &PolygonSet, diagonal: f64) -> Option<bool> {
+    let points: Vec<DVec3> = (0..pieces.len())
+        .flat_map(|i| pieces.corners(i).iter().copied())
+        .collect();
+    let tree = PointTree::new(points);
+    let tolerance = PLANE_SIDE * diagonal;
+    let mut stack = Vec::new();
+    [true, false].into_iter().find(|&outward| {
+        pieces.planes().iter().all(|plane| {
+            let (n, offset) = if outward {
+                (plane.normal(), plane.offset())
+            } else {
+                (-plane.normal(), -plane.offset())
+            };
+            // `signed_distance = n · p − offset` with a unit normal; nothing may lie in front.
+            !tree.any_above(n, offset + tolerance, &mut stack)
+        })
+    })
+}
+
+/// A bounding-volume hierarchy over points, for "does any point lie above this plane"
+/// queries: a subtree whose box lies below the plane is skipped whole.
+struct PointTree {
+    points: Vec<DVec3>,
+    nodes: Vec<PointNode>,
+}
+
+struct PointNode {
+    min: DVec3,
+    max: DVec3,
+    /// Leaf: `points[start..end]`; inner: children at `start` and `end` (node indices).
+    start: u32,
+    end: u32,
+    leaf: bool,
+}
+
+const LEAF_POINTS: usize = 8;
+
+impl PointTree {
+    fn new(mut points: Vec<DVec3>) -> Self {
+        let mut nodes = Vec::with_capacity(2 * points.len() / LEAF_POINTS + 1);
+        if !points.is_empty() {
+            let len = points.len();
+            build_points(&mut points, 0, len, &mut nodes);
+        }
+        PointTree { points, nodes }
+    }
+
+    /// Whether some point `p` has `n · p > limit`.
+    fn any_above(&self, n: DVec3, limit: f64, stack: &mut Vec<u32>) -> bool {
+        if self.nodes.is_empty() {
+            return false;
+        }
+        stack.clear();
+        stack.push(0);
+        while let Some(i) = stack.pop() {
+            let node = &self.nodes[i as usize];
+            let top = n.x * if n.x > 0.0 { node.max.x } else { node.min.x }
+                + n.y * if n.y > 0.0 { node.max.y } else { node.min.y }
+                + n.z * if n.z > 0.0 { node.max.z } else { node.min.z };
+            if top <= limit {
+                continue;
+            }
+            if node.leaf {
+                if self.points[node.start as usize..node.end as usize]
+                    .iter()
+                    .any(|p| n.dot(*p) > limit)
+                {
+                    return true;
+                }
+            } else {
+                stack.push(node.start);
+                stack.push(node.end);
+            }
+        }
+        false
+    }
+}
+
+/// Builds the subtree over `points[start..end]` and returns its node index.
+fn build_points(points: &mut [DVec3], start: usize, end: usize, nodes: &mut Vec<PointNode>) -> u32 {
+    let slice = &points[start..end];
+    let (min, max) = slice.iter().fold(
+        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+        |(lo, hi), &p| (lo.min(p), hi.max(p)),
+    );
+    let index = nodes.len() as u32;
+    nodes.push(PointNode {
+        min,
+        max,
+        start: start as u32,
+        end: end as u32,
+        leaf: true,
+    });
+    if end - start > LEAF_POINTS {
+        let extent = max - min;
+        let axis = if extent.x >= extent.y && extent.x >= extent.z {
+            0
+        } else if extent.y >= extent.z {
+            1
+        } else {
+            2
+        };
+        let mid = (end - start) / 2;
+        points[start..end].select_nth_unstable_by(mid, |a, b| a[axis].total_cmp(&b[axis]));
+        let left = build_points(points, start, start + mid, nodes);
+        let right = build_points(points, start + mid, end, nodes);
+        let node = &mut nodes[index as usize];
+        node.start = left;
+        node.end = right;
+        node.leaf = false;
+    }
+    index
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::PolygonMesh;
+
+    fn cube(inward: bool) -> Geometry {
+        let p: Vec<DVec3> = (0..8)
+            .map(|i| DVec3::new(f64::from(i & 1), f64::from((i >> 1) & 1), f64::from(i >> 2)))
+            .collect();
+        let mut faces = vec![
+            [0u32, 2, 3, 1],
+            [4, 5, 7, 6],
+            [0, 1, 5, 4],
+            [2, 6, 7, 3],
+            [0, 4, 6, 2],
+            [1, 3, 7, 5],
+        ];
+        if inward {
+            for f in &mut faces {
+                f.reverse();
+            }
+        }
+        Geometry::new(&PolygonMesh::new(p, faces).unwrap()).unwrap()
+    }
+
+    #[test]
+    fn a_cube_is_in_convex_position_either_way_round() {
+        let outward = Plan::analyse(&cube(false), PlanHint::ONE_FRAME);
+        assert_eq!(outward.strategy, Strategy::CullOnly, "{}", outward.reason);
+        assert!(outward.exits_face_away);
+        let inward = Plan::analyse(&cube(true), PlanHint::ONE_FRAME);
+        assert_eq!(inward.strategy, Strategy::CullOnly, "{}", inward.reason);
+        assert!(!inward.exits_face_away);
+    }
+
+    #[test]
+    fn point_tree_answers_like_a_scan() {
+        let points: Vec<DVec3> = (0..500)
+            .map(|i| {
+                let t = f64::from(i) * 0.37;
+                DVec3::new(t.sin(), (t * 1.7).cos(), (t * 0.3).sin() * 2.0)
+            })
+            .collect();
+        let tree = PointTree::new(points.clone());
+        for k in 0..50 {
+            let a = f64::from(k) * 0.9;
+            let n = DVec3::new(a.cos(), a.sin(), (a * 0.5).cos()).normalize();
+            for limit in [-1.0, 0.0, 0.5, 1.2, 3.0] {
+                let scan = points.iter().any(|p| n.dot(*p) > limit);
+                assert_eq!(tree.any_above(n, limit, &mut Vec::new()), scan);
+            }
+        }
+    }
+}

@@ -1,0 +1,169 @@
+//! The planner: what it proves, what it picks, and that what it picks is exact.
+
+mod common;
+
+use face_sort::generate::{torus, uv_sphere};
+use face_sort::{
+    Auto, CullMode, DrawList, FaceSorter, Geometry, Plan, PlanHint, PolygonMesh, Strategy, View,
+    oracle,
+};
+use glam::DVec3;
+
+/// Views of every kind: yaw × pitch, orthographic and perspective (far, near, eye inside),
+/// each cull mode, with and without a cull margin.
+fn views(geometry: &Geometry) -> Vec<View> {
+    let base = View::fit(&geometry.bounds(), 160, 160);
+    let mut views = Vec::new();
+    for yaw in [0.0, 37.0, 90.0, 181.0, 300.0] {
+        for pitch in [-60.0, 0.0, 25.0, 89.0] {
+            for persp in [None, Some(800.0), Some(140.0), Some(40.0)] {
+                for cull in [CullMode::Back, CullMode::None, CullMode::Front] {
+                    for margin in [0.0, 10.0] {
+                        let mut view = base
+                            .with_yaw_pitch_roll(yaw, pitch, 0.0)
+                            .with_cull(cull)
+                            .with_cull_margin(margin);
+                        if let Some(d) = persp {
+                            view = view.with_perspective(d);
+                        }
+                        views.push(view);
+                    }
+                }
+            }
+        }
+    }
+    views
+}
+
+fn assert_exact_everywhere(geometry: &Geometry, sorter: &mut dyn FaceSorter) {
+    let mut list = DrawList::new();
+    for view in views(geometry) {
+        sorter.sort(&view, &mut list);
+        assert!(
+            list.len() <= geometry.pieces().len(),
+            "{}: more items than pieces",
+            sorter.name()
+        );
+        assert_eq!(
+            oracle::count_violations(&view, &list),
+            0,
+            "{} at {view:?}",
+            sorter.name()
+        );
+    }
+}
+
+fn inward(mesh: &PolygonMesh) -> PolygonMesh {
+    let faces: Vec<Vec<u32>> = mesh
+        .faces()
+        .map(|f| f.iter().rev().copied().collect())
+        .collect();
+    PolygonMesh::new(mesh.positions().to_vec(), faces).unwrap()
+}
+
+#[test]
+fn convex_meshes_are_culled_only_and_exact_in_every_view() {
+    for (name, mesh) in [
+        ("sphere", uv_sphere(24, 12)),
+        ("sphere inward", inward(&uv_sphere(24, 12))),
+        ("coarse sphere", uv_sphere(5, 3)),
+    ] {
+        let geometry = Geometry::new(&mesh).unwrap();
+        let mut auto = Auto::new(&geometry, PlanHint::ONE_FRAME);
+        assert_eq!(
+            auto.plan().strategy,
+            Strategy::CullOnly,
+            "{name}: {}",
+            auto.plan().reason
+        );
+        assert_eq!(auto.name(), "cull-only");
+        assert_exact_everywhere(&geometry, &mut auto);
+    }
+}
+
+#[test]
+fn an_open_convex_surface_is_culled_only_too() {
+    // The northern half of a sphere: a bowl seen from either side.
+    let sphere = uv_sphere(16, 8);
+    let faces: Vec<Vec<u32>> = sphere
+        .faces()
+        .filter(|f| {
+            f.iter()
+                .all(|&i| sphere.positions()[i as usize].y >= -1e-12)
+        })
+        .map(<[u32]>::to_vec)
+        .collect();
+    let bowl = PolygonMesh::new(sphere.positions().to_vec(), faces).unwrap();
+    let geometry = Geometry::new(&bowl).unwrap();
+    let mut auto = Auto::new(&geometry, PlanHint::ANIMATION);
+    assert_eq!(
+        auto.plan().strategy,
+        Strategy::CullOnly,
+        "{}",
+        auto.plan().reason
+    );
+    assert_exact_everywhere(&geometry, &mut auto);
+}
+
+#[test]
+fn a_dent_or_a_second_body_is_not_convex() {
+    // One vertex of the sphere pushed inward: its faces' neighbours now see it in front.
+    let sphere = uv_sphere(16, 8);
+    let mut positions = sphere.positions().to_vec();
+    positions[20] *= 0.8;
+    let faces: Vec<Vec<u32>> = sphere.faces().map(<[u32]>::to_vec).collect();
+    let dented = Geometry::new(&PolygonMesh::new(positions, faces.clone()).unwrap()).unwrap();
+    assert_ne!(
+        Plan::analyse(&dented, PlanHint::ONE_FRAME).strategy,
+        Strategy::CullOnly
+    );
+
+    // Two disjoint spheres: each convex, together not.
+    let mut two = sphere.positions().to_vec();
+    let n = two.len() as u32;
+    two.extend(
+        sphere
+            .positions()
+            .iter()
+            .map(|p| *p + DVec3::new(3.0, 0.0, 0.0)),
+    );
+    let mut both = faces.clone();
+    both.extend(
+        faces
+            .iter()
+            .map(|f| f.iter().map(|i| i + n).collect::<Vec<_>>()),
+    );
+    let pair = Geometry::new(&PolygonMesh::new(two, both).unwrap()).unwrap();
+    assert_ne!(
+        Plan::analyse(&pair, PlanHint::ONE_FRAME).strategy,
+        Strategy::CullOnly
+    );
+
+    let ring = Geometry::new(&torus(400)).unwrap();
+    assert_ne!(
+        Plan::analyse(&ring, PlanHint::ONE_FRAME).strategy,
+        Strategy::CullOnly
+    );
+}
+
+#[test]
+fn one_frame_of_a_real_model_takes_newell_and_animation_takes_bsp() {
+    let spot = common::read_obj(&common::asset("keenan-crane/spot/spot_quadrangulated.obj"));
+    let geometry = Geometry::new(&spot).unwrap();
+    let once = Plan::analyse(&geometry, PlanHint::ONE_FRAME);
+    assert_eq!(once.strategy, Strategy::Newell, "{}", once.reason);
+    assert!(once.reason.contains("one frame"), "{}", once.reason);
+    let many = Plan::analyse(&geometry, PlanHint::ANIMATION);
+    assert_eq!(many.strategy, Strategy::Bsp, "{}", many.reason);
+    for hint in [PlanHint::ONE_FRAME, PlanHint::ANIMATION] {
+        let mut auto = Auto::new(&geometry, hint);
+        let mut list = DrawList::new();
+        for (yaw, pitch) in [(0.0, 0.0), (130.0, 20.0), (250.0, -35.0)] {
+            let view = View::fit(&geometry.bounds(), 200, 200)
+                .with_yaw_pitch_roll(yaw, pitch, 0.0)
+                .with_perspective(400.0);
+            auto.sort(&view, &mut list);
+            assert_eq!(oracle::count_violations(&view, &list), 0, "{}", auto.name());
+        }
+    }
+}
