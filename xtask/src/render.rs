@@ -7,7 +7,10 @@ use std::time::Instant;
 
 use anyhow::{Context, Result, bail};
 use clap::{Args, ValueEnum};
-use face_sort::{CullMode, DrawList, FrontFace, Geometry, PolygonMesh, SorterKind, View, oracle};
+use face_sort::{
+    CullMode, DrawList, FaceSorter, FrontFace, Geometry, Plan, PlanHint, PolygonMesh, SorterKind,
+    View, oracle,
+};
 use raster_sink::GroundGrid;
 use serde::Serialize;
 
@@ -105,7 +108,8 @@ pub struct RenderArgs {
 /// `--sorter`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum SorterChoice {
-    /// Exact order chosen for the mesh (BSP for now).
+    /// The planner's exact choice for one picture: cull only for a mesh in convex position,
+    /// else the cheaper of Newell and BSP (see `plan` in --json).
     Auto,
     /// Centroid depth (baseline, not exact).
     Centroid,
@@ -175,22 +179,20 @@ struct Summary {
     violations: Option<usize>,
 }
 
-/// Picks the sorter; for `auto`, says why.
-fn plan(choice: SorterChoice) -> (SorterKind, String) {
+/// Builds the sorter; for `auto`, the planner's choice for one picture, and why.
+fn plan(choice: SorterChoice, geometry: &Geometry) -> (Box<dyn FaceSorter>, String) {
+    let asked = |kind: SorterKind| (kind.build(geometry), format!("{} (asked for)", kind.name()));
     match choice {
-        SorterChoice::Auto => (
-            SorterKind::Bsp,
-            "auto: bsp — exact for any rigid mesh, built once, one traversal per view \
-             (the geometry-aware planner is not built yet)"
-                .to_owned(),
-        ),
-        SorterChoice::Centroid => (SorterKind::Centroid, "centroid (asked for)".to_owned()),
-        SorterChoice::Topological => (
-            SorterKind::Topological,
-            "topological (asked for)".to_owned(),
-        ),
-        SorterChoice::Newell => (SorterKind::Newell, "newell (asked for)".to_owned()),
-        SorterChoice::Bsp => (SorterKind::Bsp, "bsp (asked for)".to_owned()),
+        SorterChoice::Auto => {
+            // `render` draws one frame: the planner must not pay for a tree that only an
+            // animation would amortise.
+            let plan = Plan::analyse(geometry, PlanHint::ONE_FRAME);
+            (plan.build(geometry), format!("auto: {}", plan.reason))
+        }
+        SorterChoice::Centroid => asked(SorterKind::Centroid),
+        SorterChoice::Topological => asked(SorterKind::Topological),
+        SorterChoice::Newell => asked(SorterKind::Newell),
+        SorterChoice::Bsp => asked(SorterKind::Bsp),
     }
 }
 
@@ -271,10 +273,10 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
         (None, false) => {}
     }
 
-    let (kind, plan) = plan(args.sorter);
     let start = Instant::now();
-    let mut sorter = kind.build(&geometry);
+    let (mut sorter, plan) = plan(args.sorter, &geometry);
     let build_ms = ms(start);
+    let sorter_name = sorter.name();
     let mut list = DrawList::new();
     let start = Instant::now();
     sorter.sort(&view, &mut list);
@@ -379,7 +381,7 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
         faces: mesh.face_count(),
         drawn: drawn.len(),
         fragments: list.len(),
-        sorter: kind.name(),
+        sorter: sorter_name,
         plan,
         load_ms,
         build_ms,

@@ -167,3 +167,57 @@ fn fuzz_few_cases_passes() {
         text(&result.stderr)
     );
 }
+
+/// Runs `render MODEL --json --check` with extra flags and returns the summary.
+fn render_summary(model: &str, extra: &[&str], name: &str) -> serde_json::Value {
+    let out = temp_dir(name).join("out.png");
+    let mut args = vec!["render", model, "--json", "--check", "--size", "96x96"];
+    args.extend_from_slice(extra);
+    args.extend_from_slice(&["-o", out.to_str().unwrap()]);
+    let result = xtask(&args);
+    assert!(result.status.success(), "{}", text(&result.stderr));
+    serde_json::from_slice(&result.stdout).expect("one JSON object")
+}
+
+#[test]
+fn auto_culls_a_convex_box_only_and_stays_exact() {
+    let model = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../assets/models/assimp-obj/box.obj"
+    );
+    for (i, extra) in [
+        &["--yaw", "30", "--pitch", "-20"][..],
+        &["--yaw", "200", "--pitch", "50", "--persp", "150"][..],
+        &["--yaw", "10", "--cull", "none"][..],
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let value = render_summary(model, extra, &format!("convex-{i}"));
+        assert_eq!(value["sorter"], "cull-only", "{value}");
+        assert!(
+            value["plan"].as_str().unwrap().contains("cull only"),
+            "{value}"
+        );
+        // No fragments: one item per drawn face.
+        assert_eq!(value["fragments"], value["drawn"], "{value}");
+        assert_eq!(value["violations"], 0, "{value}");
+        assert_eq!(value["pixel_error"], 0.0, "{value}");
+    }
+}
+
+#[test]
+fn auto_takes_newell_for_one_picture_of_a_curved_model() {
+    let model = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../assets/models/keenan-crane/spot/spot_quadrangulated.obj"
+    );
+    let value = render_summary(model, &["--yaw", "120", "--pitch", "15"], "spot-auto");
+    assert_eq!(value["sorter"], "newell", "{value}");
+    assert!(
+        value["plan"].as_str().unwrap().contains("one frame"),
+        "{value}"
+    );
+    assert_eq!(value["violations"], 0, "{value}");
+    assert_eq!(value["pixel_error"], 0.0, "{value}");
+}
