@@ -204,15 +204,30 @@ impl FaceSorter for CullOnly {
     fn sort(&mut self, view: &View, out: &mut DrawList) {
         let cull = view.cull_test();
         out.begin(&self.pieces);
-        // Pass 0 draws the exit pieces (behind), pass 1 the entry pieces. A piece exactly
-        // edge-on projects to nothing and is never drawn (CONVENTIONS.md), so it may go in
-        // either pass.
+        // Exit pieces (behind) first, then entry pieces. When the cull rule never keeps exit
+        // pieces (back-face culling of outward normals, no margin), one culling pass is the
+        // whole order. A piece exactly edge-on projects to nothing and is never drawn
+        // (CONVENTIONS.md), so it may go in either pass.
+        let exits_drawn = cull.facing_rule().is_none_or(|(keep_facing, keep_away)| {
+            if self.exits_face_away {
+                keep_away
+            } else {
+                keep_facing
+            }
+        });
+        if !exits_drawn {
+            for (i, plane) in self.pieces.planes().iter().enumerate() {
+                if cull.is_drawn(plane, self.pieces.corners(i)[0]) {
+                    out.push(i as u32, self.pieces.face(i));
+                }
+            }
+            return;
+        }
         for entry_pass in [false, true] {
             for (i, plane) in self.pieces.planes().iter().enumerate() {
-                let corner0 = self.pieces.corners(i)[0];
                 let faces_viewer = cull.viewer.facing(plane) > 0.0;
                 let is_entry = faces_viewer == self.exits_face_away;
-                if is_entry == entry_pass && cull.is_drawn(plane, corner0) {
+                if is_entry == entry_pass && cull.is_drawn(plane, self.pieces.corners(i)[0]) {
                     out.push(i as u32, self.pieces.face(i));
                 }
             }
