@@ -1,0 +1,76 @@
+//! Named generated models. One name, one model: the two tori of the workspace are
+//! [`bumpy_torus`] (non-planar quads, like scanned models) and [`planar_torus`] (planar
+//! grid quads), and tables and READMEs call them by these names.
+
+use face_sort::PolygonMesh;
+use face_sort::glam::DVec3;
+
+/// The name of a generated model in tables: `"{kind}-{faces}"` with `k` for thousands,
+/// e.g. `model_name("bumpy-torus", 10_000) == "bumpy-torus-10k"`.
+#[must_use]
+pub fn model_name(kind: &str, faces: usize) -> String {
+    if faces >= 1000 && faces % 1000 == 0 {
+        format!("{kind}-{}k", faces / 1000)
+    } else {
+        format!("{kind}-{faces}")
+    }
+}
+
+/// `"bumpy-torus"`: [`face_sort::generate::torus`], about `faces` quads (an `n × 2n` grid)
+/// with a gentle deterministic bump, so most quads are not planar.
+#[must_use]
+pub fn bumpy_torus(faces: usize) -> PolygonMesh {
+    face_sort::generate::torus(faces)
+}
+
+/// `"planar-torus"`: a torus of about `faces` planar quads (surface-of-revolution grid
+/// quads are planar), ring radius 1, tube radius 0.35, about three times as many rings as
+/// tube segments.
+#[must_use]
+pub fn planar_torus(faces: usize) -> PolygonMesh {
+    let minor = ((faces as f64 / 3.0).sqrt().round() as usize).max(3);
+    let major = (faces / minor).max(3);
+    let (big, small) = (1.0, 0.35);
+    let mut positions = Vec::with_capacity(major * minor);
+    for i in 0..major {
+        let u = i as f64 / major as f64 * std::f64::consts::TAU;
+        for j in 0..minor {
+            let v = j as f64 / minor as f64 * std::f64::consts::TAU;
+            let r = big + small * v.cos();
+            positions.push(DVec3::new(r * u.cos(), small * v.sin(), r * u.sin()));
+        }
+    }
+    let idx = |i: usize, j: usize| ((i % major) * minor + (j % minor)) as u32;
+    let faces = (0..major).flat_map(|i| {
+        (0..minor).map(move |j| [idx(i, j), idx(i, j + 1), idx(i + 1, j + 1), idx(i + 1, j)])
+    });
+    match PolygonMesh::new(positions, faces) {
+        Ok(mesh) => mesh,
+        Err(e) => panic!("a torus is a valid mesh: {e}"),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_and_sizes() {
+        assert_eq!(model_name("bumpy-torus", 10_000), "bumpy-torus-10k");
+        assert_eq!(model_name("planar-torus", 1_014), "planar-torus-1014");
+        let planar = planar_torus(1_000);
+        let bumpy = bumpy_torus(1_000);
+        assert!(
+            (900..=1100).contains(&planar.face_count()),
+            "{}",
+            planar.face_count()
+        );
+        assert!(
+            (900..=1100).contains(&bumpy.face_count()),
+            "{}",
+            bumpy.face_count()
+        );
+        // The two tori are different models.
+        assert_ne!(planar.positions(), bumpy.positions());
+    }
+}

@@ -1,0 +1,57 @@
+//! Where the repository's models and committed test cases are, and how a model becomes a
+//! `face_sort::PolygonMesh`.
+
+use std::path::{Path, PathBuf};
+
+use face_sort::PolygonMesh;
+
+/// The workspace root (the folder holding `assets/`, `docs/` and the crates).
+#[must_use]
+pub fn workspace_root() -> &'static Path {
+    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/.."))
+}
+
+/// Path of a model under `assets/models/`, e.g. `model_path("suzanne/suzanne.obj")`.
+#[must_use]
+pub fn model_path(relative: &str) -> PathBuf {
+    workspace_root().join("assets/models").join(relative)
+}
+
+/// The committed regression cases (shrunk fuzz failures and other saved inputs):
+/// `tests/data/` at the workspace root; loader cases live in `tests/data/loaders/`.
+#[must_use]
+pub fn test_data_dir() -> PathBuf {
+    workspace_root().join("tests/data")
+}
+
+/// Loads a model under `assets/models/` with `obj-quads` (default options).
+///
+/// # Panics
+/// When the model does not load: tests and benches read committed models only.
+#[must_use]
+pub fn load_model(relative: &str) -> obj_quads::Mesh {
+    let path = model_path(relative);
+    match obj_quads::load(&path, &obj_quads::LoadOptions::default()) {
+        Ok((mesh, _report)) => mesh,
+        Err(e) => panic!("model {} does not load: {e}", path.display()),
+    }
+}
+
+/// The sorters' view of a loaded mesh: its positions and face index lists.
+///
+/// # Panics
+/// When `face_sort` rejects the mesh; `obj-quads` validates the same invariants, so this
+/// does not happen for a loaded mesh.
+#[must_use]
+pub fn polygon_mesh(mesh: &obj_quads::Mesh) -> PolygonMesh {
+    match PolygonMesh::new(mesh.positions().to_vec(), mesh.faces()) {
+        Ok(polygons) => polygons,
+        Err(e) => panic!("a loaded mesh is a valid polygon mesh: {e}"),
+    }
+}
+
+/// [`load_model`] then [`polygon_mesh`].
+#[must_use]
+pub fn load_polygon_mesh(relative: &str) -> PolygonMesh {
+    polygon_mesh(&load_model(relative))
+}
