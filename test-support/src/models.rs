@@ -9,7 +9,7 @@ use face_sort::glam::DVec3;
 /// e.g. `model_name("bumpy-torus", 10_000) == "bumpy-torus-10k"`.
 #[must_use]
 pub fn model_name(kind: &str, faces: usize) -> String {
-    if faces >= 1000 && faces % 1000 == 0 {
+    if faces >= 1000 && faces.is_multiple_of(1000) {
         format!("{kind}-{}k", faces / 1000)
     } else {
         format!("{kind}-{faces}")
