@@ -51,6 +51,7 @@
 
 mod bake;
 mod compositor;
+mod hidden;
 mod html;
 mod order;
 mod painter;
@@ -67,6 +68,7 @@ pub use bake::{
 pub use compositor::{
     Brush, Compositor, OpCounts, SpriteId, TextureId, golden_angle_colour, id_colour,
 };
+pub use hidden::{HiddenParts, Visibility, visible_parts};
 pub use html::{HtmlMode, HtmlOptions, css_matrix3d, write_html};
 pub use painter::{FrameStats, RotationHandle, RotationSource, SpritePainter};
 pub use pick::{OUTLINE_PROBE_PX, ProjectedFrame, contains, outline_svg_path};

@@ -5,7 +5,7 @@ use std::fmt::Write as _;
 use face_sort::tolerance::NEAR_W;
 use glam::{DAffine2, DMat4, DVec2, DVec4};
 
-use crate::{Brush, Scene, SceneSprite, id_colour};
+use crate::{Brush, HiddenParts, Scene, SceneSprite, Visibility, id_colour, visible_parts};
 
 /// Options of [`write_svg`].
 #[derive(Clone, Debug, PartialEq)]
@@ -34,6 +34,10 @@ pub struct SvgOptions {
     /// 1.0 (half a pixel still lets hairlines through in resvg), a measurement wants 0.
     /// ID mode never strokes. Default: 0.
     pub seam_stroke: f64,
+    /// Whether hidden parts are written ([`HiddenParts::Keep`], the painter's algorithm as
+    /// is) or left out ([`HiddenParts::Remove`]: every polygon, or part of one, that opaque
+    /// polygons in front cover; partly hidden polygons become even-odd paths). Default: keep.
+    pub hidden: HiddenParts,
 }
 
 impl SvgOptions {
@@ -46,12 +50,20 @@ impl SvgOptions {
         textures: Vec::new(),
         overlay: String::new(),
         seam_stroke: 0.0,
+        hidden: HiddenParts::Keep,
     };
 
     /// Seam stroke width in pixels (0: off).
     #[must_use]
     pub fn with_seam_stroke(mut self, width: f64) -> Self {
         self.seam_stroke = width;
+        self
+    }
+
+    /// Keep or remove hidden parts.
+    #[must_use]
+    pub fn with_hidden(mut self, hidden: HiddenParts) -> Self {
+        self.hidden = hidden;
         self
     }
 
@@ -175,13 +187,32 @@ pub fn write_svg(scene: &Scene, options: &SvgOptions) -> String {
             opacity(bg)
         );
     }
+    let sprites: Vec<&SceneSprite> = scene.visible().map(|(_, sprite)| sprite).collect();
+    let polygons: Vec<Vec<DVec2>> = sprites
+        .iter()
+        .map(|sprite| project_sprite(scene.root(), sprite))
+        .collect();
+    let visibility = match options.hidden {
+        HiddenParts::Keep => vec![Visibility::Whole; polygons.len()],
+        HiddenParts::Remove => {
+            let opaque: Vec<bool> = sprites
+                .iter()
+                .map(|sprite| options.ids || sprite.brush.solid_colour(sprite.face)[3] == 255)
+                .collect();
+            visible_parts(&polygons, &opaque)
+        }
+    };
     let mut clip_count = 0usize;
-    for (_, sprite) in scene.visible() {
-        let polygon = project_sprite(scene.root(), sprite);
+    for ((sprite, polygon), visible) in sprites.iter().zip(&polygons).zip(&visibility) {
         if polygon.len() < 3 {
             continue;
         }
-        let points = points_attribute(&polygon);
+        // The element's geometry: the polygon, or the even-odd path of its visible parts.
+        let shape = match visible {
+            Visibility::Hidden => continue,
+            Visibility::Whole => Shape::Polygon(points_attribute(polygon)),
+            Visibility::Parts(parts) => Shape::Path(path_data(parts)),
+        };
         let texture = match sprite.brush {
             Brush::Texture { texture, uv, .. } if !options.ids => options
                 .textures
@@ -196,8 +227,14 @@ pub fn write_svg(scene: &Scene, options: &SvgOptions) -> String {
             let m = place.to_cols_array();
             let _ = writeln!(
                 svg,
-                "<clipPath id=\"c{clip_count}\"><polygon points=\"{points}\"/></clipPath><g clip-path=\"url(#c{clip_count})\"><image href=\"{href}\" xlink:href=\"{href}\" width=\"1\" height=\"1\" preserveAspectRatio=\"none\" transform=\"matrix({} {} {} {} {} {})\"/></g>",
-                m[0], m[1], m[2], m[3], m[4], m[5]
+                "<clipPath id=\"c{clip_count}\">{}</clipPath><g clip-path=\"url(#c{clip_count})\"><image href=\"{href}\" xlink:href=\"{href}\" width=\"1\" height=\"1\" preserveAspectRatio=\"none\" transform=\"matrix({} {} {} {} {} {})\"/></g>",
+                shape.element(""),
+                m[0],
+                m[1],
+                m[2],
+                m[3],
+                m[4],
+                m[5]
             );
             continue;
         }
@@ -215,16 +252,51 @@ pub fn write_svg(scene: &Scene, options: &SvgOptions) -> String {
         } else {
             String::new()
         };
-        let _ = writeln!(
-            svg,
-            "<polygon points=\"{points}\" fill=\"{}\"{}{stroke}/>",
-            hex(colour),
-            opacity(colour)
-        );
+        let paint = format!(" fill=\"{}\"{}{stroke}", hex(colour), opacity(colour));
+        let _ = writeln!(svg, "{}", shape.element(&paint));
     }
     svg.push_str(&options.overlay);
     svg.push_str("</svg>\n");
     svg
+}
+
+/// The geometry of one written element.
+enum Shape {
+    /// `points` of a `<polygon>`.
+    Polygon(String),
+    /// `d` of an even-odd `<path>`.
+    Path(String),
+}
+
+impl Shape {
+    /// The element with extra attributes (each with a leading space).
+    fn element(&self, attributes: &str) -> String {
+        match self {
+            Shape::Polygon(points) => format!("<polygon points=\"{points}\"{attributes}/>"),
+            Shape::Path(d) => {
+                format!("<path d=\"{d}\" fill-rule=\"evenodd\" clip-rule=\"evenodd\"{attributes}/>")
+            }
+        }
+    }
+}
+
+/// Path data of shapes (each an outer contour and its holes), every contour closed.
+fn path_data(shapes: &[Vec<Vec<DVec2>>]) -> String {
+    let mut d = String::new();
+    for contour in shapes.iter().flatten() {
+        for (k, p) in contour.iter().enumerate() {
+            let _ = write!(
+                d,
+                "{}{},{} ",
+                if k == 0 { "M" } else { "L" },
+                fmt(p.x),
+                fmt(p.y)
+            );
+        }
+        d.push_str("Z ");
+    }
+    d.truncate(d.trim_end().len());
+    d
 }
 
 fn opacity(c: [u8; 4]) -> String {

@@ -5,5 +5,6 @@ mod support;
 
 mod bake;
 mod browser;
+mod hidden;
 mod painter;
 mod writers;
