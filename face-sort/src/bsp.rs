@@ -8,7 +8,7 @@ use glam::DVec3;
 use crate::plane::{Plane, Side};
 use crate::polygon::split_polygon;
 use crate::tolerance::PLANE_SIDE;
-use crate::{DrawList, FaceSorter, Geometry, PolygonSet, SorterStats, View};
+use crate::{BspError, DrawList, FaceSorter, Geometry, Newell, PolygonSet, SorterStats, View};
 
 const NONE: u32 = u32::MAX;
 
@@ -28,6 +28,15 @@ pub struct BspOptions {
     /// Polygons classified per candidate when scoring it (a deterministic sample on large
     /// nodes). Default: 1024.
     pub score_sample: usize,
+    /// Fragment budget of the fallible builds ([`BspTree::try_build`], [`Bsp::try_new`],
+    /// [`Bsp::new_or_fallback`]): a build that would hold more than
+    /// `max(max_fragments_per_piece · pieces, min_fragment_budget)` fragments stops with
+    /// [`BspError::FragmentBudget`]. Default: 16 (real models need about 2: spot 1.86,
+    /// blub 1.93). The infallible [`BspTree::build`] and [`Bsp::new`] ignore it.
+    pub max_fragments_per_piece: f64,
+    /// Floor of the fragment budget, so that small scenes, whose worst case is quadratic
+    /// (`n` crossing polygons can need about `n²/2` fragments), are not refused. Default: 4096.
+    pub min_fragment_budget: usize,
 }
 
 impl BspOptions {
@@ -36,7 +45,32 @@ impl BspOptions {
         split_weight: 8.0,
         candidates: 12,
         score_sample: 1024,
+        max_fragments_per_piece: 16.0,
+        min_fragment_budget: 4096,
     };
+
+    /// The fragment budget for `pieces` pieces: `max(max_fragments_per_piece · pieces,
+    /// min_fragment_budget)`, and never fewer than `pieces` (an unsplit tree always fits).
+    #[must_use]
+    pub fn fragment_budget(&self, pieces: usize) -> usize {
+        let scaled = self.max_fragments_per_piece * pieces as f64;
+        // `as` saturates: NaN gives 0, +inf gives usize::MAX.
+        (scaled.ceil() as usize)
+            .max(self.min_fragment_budget)
+            .max(pieces)
+    }
+}
+
+/// What [`Bsp::new_or_fallback`] builds when the BSP tree exceeds its fragment budget.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[non_exhaustive]
+pub enum BspFallback {
+    /// Return the [`BspError`]: the caller decides.
+    #[default]
+    Error,
+    /// Use [`Newell`] instead: exact as well, no build, per-frame splits only where the view
+    /// needs them (each frame's work is bounded by its own step budget).
+    Newell,
 }
 
 impl Default for BspOptions {
@@ -85,20 +119,49 @@ pub struct BspTree {
 
 impl BspTree {
     /// Builds the tree over a geometry's pieces, in f64, with the plane tolerance
-    /// `PLANE_SIDE · L`.
+    /// [`PLANE_SIDE`]` · L`. Fragments are not bounded (the options' budget is ignored);
+    /// [`BspTree::try_build`] bounds them.
     #[must_use]
     pub fn build(geometry: &Geometry, options: &BspOptions) -> Self {
         let tolerance = PLANE_SIDE * geometry.bounds().diagonal();
         Self::build_over(Arc::clone(geometry.pieces()), tolerance, options)
     }
 
+    /// Builds the tree like [`BspTree::build`], but stops with
+    /// [`BspError::FragmentBudget`] as soon as it would hold more fragments than
+    /// [`BspOptions::fragment_budget`] allows for the geometry's pieces. Memory and time
+    /// stay proportional to the budget.
+    ///
+    /// # Errors
+    /// [`BspError::FragmentBudget`] when the splits exceed the budget.
+    pub fn try_build(geometry: &Geometry, options: &BspOptions) -> Result<Self, BspError> {
+        let tolerance = PLANE_SIDE * geometry.bounds().diagonal();
+        let pieces = Arc::clone(geometry.pieces());
+        let budget = options.fragment_budget(pieces.len());
+        Self::build_bounded(pieces, tolerance, options, budget)
+    }
+
     /// Builds a tree over any set of planar convex polygons (centred model space) with the
-    /// plane tolerance `tolerance` (model units).
+    /// plane tolerance `tolerance` (model units), without a fragment budget.
     pub(crate) fn build_over(
         pieces: Arc<PolygonSet>,
         tolerance: f64,
         options: &BspOptions,
     ) -> Self {
+        match Self::build_bounded(pieces, tolerance, options, usize::MAX) {
+            Ok(tree) => tree,
+            // The fragment count cannot exceed usize::MAX: memory would run out first.
+            Err(_) => unreachable!("an unbounded build has no budget to exceed"),
+        }
+    }
+
+    /// Builds a tree holding at most `budget` fragments.
+    fn build_bounded(
+        pieces: Arc<PolygonSet>,
+        tolerance: f64,
+        options: &BspOptions,
+        budget: usize,
+    ) -> Result<Self, BspError> {
         let start = Instant::now();
         let mut builder = Builder {
             work: PolygonSet::new(),
@@ -111,6 +174,8 @@ impl BspTree {
             options: *options,
             corners_front: Vec::new(),
             corners_back: Vec::new(),
+            live: pieces.len(),
+            budget,
         };
         for i in 0..pieces.len() {
             builder
@@ -118,14 +183,19 @@ impl BspTree {
                 .push(pieces.corners(i), pieces.face(i), *pieces.plane(i));
             builder.work_piece.push(i as u32);
         }
-        let depth = builder.build_all((0..pieces.len() as u32).collect());
+        let depth = builder
+            .build_all((0..pieces.len() as u32).collect())
+            .map_err(|()| BspError::FragmentBudget {
+                pieces: pieces.len(),
+                budget,
+            })?;
         let row = |p: &Plane| [p.normal().x, p.normal().y, p.normal().z, p.offset()];
         let plane_rows = builder.planes.iter().map(row).collect();
         let piece_rows = pieces.planes().iter().map(row).collect();
         let fragment_face = (0..builder.fragments.len())
             .map(|i| builder.fragments.face(i))
             .collect();
-        BspTree {
+        Ok(BspTree {
             piece_rows,
             fragment_face,
             plane_rows,
@@ -136,7 +206,7 @@ impl BspTree {
             pieces,
             build_ms: start.elapsed().as_secs_f64() * 1e3,
             depth,
-        }
+        })
     }
 
     /// Number of fragments (pieces, some cut in parts).
@@ -192,6 +262,10 @@ struct Builder {
     options: BspOptions,
     corners_front: Vec<DVec3>,
     corners_back: Vec<DVec3>,
+    /// Fragments the finished tree would hold so far: pieces plus one per two-sided split.
+    live: usize,
+    /// Largest allowed `live`.
+    budget: usize,
 }
 
 struct Task {
@@ -202,7 +276,8 @@ struct Task {
 }
 
 impl Builder {
-    fn build_all(&mut self, all: Vec<u32>) -> usize {
+    /// Builds every node; `Err` when the fragment budget is exceeded.
+    fn build_all(&mut self, all: Vec<u32>) -> Result<usize, ()> {
         let mut stack = vec![Task {
             polygons: all,
             parent: NONE,
@@ -272,6 +347,12 @@ impl Builder {
                     Side::Back => back.push(p),
                     Side::Spanning => {
                         let (f, b) = self.split(p, &plane);
+                        if f.is_some() && b.is_some() {
+                            self.live += 1;
+                            if self.live > self.budget {
+                                return Err(());
+                            }
+                        }
                         front.extend(f);
                         back.extend(b);
                     }
@@ -320,7 +401,7 @@ impl Builder {
             self.nodes[k].back_size = back_size;
             size[k] = node.same + node.opposite + front_size + back_size;
         }
-        max_depth
+        Ok(max_depth)
     }
 
     /// Splits work polygon `p` by `plane`; returns the new front and back polygon ids.
@@ -419,6 +500,36 @@ impl Bsp {
     #[must_use]
     pub fn new(geometry: &Geometry) -> Self {
         Self::from_tree(Arc::new(BspTree::build(geometry, &BspOptions::DEFAULT)))
+    }
+
+    /// Builds a tree with `options`, its fragments bounded by the options' budget
+    /// ([`BspTree::try_build`]).
+    ///
+    /// # Errors
+    /// [`BspError::FragmentBudget`] when the splits exceed the budget.
+    pub fn try_new(geometry: &Geometry, options: &BspOptions) -> Result<Self, BspError> {
+        Ok(Self::from_tree(Arc::new(BspTree::try_build(
+            geometry, options,
+        )?)))
+    }
+
+    /// [`Bsp::try_new`], and when the tree exceeds its fragment budget, what `fallback`
+    /// says: the error, or an exact [`Newell`] sorter (whose `name()` says `"newell"`, so
+    /// callers can tell which one they got).
+    ///
+    /// # Errors
+    /// [`BspError::FragmentBudget`] when the budget is exceeded and `fallback` is
+    /// [`BspFallback::Error`].
+    pub fn new_or_fallback(
+        geometry: &Geometry,
+        options: &BspOptions,
+        fallback: BspFallback,
+    ) -> Result<Box<dyn FaceSorter>, BspError> {
+        match (Self::try_new(geometry, options), fallback) {
+            (Ok(bsp), _) => Ok(Box::new(bsp)),
+            (Err(_), BspFallback::Newell) => Ok(Box::new(Newell::new(geometry))),
+            (Err(error), BspFallback::Error) => Err(error),
+        }
     }
 
     /// A sorter over an existing (possibly shared) tree.

@@ -37,3 +37,21 @@ pub enum MeshError {
     #[error("the mesh has no face with positive area")]
     Empty,
 }
+
+/// Why a [`BspTree`](crate::BspTree) could not be built within its options.
+#[derive(Debug, Error, Clone, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum BspError {
+    /// The splits would have made more fragments than the budget
+    /// ([`BspOptions::fragment_budget`](crate::BspOptions::fragment_budget)) allows.
+    #[error(
+        "the BSP tree over {pieces} pieces needs more than its budget of {budget} fragments; \
+         raise BspOptions::max_fragments_per_piece or use another exact sorter (Newell)"
+    )]
+    FragmentBudget {
+        /// Pieces of the geometry.
+        pieces: usize,
+        /// The budget that was exceeded (fragments).
+        budget: usize,
+    },
+}

@@ -54,10 +54,10 @@ pub mod tolerance;
 mod topological;
 mod view;
 
-pub use bsp::{Bsp, BspOptions, BspTree};
+pub use bsp::{Bsp, BspFallback, BspOptions, BspTree};
 pub use centroid::Centroid;
 pub use draw_list::{DrawItem, DrawList};
-pub use error::MeshError;
+pub use error::{BspError, MeshError};
 pub use geometry::Geometry;
 pub use mesh::{Bounds, MAX_FACE_CORNERS, PolygonMesh};
 pub use newell::Newell;
