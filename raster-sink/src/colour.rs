@@ -60,6 +60,26 @@ impl Light {
         direction: DVec3::new(-0.4, 0.6, 1.0),
         ambient: 0.3,
     };
+
+    /// The [`factor`](Self::factor) of a face seen in `view` whose model-space normal (any
+    /// length) is `normal`, turned toward the viewer along the view axis. Used for whole
+    /// faces (sprite brushes); the raster shades each drawn piece by its own plane.
+    #[must_use]
+    pub fn facing_factor(&self, view: &View, normal: DVec3) -> f64 {
+        let mut n = view.to_view(normal.normalize_or_zero());
+        if n.z < 0.0 {
+            n = -n;
+        }
+        self.factor(n)
+    }
+}
+
+/// Multiplies the colour channels of a straight-alpha colour by a shading factor (alpha
+/// unchanged), rounding to bytes.
+#[must_use]
+pub fn shade_colour(colour: [u8; 4], factor: f64) -> [u8; 4] {
+    let m = |c: u8| (f64::from(c) * factor).round().clamp(0.0, 255.0) as u8;
+    [m(colour[0]), m(colour[1]), m(colour[2]), colour[3]]
 }
 
 /// Options of the colour raster.
@@ -359,12 +379,6 @@ struct Painter {
     tri3: Vec<DVec3>,
 }
 
-/// Multiplies the colour channels of a straight-alpha colour.
-fn shade(colour: [u8; 4], factor: f64) -> [u8; 4] {
-    let m = |c: u8| (f64::from(c) * factor).round().clamp(0.0, 255.0) as u8;
-    [m(colour[0]), m(colour[1]), m(colour[2]), colour[3]]
-}
-
 fn paint_for(colour: [u8; 4], anti_alias: bool) -> Paint<'static> {
     let mut paint = Paint::default();
     let [r, g, b, a] = colour;
@@ -499,7 +513,7 @@ impl Painter {
             let shading_applies = !matches!(brush_override, Override::IdColours);
             if let Some(colour) = colour {
                 let colour = if shading_applies {
-                    shade(colour, light)
+                    shade_colour(colour, light)
                 } else {
                     colour
                 };

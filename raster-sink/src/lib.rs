@@ -62,6 +62,7 @@ mod error;
 mod fill;
 mod grid;
 mod ids;
+mod materials;
 mod project;
 mod seams;
 mod style;
@@ -70,12 +71,13 @@ mod truth;
 
 pub use colour::{
     Light, MAX_SUPERSAMPLE, MAX_TEXTURE_SUBDIVISION, Override, RasterOptions, Step, default_steps,
-    new_pixmap, polygon_path, render_colour, run_steps, save_png,
+    new_pixmap, polygon_path, render_colour, run_steps, save_png, shade_colour,
 };
 pub use error::RasterError;
 pub use fill::{for_each_pixel_near_segment, for_each_span};
 pub use grid::GroundGrid;
 pub use ids::{IdImage, MAX_ID_FACE, id_to_rgb, render_ids, render_ids_into};
+pub use materials::{FaceMaterials, MaterialOptions, MaterialStyle, load_texture};
 pub use style::{
     Brush, GOLDEN_ANGLE_DEG, PALETTE_SATURATION, PALETTE_VALUE, Style, TextureBrush, UvMap,
     golden_angle_colour,
@@ -83,6 +85,7 @@ pub use style::{
 pub use truth::{PixelError, Truth, pixel_error, truth};
 
 pub use face_sort;
+pub use sprite_compose;
 pub use tiny_skia;
 
 /// Largest image side the colour raster accepts (after supersampling).

@@ -161,6 +161,15 @@ impl Style {
         self
     }
 
+    /// One more than the highest face with its own brush (0 when none has).
+    #[must_use]
+    pub fn face_slots(&self) -> usize {
+        self.faces
+            .iter()
+            .rposition(Option::is_some)
+            .map_or(0, |i| i + 1)
+    }
+
     /// The brush of a face: its own, else the default; `None` means the palette colour.
     #[must_use]
     pub fn brush(&self, face: u32) -> Option<&Brush> {

@@ -295,16 +295,17 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
         (None, true) => Some(scenes::asset(DEMO_TEXTURE)),
         (None, false) => None,
     };
-    let colour_options = raster::ColourOptions {
-        anti_alias: !args.no_aa,
-        shade: args.shade || demo,
-        grid: grid.clone(),
-        texture,
+    let shade = (args.shade || demo).then_some(raster_sink::Light::DEFAULT);
+    // ID images need no brushes (and no textures).
+    let style = if args.ids && args.svg.is_none() && args.html.is_none() {
+        raster_sink::Style::palette()
+    } else {
+        raster::face_style(&geometry, &mesh, texture, grid.as_ref())?
     };
     if args.svg.is_some() || args.html.is_some() {
         // The sprite tree of the same geometry, sorter kind and view, in the materials'
         // colours (a texture as its mean colour), or ID colours with --ids.
-        let style = raster::face_style(&geometry, &mesh, &colour_options)?;
+        let brushes = style.sprite_brushes(&mesh, shade.as_ref().map(|light| (&view, light)));
         // The painter takes the sorter already built (a BSP build is the costly part).
         let mut painter = sprite_compose::SpritePainter::new(
             &geometry,
@@ -312,11 +313,11 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
             view,
             sprite_compose::RecordingCompositor::new(),
         );
-        let shade = colour_options.shade;
         painter.set_brushes(|face| {
-            let normal = mesh.face_normal(face as usize);
-            let shading = normal.filter(|_| shade).map(|n| (&view, n));
-            raster::sprite_brush(&style, face, shading)
+            brushes
+                .get(face as usize)
+                .copied()
+                .unwrap_or(sprite_compose::Brush::Palette)
         });
         painter.frame();
         let scene = painter.compositor().scene();
@@ -354,8 +355,13 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
             .save_png(&output)
             .map_err(|e| anyhow::anyhow!("{}: {e}", output.display()))?;
     } else {
-        let image = raster::render_colour(&view, &geometry, &list, &mesh, &colour_options)?;
-        raster::save_colour(&image, &output)?;
+        let options = raster_sink::RasterOptions::DEFAULT
+            .with_anti_alias(!args.no_aa)
+            .with_shading(shade);
+        let image = raster_sink::render_colour(&view, &list, &style, &options)
+            .map_err(|e| anyhow::anyhow!("raster: {e}"))?;
+        raster_sink::save_png(&image, &output)
+            .map_err(|e| anyhow::anyhow!("{}: {e}", output.display()))?;
     }
     let raster_ms = ms(start);
 

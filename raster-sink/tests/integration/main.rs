@@ -4,6 +4,7 @@ mod common;
 mod cracks;
 mod golden;
 mod grid;
+mod materials;
 mod scenes;
 mod seams;
 mod steps;

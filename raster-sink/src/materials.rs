@@ -1,0 +1,249 @@
+//! From a loaded model's materials to brushes: the one path from a mesh to pixels.
+//!
+//! raster-sink owns material → brush resolution and flat shading. A loader describes each
+//! face through [`FaceMaterials`] (implemented for `obj_quads::Mesh` behind the `obj-quads`
+//! feature); [`Style::from_materials`] turns that into raster brushes (textures fitted per
+//! face, diffuse colours, else the palette) and [`Style::sprite_brushes`] projects the same
+//! style onto sprite-compose's brushes for the SVG and HTML writers, flat-shaded with the
+//! same [`Light`].
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use face_sort::View;
+use face_sort::glam::{DVec2, DVec3, Vec2};
+use tiny_skia::Pixmap;
+
+use crate::{Brush, Light, RasterError, Style, TextureBrush, UvMap, shade_colour};
+
+/// What raster-sink needs to know about a loaded model's faces to paint them: positions,
+/// each face's corners, uvs, diffuse colour and texture file.
+///
+/// Face indices are those of the draw list (the file order of CONVENTIONS.md).
+pub trait FaceMaterials {
+    /// Number of faces.
+    fn face_count(&self) -> usize;
+    /// Vertex positions in model space.
+    fn positions(&self) -> &[DVec3];
+    /// A face's corners as indices into [`positions`](Self::positions); `None` when out of
+    /// range.
+    fn face_corners(&self, face: usize) -> Option<&[u32]>;
+    /// A face's uvs, one per corner, `v = 0` at the texture's bottom (OBJ and glTF as
+    /// loaded by obj-quads); `None` when the face has none.
+    fn face_uvs(&self, face: usize) -> Option<&[Vec2]>;
+    /// A face's diffuse colour, RGBA in 0..=1, mapped linearly to bytes; `None` when the
+    /// face has no material (it is then painted in its palette colour).
+    fn face_diffuse(&self, face: usize) -> Option<[f32; 4]>;
+    /// A face's diffuse texture file (PNG), if its material has one.
+    fn face_texture(&self, face: usize) -> Option<&Path>;
+    /// A face's model-space normal (any length) for flat shading: by default Newell's
+    /// normal of its corners.
+    fn face_normal(&self, face: usize) -> Option<DVec3> {
+        let positions = self.positions();
+        let corners: Vec<DVec3> = self
+            .face_corners(face)?
+            .iter()
+            .map(|&i| positions.get(i as usize).copied())
+            .collect::<Option<_>>()?;
+        Some(face_sort::newell_normal(&corners))
+    }
+}
+
+/// Options of [`Style::from_materials`].
+#[derive(Clone, Debug, Default, PartialEq)]
+#[non_exhaustive]
+pub struct MaterialOptions {
+    /// A texture for faces that have uvs but no texture of their own (e.g. a model whose
+    /// OBJ has uvs and no MTL). Unlike a material's texture, failing to load it is an error.
+    /// Default: none.
+    pub texture: Option<PathBuf>,
+}
+
+impl MaterialOptions {
+    /// The defaults.
+    pub const DEFAULT: MaterialOptions = MaterialOptions { texture: None };
+
+    /// The texture for faces with uvs and no texture of their own.
+    #[must_use]
+    pub fn with_texture(mut self, texture: impl Into<PathBuf>) -> Self {
+        self.texture = Some(texture.into());
+        self
+    }
+}
+
+/// A style resolved from materials, and the material textures that could not be loaded
+/// (their faces fall back to the diffuse colour).
+#[derive(Debug)]
+pub struct MaterialStyle {
+    /// One brush per face that has a material or a texture.
+    pub style: Style,
+    /// One error per material texture that failed to load.
+    pub warnings: Vec<RasterError>,
+}
+
+/// Loads a PNG texture.
+pub fn load_texture(path: &Path) -> Result<Pixmap, RasterError> {
+    let data = std::fs::read(path).map_err(|source| RasterError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    Pixmap::decode_png(&data).map_err(|e| RasterError::Png {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    })
+}
+
+/// A diffuse colour in 0..=1 as bytes.
+fn diffuse_bytes(diffuse: [f32; 4]) -> [u8; 4] {
+    diffuse.map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8)
+}
+
+impl Style {
+    /// Per-face brushes of a loaded model: the material's texture (or `options.texture`)
+    /// where the face has uvs, fitted per face ([`UvMap::fit`]); else the material's diffuse
+    /// colour; faces without a material keep the palette. `centre` is the draw lists'
+    /// centre, `geometry.bounds().centre()`.
+    ///
+    /// A material texture that does not load becomes a warning and its faces use the
+    /// diffuse colour; `options.texture` failing to load is an error.
+    pub fn from_materials(
+        faces: &impl FaceMaterials,
+        centre: DVec3,
+        options: &MaterialOptions,
+    ) -> Result<MaterialStyle, RasterError> {
+        let mut style = Style::palette();
+        let mut warnings = Vec::new();
+        let mut textures: HashMap<PathBuf, Option<Arc<Pixmap>>> = HashMap::new();
+        let mut load = |path: &Path| -> Result<Option<Arc<Pixmap>>, RasterError> {
+            if let Some(t) = textures.get(path) {
+                return Ok(t.clone());
+            }
+            let image = match load_texture(path) {
+                Ok(image) => Some(Arc::new(image)),
+                Err(e) if options.texture.as_deref() == Some(path) => return Err(e),
+                Err(e) => {
+                    warnings.push(e);
+                    None
+                }
+            };
+            textures.insert(path.to_owned(), image.clone());
+            Ok(image)
+        };
+        let positions = faces.positions();
+        let mut corners = Vec::new();
+        let mut uv_points = Vec::new();
+        for face in 0..faces.face_count() {
+            let texture_path = faces.face_texture(face).or(options.texture.as_deref());
+            let mut brush = None;
+            if let (Some(path), Some(uvs), Some(indices)) =
+                (texture_path, faces.face_uvs(face), faces.face_corners(face))
+                && let Some(image) = load(path)?
+            {
+                corners.clear();
+                corners.extend(indices.iter().map(|&i| positions[i as usize] - centre));
+                uv_points.clear();
+                uv_points.extend(
+                    uvs.iter()
+                        .map(|uv| DVec2::new(f64::from(uv.x), 1.0 - f64::from(uv.y))),
+                );
+                brush = UvMap::fit(&corners, &uv_points)
+                    .map(|map| Brush::Texture(TextureBrush { image, map }));
+            }
+            let brush = brush.or_else(|| {
+                faces
+                    .face_diffuse(face)
+                    .map(|d| Brush::Solid(diffuse_bytes(d)))
+            });
+            if let Some(brush) = brush {
+                style.set_face(face as u32, brush);
+            }
+        }
+        Ok(MaterialStyle { style, warnings })
+    }
+
+    /// The sprite brushes closest to this style, one per face (`0..` the larger of
+    /// `faces.face_count()` and the faces this style names), for sprite-compose's painter
+    /// and its SVG and HTML writers: solid colours as they are, a texture as its mean
+    /// colour, the ground grid transparent, the palette as the palette. With `shading`,
+    /// solid colours are flat-shaded with the light for the view, each face by its normal
+    /// ([`FaceMaterials::face_normal`]) turned toward the viewer.
+    #[must_use]
+    pub fn sprite_brushes(
+        &self,
+        faces: &impl FaceMaterials,
+        shading: Option<(&View, &Light)>,
+    ) -> Vec<sprite_compose::Brush> {
+        let mut means: HashMap<*const Pixmap, [u8; 4]> = HashMap::new();
+        let count = faces.face_count().max(self.face_slots());
+        (0..count)
+            .map(|face| {
+                let shaded = |colour: [u8; 4]| match (shading, faces.face_normal(face)) {
+                    (Some((view, light)), Some(normal)) => {
+                        shade_colour(colour, light.facing_factor(view, normal))
+                    }
+                    _ => colour,
+                };
+                match self.brush(face as u32) {
+                    Some(Brush::Solid(colour)) => sprite_compose::Brush::Solid(shaded(*colour)),
+                    Some(Brush::Texture(texture)) => {
+                        let mean = *means
+                            .entry(Arc::as_ptr(&texture.image))
+                            .or_insert_with(|| mean_colour(&texture.image));
+                        sprite_compose::Brush::Solid(shaded(mean))
+                    }
+                    Some(Brush::Grid(_)) => sprite_compose::Brush::Solid([0, 0, 0, 0]),
+                    None => sprite_compose::Brush::Palette,
+                }
+            })
+            .collect()
+    }
+}
+
+/// The mean straight-alpha colour of an image, opaque.
+fn mean_colour(image: &Pixmap) -> [u8; 4] {
+    let mut sum = [0u64; 3];
+    let pixels = image.pixels();
+    for p in pixels {
+        let c = p.demultiply();
+        sum[0] += u64::from(c.red());
+        sum[1] += u64::from(c.green());
+        sum[2] += u64::from(c.blue());
+    }
+    let n = pixels.len().max(1) as u64;
+    [
+        (sum[0] / n) as u8,
+        (sum[1] / n) as u8,
+        (sum[2] / n) as u8,
+        255,
+    ]
+}
+
+#[cfg(feature = "obj-quads")]
+impl FaceMaterials for obj_quads::Mesh {
+    fn face_count(&self) -> usize {
+        obj_quads::Mesh::face_count(self)
+    }
+    fn positions(&self) -> &[DVec3] {
+        obj_quads::Mesh::positions(self)
+    }
+    fn face_corners(&self, face: usize) -> Option<&[u32]> {
+        self.face(face)
+    }
+    fn face_uvs(&self, face: usize) -> Option<&[Vec2]> {
+        obj_quads::Mesh::face_uvs(self, face)
+    }
+    fn face_diffuse(&self, face: usize) -> Option<[f32; 4]> {
+        self.face_material(face)
+            .and_then(|m| self.materials().get(m as usize))
+            .map(|m| m.diffuse)
+    }
+    fn face_texture(&self, face: usize) -> Option<&Path> {
+        self.face_material(face)
+            .and_then(|m| self.materials().get(m as usize))
+            .and_then(|m| m.texture.as_deref())
+    }
+    fn face_normal(&self, face: usize) -> Option<DVec3> {
+        obj_quads::Mesh::face_normal(self, face)
+    }
+}
