@@ -23,10 +23,7 @@ fn main() -> Result<(), obj_quads::LoadError> {
         ),
     ];
     for (file, policy) in cases {
-        let options = LoadOptions {
-            face_policy: policy,
-            ..LoadOptions::default()
-        };
+        let options = LoadOptions::DEFAULT.with_face_policy(policy);
         let mut best = Duration::MAX;
         let mut faces = 0;
         let mut report = obj_quads::LoadReport::default();

@@ -166,6 +166,37 @@ pub enum LoadError {
         /// The limit.
         limit: u64,
     },
+    /// A file the model names (glTF buffer or image, OBJ `mtllib`) resolves
+    /// outside the model's folder and
+    /// [`LoadOptions::allow_outside_paths`](crate::LoadOptions::allow_outside_paths)
+    /// is off.
+    #[error(
+        "{file}: {what} `{reference}` resolves to {} outside the model's folder {}; \
+         not read (LoadOptions::allow_outside_paths allows it)",
+        resolved.display(),
+        folder.display()
+    )]
+    PathOutsideModel {
+        /// The model (or MTL) file that names the path.
+        file: String,
+        /// What names it, e.g. `buffer 0 uri` or `mtllib`.
+        what: String,
+        /// The path or URI as written.
+        reference: String,
+        /// Where it resolves to.
+        resolved: std::path::PathBuf,
+        /// The model's folder.
+        folder: std::path::PathBuf,
+    },
+    /// A texture image cannot be decoded (unknown format, corrupt data).
+    /// Size-limit breaches are [`LoadError::TooLarge`].
+    #[error("{file}: texture: {detail}")]
+    Texture {
+        /// The image file.
+        file: String,
+        /// What is wrong.
+        detail: String,
+    },
     /// The file extension is not one of `.obj`, `.gltf`, `.glb` (or its feature is off).
     #[error("{file}: unsupported model format `{extension}` (expected .obj, .gltf or .glb)")]
     UnsupportedFormat {

@@ -46,7 +46,7 @@
 //! assert_eq!(report.faces_read, 2);
 //!
 //! // Under QuadsOnly the triangle is an error that names it.
-//! let quads_only = LoadOptions { face_policy: FacePolicy::QuadsOnly, ..LoadOptions::default() };
+//! let quads_only = LoadOptions::DEFAULT.with_face_policy(FacePolicy::QuadsOnly);
 //! let err = load_obj_str(obj, &quads_only).unwrap_err();
 //! assert!(err.to_string().contains("face 1 (line 7)"), "{err}");
 //! # Ok::<(), obj_quads::LoadError>(())
@@ -68,8 +68,13 @@ mod build;
 mod error;
 #[cfg_attr(not(any(feature = "obj", feature = "gltf")), allow(dead_code))]
 mod geometry;
+pub mod limits;
 mod mesh;
 mod options;
+#[cfg_attr(not(any(feature = "obj", feature = "gltf")), allow(dead_code))]
+mod paths;
+#[cfg(feature = "texture")]
+mod texture;
 pub mod tolerance;
 
 #[cfg(feature = "gltf")]
@@ -87,6 +92,10 @@ pub use mesh::{Material, Mesh};
 #[cfg(feature = "obj")]
 pub use obj::{load_obj, load_obj_reader, load_obj_str};
 pub use options::{FacePolicy, LoadOptions, LoadReport, NonConvexPolicy, NonPlanarPolicy};
+#[cfg(feature = "texture")]
+pub use texture::{
+    Texture, TextureFormat, TextureHeader, decode_texture, load_texture, texture_header,
+};
 
 /// Loads a model, choosing the loader by extension (case-insensitive):
 /// `.obj`, `.gltf` or `.glb`.

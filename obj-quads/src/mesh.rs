@@ -6,7 +6,7 @@ use std::path::PathBuf;
 use glam::{DVec3, Vec2};
 
 use crate::LoadError;
-use crate::tolerance::MESH_MAX_FACE_CORNERS;
+use crate::limits::MESH_MAX_FACE_CORNERS;
 
 /// A surface material: name, diffuse colour and optional diffuse texture.
 #[derive(Debug, Clone, PartialEq)]

@@ -10,6 +10,7 @@ use glam::{DVec3, Vec2};
 
 use crate::build::{RawMesh, finish};
 use crate::error::FaceLocation;
+use crate::paths::{Folder, Refusal};
 use crate::{LoadError, LoadOptions, LoadReport, Material, Mesh};
 
 /// Display name of in-memory input in error messages.
@@ -220,16 +221,40 @@ fn load_obj_text(
     let warnings = RefCell::new(Vec::<String>::new());
     // Directory of each loaded MTL, with the number of materials it holds.
     let mtl_dirs = RefCell::new(Vec::<(usize, PathBuf)>::new());
+    // An `mtllib` that leaves the model's folder: the load fails with it.
+    let refused = RefCell::new(None::<LoadError>);
+    let folder = base.map(|b| Folder::new(b, options.allow_outside_paths));
     let max_bytes = options.max_file_bytes;
     let material_loader = |name: &Path| -> tobj::MTLLoadResult {
-        let Some(base) = base else {
+        let Some(folder) = &folder else {
             warnings.borrow_mut().push(format!(
                 "material library `{}` not loaded: in-memory input has no directory",
                 name.display()
             ));
             return Err(tobj::LoadError::OpenFileFailed);
         };
-        let path = base.join(name);
+        let path = match folder.resolve(folder.path(), name) {
+            Ok(path) => path,
+            Err(Refusal::Outside { resolved }) => {
+                refused
+                    .borrow_mut()
+                    .get_or_insert(LoadError::PathOutsideModel {
+                        file: file.clone(),
+                        what: "mtllib".into(),
+                        reference: name.display().to_string(),
+                        resolved,
+                        folder: folder.path().to_path_buf(),
+                    });
+                return Err(tobj::LoadError::OpenFileFailed);
+            }
+            Err(Refusal::Unresolvable { joined, source }) => {
+                warnings.borrow_mut().push(format!(
+                    "material library not loaded: {}: {source}",
+                    joined.display()
+                ));
+                return Err(tobj::LoadError::OpenFileFailed);
+            }
+        };
         let shown = path.display().to_string();
         let bytes = match crate::read_file_capped(&path, &shown, max_bytes) {
             Ok(b) => b,
@@ -283,6 +308,9 @@ fn load_obj_text(
     let loaded = catch_unwind(AssertUnwindSafe(|| {
         tobj::load_obj_buf(&mut text.as_bytes(), &tobj_options, material_loader)
     }));
+    if let Some(e) = refused.into_inner() {
+        return Err(e);
+    }
     let (models, materials) = match loaded {
         Ok(Ok(v)) => v,
         Ok(Err(e)) => {
@@ -333,8 +361,16 @@ fn load_obj_text(
             diffuse = [1.0; 4];
         }
         let mut material = Material::new(m.name.clone(), diffuse);
-        if let Some(tex) = &m.diffuse_texture {
-            material.texture = Some(dir.join(texture_name(tex)));
+        if let (Some(tex), Some(folder)) = (&m.diffuse_texture, &folder) {
+            let name = texture_name(tex);
+            match folder.resolve(&dir, Path::new(name)) {
+                Ok(path) => material.texture = Some(path),
+                Err(refusal) => raw.report.warnings.push(format!(
+                    "material `{}`: map_Kd not used (fallback colour): {}",
+                    m.name,
+                    refusal.describe(folder, name)
+                )),
+            }
         }
         raw.materials.push(material);
     }

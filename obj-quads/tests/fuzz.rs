@@ -27,11 +27,11 @@ fn all_options() -> Vec<LoadOptions> {
         FacePolicy::MergeTriangles,
     ] {
         for non_planar in [NonPlanarPolicy::Keep, NonPlanarPolicy::SplitFan] {
-            v.push(LoadOptions {
-                face_policy,
-                non_planar,
-                ..LoadOptions::default()
-            });
+            v.push(
+                LoadOptions::DEFAULT
+                    .with_face_policy(face_policy)
+                    .with_non_planar(non_planar),
+            );
         }
     }
     v

@@ -11,10 +11,7 @@ macro_rules! asset {
 }
 
 fn opts(face_policy: FacePolicy) -> LoadOptions {
-    LoadOptions {
-        face_policy,
-        ..LoadOptions::default()
-    }
+    LoadOptions::DEFAULT.with_face_policy(face_policy)
 }
 
 fn load_with(path: &str, policy: FacePolicy) -> (Mesh, LoadReport) {
@@ -250,10 +247,7 @@ fn concave_polygon_is_triangulated() {
     );
     let err = load(
         path,
-        &LoadOptions {
-            non_convex: NonConvexPolicy::Reject,
-            ..LoadOptions::default()
-        },
+        &LoadOptions::DEFAULT.with_non_convex(NonConvexPolicy::Reject),
     )
     .unwrap_err();
     assert!(err.to_string().contains("not convex"), "{err}");

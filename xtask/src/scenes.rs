@@ -264,10 +264,7 @@ pub fn load_model(
     path: &Path,
     policy: obj_quads::FacePolicy,
 ) -> Result<(obj_quads::Mesh, obj_quads::LoadReport)> {
-    let options = obj_quads::LoadOptions {
-        face_policy: policy,
-        ..obj_quads::LoadOptions::default()
-    };
+    let options = obj_quads::LoadOptions::DEFAULT.with_face_policy(policy);
     obj_quads::load(path, &options).map_err(|e| anyhow::anyhow!("{e}"))
 }
 
