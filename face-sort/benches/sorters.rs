@@ -1,5 +1,6 @@
 //! Per-frame cull + order of every sorter beside the centroid baseline, on real models and
-//! generated tori of 1k, 10k and 100k quads; plus BSP build time.
+//! generated bumpy tori (`test_support::models::bumpy_torus`) of 1k, 10k and 100k quads;
+//! plus BSP build time.
 //!
 //! `cargo bench -p face-sort --bench sorters -- --warm-up-time 0.5 --measurement-time 1 --sample-size 10`
 
@@ -9,7 +10,8 @@ mod common;
 use std::hint::black_box;
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
-use face_sort::{DrawList, Geometry, PolygonMesh, SorterKind, View, generate};
+use face_sort::{DrawList, Geometry, PolygonMesh, SorterKind, View};
+use test_support::models::{bumpy_torus, model_name};
 
 fn scenes() -> Vec<(String, PolygonMesh)> {
     vec![
@@ -21,9 +23,9 @@ fn scenes() -> Vec<(String, PolygonMesh)> {
             "blub".into(),
             common::read_obj(&common::asset("keenan-crane/blub/blub_quadrangulated.obj")),
         ),
-        ("torus-1k".into(), generate::torus(1_000)),
-        ("torus-10k".into(), generate::torus(10_000)),
-        ("torus-100k".into(), generate::torus(100_000)),
+        (model_name("bumpy-torus", 1_000), bumpy_torus(1_000)),
+        (model_name("bumpy-torus", 10_000), bumpy_torus(10_000)),
+        (model_name("bumpy-torus", 100_000), bumpy_torus(100_000)),
     ]
 }
 

@@ -44,8 +44,8 @@ fn main() {
             "blub".to_owned(),
             common::read_obj(&common::asset("keenan-crane/blub/blub_quadrangulated.obj")),
         ),
-        ("torus 4k".to_owned(), generate::torus(4_000)),
-        ("torus 20k".to_owned(), generate::torus(20_000)),
+        ("bumpy torus 4k".to_owned(), generate::torus(4_000)),
+        ("bumpy torus 20k".to_owned(), generate::torus(20_000)),
     ];
     let (mut build, mut bsp_frame, mut newell_frame) = (Vec::new(), Vec::new(), Vec::new());
     println!(

@@ -6,7 +6,6 @@
 #![allow(missing_docs)]
 
 use std::hint::black_box;
-use std::path::PathBuf;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use raster_sink::face_sort::glam::DVec2;
@@ -16,13 +15,8 @@ use raster_sink::face_sort::{
 use raster_sink::tiny_skia::{FillRule, Paint, Pixmap, Transform};
 use raster_sink::{RasterOptions, Style, render_colour, render_ids, truth};
 
-/// `v` and `f` lines only.
 fn spot() -> PolygonMesh {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../assets/models/keenan-crane/spot/spot_quadrangulated.obj");
-    let (mesh, _) = obj_quads::load(&path, &obj_quads::LoadOptions::default())
-        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    PolygonMesh::new(mesh.positions().to_vec(), mesh.faces()).expect("valid mesh")
+    test_support::load_polygon_mesh("keenan-crane/spot/spot_quadrangulated.obj")
 }
 
 fn bench(c: &mut Criterion) {

@@ -7,7 +7,7 @@
 use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use sprite_compose::face_sort::{DrawList, FaceSorter, Geometry, PolygonMesh, SorterKind, View};
+use sprite_compose::face_sort::{DrawList, FaceSorter, Geometry, SorterKind, View};
 use sprite_compose::glam::{DMat4, DVec2};
 use sprite_compose::{
     Brush, Compositor, OpCounts, PieceMaps, SpriteId, SpritePainter, SpriteTransform,
@@ -52,12 +52,7 @@ impl Compositor for Null {
 }
 
 fn spot() -> Geometry {
-    let path = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../assets/models/keenan-crane/spot/spot_quadrangulated.obj"
-    );
-    let (mesh, _) = obj_quads::load(path, &obj_quads::LoadOptions::default()).expect("spot");
-    let mesh = PolygonMesh::new(mesh.positions().to_vec(), mesh.faces()).expect("mesh");
+    let mesh = test_support::load_polygon_mesh("keenan-crane/spot/spot_quadrangulated.obj");
     Geometry::new(&mesh).expect("geometry")
 }
 

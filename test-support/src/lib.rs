@@ -28,7 +28,8 @@ mod paths;
 mod rng;
 
 pub use paths::{
-    load_model, load_polygon_mesh, model_path, polygon_mesh, test_data_dir, workspace_root,
+    load_model, load_model_at, load_polygon_mesh, model_path, polygon_mesh, test_data_dir,
+    workspace_root,
 };
 pub use rng::Rng;
 

@@ -1,6 +1,7 @@
 //! Named generated models. One name, one model: the two tori of the workspace are
 //! [`bumpy_torus`] (non-planar quads, like scanned models) and [`planar_torus`] (planar
-//! grid quads), and tables and READMEs call them by these names.
+//! grid quads), and tables and READMEs call them by these names; there is one
+//! [`uv_sphere`] and one [`boxes`].
 
 use face_sort::PolygonMesh;
 use face_sort::glam::DVec3;
@@ -21,6 +22,45 @@ pub fn model_name(kind: &str, faces: usize) -> String {
 #[must_use]
 pub fn bumpy_torus(faces: usize) -> PolygonMesh {
     face_sort::generate::torus(faces)
+}
+
+/// `"uv-sphere"`: [`face_sort::generate::uv_sphere`], radius 1, `segments` around the Y
+/// axis and `rings` latitude bands (triangle caps, planar trapezoids between); convex.
+#[must_use]
+pub fn uv_sphere(segments: usize, rings: usize) -> PolygonMesh {
+    face_sort::generate::uv_sphere(segments, rings)
+}
+
+/// `"boxes"`: axis-aligned boxes given by (min, max) corners, 6 quads each, counter-clockwise
+/// seen from outside, in the order −z, +z, −x, +x, −y, +y.
+#[must_use]
+pub fn boxes(boxes: &[(DVec3, DVec3)]) -> PolygonMesh {
+    let mut positions = Vec::new();
+    let mut faces: Vec<[u32; 4]> = Vec::new();
+    for &(lo, hi) in boxes {
+        let b = positions.len() as u32;
+        for k in 0..8u32 {
+            positions.push(DVec3::new(
+                if k & 1 == 0 { lo.x } else { hi.x },
+                if k & 2 == 0 { lo.y } else { hi.y },
+                if k & 4 == 0 { lo.z } else { hi.z },
+            ));
+        }
+        for f in [
+            [0, 2, 3, 1], // -z
+            [4, 5, 7, 6], // +z
+            [0, 4, 6, 2], // -x
+            [1, 3, 7, 5], // +x
+            [0, 1, 5, 4], // -y
+            [2, 6, 7, 3], // +y
+        ] {
+            faces.push(f.map(|i| b + i));
+        }
+    }
+    match PolygonMesh::new(positions, faces) {
+        Ok(mesh) => mesh,
+        Err(e) => panic!("boxes are a valid mesh: {e}"),
+    }
 }
 
 /// `"planar-torus"`: a torus of about `faces` planar quads (surface-of-revolution grid

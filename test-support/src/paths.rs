@@ -30,8 +30,17 @@ pub fn test_data_dir() -> PathBuf {
 /// When the model does not load: tests and benches read committed models only.
 #[must_use]
 pub fn load_model(relative: &str) -> obj_quads::Mesh {
-    let path = model_path(relative);
-    match obj_quads::load(&path, &obj_quads::LoadOptions::default()) {
+    load_model_at(model_path(relative))
+}
+
+/// Loads a model from any path with `obj-quads` (default options).
+///
+/// # Panics
+/// When the model does not load.
+#[must_use]
+pub fn load_model_at(path: impl AsRef<Path>) -> obj_quads::Mesh {
+    let path = path.as_ref();
+    match obj_quads::load(path, &obj_quads::LoadOptions::default()) {
         Ok((mesh, _report)) => mesh,
         Err(e) => panic!("model {} does not load: {e}", path.display()),
     }

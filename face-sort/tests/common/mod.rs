@@ -1,4 +1,4 @@
-//! Test helpers: models read with `obj-quads`, and runners.
+//! Test helpers: models read with `obj-quads` (through `test-support`), and runners.
 
 #![allow(dead_code)]
 
@@ -6,15 +6,13 @@ use face_sort::{DrawList, FaceSorter, Geometry, PolygonMesh, SorterKind, View, o
 
 /// Path of a model in the repository's assets.
 pub fn asset(path: &str) -> String {
-    format!("{}/../assets/models/{path}", env!("CARGO_MANIFEST_DIR"))
+    test_support::model_path(path).display().to_string()
 }
 
-/// Reads an OBJ model with `obj-quads` (a dev-dependency only: face-sort itself knows no loader).
+/// Reads an OBJ model with `obj-quads` (a dev-dependency only: face-sort itself knows no
+/// loader), through the workspace's test scaffolding.
 pub fn read_obj(path: &str) -> PolygonMesh {
-    let path = std::path::PathBuf::from(path);
-    let (mesh, _) = obj_quads::load(&path, &obj_quads::LoadOptions::default())
-        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
-    PolygonMesh::new(mesh.positions().to_vec(), mesh.faces()).expect("valid mesh")
+    test_support::polygon_mesh(&test_support::load_model_at(path))
 }
 
 /// Sorts with `sorter` and returns the oracle's violation count.

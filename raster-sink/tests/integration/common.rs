@@ -2,39 +2,12 @@
 
 #![allow(dead_code, reason = "each test module uses a different subset")]
 
-use std::path::PathBuf;
 use std::sync::Arc;
 
 use raster_sink::face_sort::glam::{DVec2, DVec3};
 use raster_sink::face_sort::{DrawList, Geometry, PolygonMesh, PolygonSet};
 
-/// A small xorshift generator, seeded, for reproducible scenes.
-pub struct Rng(u64);
-
-impl Rng {
-    pub fn new(seed: u64) -> Self {
-        Rng(seed.wrapping_mul(0x9E37_79B9_7F4A_7C15) | 1)
-    }
-    pub fn next_u64(&mut self) -> u64 {
-        let mut x = self.0;
-        x ^= x << 13;
-        x ^= x >> 7;
-        x ^= x << 17;
-        self.0 = x;
-        x
-    }
-    /// Uniform in [lo, hi).
-    pub fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * ((self.next_u64() >> 11) as f64 / (1u64 << 53) as f64)
-    }
-}
-
-pub fn workspace_root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .parent()
-        .expect("crate in a workspace")
-        .to_path_buf()
-}
+pub use test_support::Rng;
 
 /// An OBJ model for tests, read with `obj-quads`: positions, uvs, and per face its corners
 /// as (position index, uv index if any).
@@ -45,8 +18,8 @@ pub struct Obj {
     pub faces: Vec<Vec<(u32, Option<u32>)>>,
 }
 
-pub fn read_obj(path: &std::path::Path) -> Obj {
-    let (mesh, _) = obj_quads::load(path, &obj_quads::LoadOptions::default()).expect("model loads");
+pub fn read_obj(relative: &str) -> Obj {
+    let mesh = test_support::load_model(relative);
     let mut obj = Obj {
         positions: mesh.positions().to_vec(),
         uvs: Vec::new(),
@@ -84,11 +57,11 @@ impl Obj {
 }
 
 pub fn spot_control() -> Obj {
-    read_obj(&workspace_root().join("assets/models/keenan-crane/spot/spot_control_mesh.obj"))
+    read_obj("keenan-crane/spot/spot_control_mesh.obj")
 }
 
 pub fn spot() -> Obj {
-    read_obj(&workspace_root().join("assets/models/keenan-crane/spot/spot_quadrangulated.obj"))
+    read_obj("keenan-crane/spot/spot_quadrangulated.obj")
 }
 
 /// Axis-aligned square in the plane z = `z`, counter-clockwise seen from +Z.

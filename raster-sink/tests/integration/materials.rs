@@ -7,8 +7,6 @@ use raster_sink::face_sort::glam::{DVec3, Vec2};
 use raster_sink::sprite_compose;
 use raster_sink::{Brush, FaceMaterials, Light, MaterialOptions, Style};
 
-use crate::common::workspace_root;
-
 /// Three unit squares side by side: a textured one, a solid one, one without material.
 struct Squares {
     positions: Vec<DVec3>,
@@ -68,7 +66,7 @@ impl FaceMaterials for Squares {
 }
 
 fn spot_texture() -> PathBuf {
-    workspace_root().join("assets/models/keenan-crane/spot/spot_texture.png")
+    test_support::model_path("keenan-crane/spot/spot_texture.png")
 }
 
 #[test]

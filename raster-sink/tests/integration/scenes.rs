@@ -7,7 +7,7 @@ use raster_sink::face_sort::{Centroid, DrawList, FaceSorter, Geometry, PolygonMe
 use raster_sink::tiny_skia::Pixmap;
 use raster_sink::{Brush, GroundGrid, Style, TextureBrush, UvMap};
 
-use crate::common::{Obj, workspace_root};
+use crate::common::Obj;
 
 /// Centroid order (deterministic, independent of the exact sorters' progress).
 pub fn centroid_list(view: &View, geometry: &Geometry) -> DrawList {
@@ -47,8 +47,10 @@ pub fn textured_style(obj: &Obj, geometry: &Geometry, image: Arc<Pixmap>) -> Sty
 
 pub fn spot_texture() -> Arc<Pixmap> {
     Arc::new(
-        Pixmap::load_png(workspace_root().join("assets/models/keenan-crane/spot/spot_texture.png"))
-            .expect("texture"),
+        Pixmap::load_png(test_support::model_path(
+            "keenan-crane/spot/spot_texture.png",
+        ))
+        .expect("texture"),
     )
 }
 

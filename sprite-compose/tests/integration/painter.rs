@@ -291,7 +291,7 @@ fn cull_margin_covers_a_one_frame_lag() {
     // the step, so a compositor showing the previous frame for one more tick has no holes.
     let g = sphere();
     let step = 5.0;
-    let mut rng = Rng(7);
+    let mut rng = Rng::new(7);
     for _ in 0..20 {
         let (yaw, pitch) = (rng.range(0.0, 360.0), rng.range(-60.0, 60.0));
         let base = View::fit(&g.bounds(), 256, 256);
@@ -317,7 +317,7 @@ fn random_walk_keeps_the_backend_in_sync() {
     let g = support::geometry(&support::load_obj(
         "keenan-crane/spot/spot_control_mesh.obj",
     ));
-    let mut rng = Rng(99);
+    let mut rng = Rng::new(99);
     let base = View::fit(&g.bounds(), 200, 200);
     let mut p = painter(&g, SorterKind::Bsp, base);
     p.frame();

@@ -148,7 +148,7 @@ fn svg_colours_through_resvg_match_the_palette_image() {
 
 #[test]
 fn picking_agrees_with_the_id_image() {
-    let mut rng = Rng(2024);
+    let mut rng = Rng::new(2024);
     for (kind, yaw, perspective) in [
         (SorterKind::Newell, 10.0, false),
         (SorterKind::Centroid, 130.0, true),
