@@ -38,6 +38,16 @@ pub enum RasterError {
         /// What the PNG codec said.
         message: String,
     },
+    /// A texture could not be read or decoded, or breaks a texture limit
+    /// (`obj_quads::LoadOptions`: side, pixel count, file size, checked before decoding).
+    #[error("{source}")]
+    Texture {
+        /// The file.
+        path: PathBuf,
+        /// What the texture loader said (boxed: it is large).
+        #[source]
+        source: Box<obj_quads::LoadError>,
+    },
     /// An image buffer does not have `width × height` entries.
     #[error("image buffer has {len} entries, expected {width}×{height}")]
     BufferSize {

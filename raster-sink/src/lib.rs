@@ -77,7 +77,9 @@ pub use error::RasterError;
 pub use fill::{for_each_pixel_near_segment, for_each_span};
 pub use grid::GroundGrid;
 pub use ids::{IdImage, MAX_ID_FACE, id_to_rgb, render_ids, render_ids_into};
-pub use materials::{FaceMaterials, MaterialOptions, MaterialStyle, load_texture};
+pub use materials::{
+    FaceMaterials, MaterialOptions, MaterialStyle, load_texture, load_texture_with,
+};
 pub use style::{
     Brush, GOLDEN_ANGLE_DEG, PALETTE_SATURATION, PALETTE_VALUE, Style, TextureBrush, UvMap,
     golden_angle_colour,

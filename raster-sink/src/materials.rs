@@ -82,16 +82,35 @@ pub struct MaterialStyle {
     pub warnings: Vec<RasterError>,
 }
 
-/// Loads a PNG texture.
+/// Loads a PNG or JPEG texture within the default texture limits of
+/// `obj_quads::LoadOptions::DEFAULT` (see [`load_texture_with`]).
 pub fn load_texture(path: &Path) -> Result<Pixmap, RasterError> {
-    let data = std::fs::read(path).map_err(|source| RasterError::Io {
+    load_texture_with(path, &obj_quads::LoadOptions::DEFAULT)
+}
+
+/// Loads a PNG or JPEG texture within the texture limits of `limits`: file size before
+/// reading, width, height and pixel count from the image header before decoding
+/// (`obj_quads::load_texture`), so a small file declaring a huge image fails fast with
+/// [`RasterError::Texture`] instead of allocating it.
+pub fn load_texture_with(
+    path: &Path,
+    limits: &obj_quads::LoadOptions,
+) -> Result<Pixmap, RasterError> {
+    let texture = obj_quads::load_texture(path, limits).map_err(|source| RasterError::Texture {
         path: path.to_path_buf(),
-        source,
+        source: Box::new(source),
     })?;
-    Pixmap::decode_png(&data).map_err(|e| RasterError::Png {
-        path: path.to_path_buf(),
-        message: e.to_string(),
-    })
+    let size = tiny_skia::IntSize::from_wh(texture.width, texture.height);
+    let mut data = texture.rgba;
+    for pixel in data.chunks_exact_mut(4) {
+        let c = tiny_skia::ColorU8::from_rgba(pixel[0], pixel[1], pixel[2], pixel[3]).premultiply();
+        pixel.copy_from_slice(&[c.red(), c.green(), c.blue(), c.alpha()]);
+    }
+    size.and_then(|size| Pixmap::from_vec(data, size))
+        .ok_or_else(|| RasterError::Png {
+            path: path.to_path_buf(),
+            message: "decoded texture does not fit a pixmap".into(),
+        })
 }
 
 /// A diffuse colour in 0..=1 as bytes.
@@ -245,5 +264,41 @@ impl FaceMaterials for obj_quads::Mesh {
     }
     fn face_normal(&self, face: usize) -> Option<DVec3> {
         obj_quads::Mesh::face_normal(self, face)
+    }
+}
+
+#[cfg(test)]
+mod texture_tests {
+    use super::*;
+
+    const SPOT: &str = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../assets/models/keenan-crane/spot/spot_texture.png"
+    );
+
+    #[test]
+    fn bounded_texture_loading_matches_tiny_skia_decoding() {
+        let bytes = std::fs::read(SPOT).unwrap();
+        let reference = Pixmap::decode_png(&bytes).unwrap();
+        let loaded = load_texture(Path::new(SPOT)).unwrap();
+        assert_eq!(
+            (loaded.width(), loaded.height()),
+            (reference.width(), reference.height())
+        );
+        assert!(loaded.data() == reference.data());
+    }
+
+    #[test]
+    fn texture_limits_apply() {
+        let small = obj_quads::LoadOptions::DEFAULT.with_max_texture_side(512);
+        match load_texture_with(Path::new(SPOT), &small) {
+            Err(RasterError::Texture { source, .. }) => match *source {
+                obj_quads::LoadError::TooLarge { actual, limit, .. } => {
+                    assert_eq!((actual, limit), (1024, 512))
+                }
+                other => panic!("{other:?}"),
+            },
+            other => panic!("{other:?}"),
+        }
     }
 }

@@ -97,6 +97,10 @@ pub struct RenderArgs {
     /// Also write an HTML/CSS 3D page of the same view (sprite-compose writer).
     #[arg(long, value_name = "OUT.html")]
     html: Option<PathBuf>,
+    /// Read files the model names (glTF buffers and images, OBJ mtllib, MTL map_Kd) even
+    /// when they resolve outside the model's folder. Only for files you trust.
+    #[arg(long)]
+    allow_outside: bool,
     /// Print one JSON object instead of the summary line.
     #[arg(long)]
     json: bool,
@@ -210,7 +214,14 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
     };
 
     let start = Instant::now();
-    let (mesh, _report) = scenes::load_model(&model_path, policy)?;
+    let load_options = obj_quads::LoadOptions::DEFAULT
+        .with_face_policy(policy)
+        .with_allow_outside_paths(args.allow_outside);
+    let (mesh, report) =
+        obj_quads::load(&model_path, &load_options).map_err(|e| anyhow::anyhow!("{e}"))?;
+    for warning in &report.warnings {
+        eprintln!("warning: {}: {warning}", model_path.display());
+    }
     let model_only = scenes::to_polygon_mesh(&mesh)?;
     let model_bounds = model_only
         .bounds()
