@@ -6,6 +6,8 @@
 //!   report and a chart under `target/bench/`.
 //! - `fuzz` runs every sorter against the order-violation oracle on generated scenes and
 //!   saves failing cases under `target/fuzz/` for replay with `render`.
+//! - `stress` runs the exact sorters on moved, scaled, coplanar, degenerate and edge-on cases
+//!   and reports violations, pixel error, fragments and NaN counts (docs/ROBUSTNESS.md).
 //! - `ci` runs what CI runs: fmt, clippy, tests.
 //!
 //! See `xtask/README.md` for examples.
@@ -18,6 +20,7 @@ mod progress;
 mod raster;
 mod render;
 mod scenes;
+mod stress;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -32,8 +35,7 @@ struct Cli {
     command: Command,
 }
 
-/// Every subcommand. Later issues add `stress` (numerical stability sweeps) and `bake`
-/// (aspect bakes) here.
+/// Every subcommand. A later issue adds `bake` (aspect bakes) here.
 #[derive(Debug, Subcommand)]
 enum Command {
     /// Render a model (or the built-in demo scene) to a PNG or an ID image.
@@ -46,6 +48,9 @@ enum Command {
     Fuzz(fuzz::FuzzArgs),
     /// Run what CI runs: cargo fmt --check, clippy -D warnings, tests.
     Ci(ci::CiArgs),
+    /// Numerical stress: every exact sorter on transformed models and degenerate scenes;
+    /// violations, pixel error, fragments, NaN counts, time (docs/ROBUSTNESS.md).
+    Stress(stress::StressArgs),
 }
 
 fn main() -> ExitCode {
@@ -69,6 +74,7 @@ fn main() -> ExitCode {
         Command::Bench(args) => bench::run(&args),
         Command::Fuzz(args) => fuzz::run(&args),
         Command::Ci(args) => ci::run(&args),
+        Command::Stress(args) => stress::run(&args),
     });
     match result {
         Ok(Ok(code)) => code,
