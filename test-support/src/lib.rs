@@ -29,7 +29,7 @@ mod rng;
 
 pub use paths::{
     load_model, load_model_at, load_polygon_mesh, model_path, polygon_mesh, test_data_dir,
-    workspace_root,
+    try_polygon_mesh, workspace_root,
 };
 pub use rng::Rng;
 

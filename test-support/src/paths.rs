@@ -47,13 +47,18 @@ pub fn load_model_at(path: impl AsRef<Path>) -> obj_quads::Mesh {
 }
 
 /// The sorters' view of a loaded mesh: its positions and face index lists.
+pub fn try_polygon_mesh(mesh: &obj_quads::Mesh) -> Result<PolygonMesh, face_sort::MeshError> {
+    PolygonMesh::new(mesh.positions().to_vec(), mesh.faces())
+}
+
+/// [`try_polygon_mesh`] for tests and benches.
 ///
 /// # Panics
 /// When `face_sort` rejects the mesh; `obj-quads` validates the same invariants, so this
 /// does not happen for a loaded mesh.
 #[must_use]
 pub fn polygon_mesh(mesh: &obj_quads::Mesh) -> PolygonMesh {
-    match PolygonMesh::new(mesh.positions().to_vec(), mesh.faces()) {
+    match try_polygon_mesh(mesh) {
         Ok(polygons) => polygons,
         Err(e) => panic!("a loaded mesh is a valid polygon mesh: {e}"),
     }

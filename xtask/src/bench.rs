@@ -78,7 +78,7 @@ pub struct Row {
 pub struct ScalingRow {
     /// Sorter name.
     pub sorter: String,
-    /// Faces of the generated torus.
+    /// Faces of the generated planar torus.
     pub faces: usize,
     /// Build time, milliseconds (`null` when skipped).
     pub build_ms: Option<f64>,
@@ -405,10 +405,10 @@ fn bench_scene(scene: &Scene, budget: &Budget, resolution: u32) -> Result<Vec<Ro
     Ok(rows)
 }
 
-/// Scaling: build and per-frame time of every sorter on a torus of `faces` faces; skips a
+/// Scaling: build and per-frame time of every sorter on a planar torus of `faces` faces; skips a
 /// measurement whose estimate from the previous sizes exceeds the budget.
 fn scaling_size(faces: usize, budget: &Budget, previous: &[ScalingRow]) -> Result<Vec<ScalingRow>> {
-    let scene = scenes::torus(faces)?;
+    let scene = scenes::planar_torus(faces);
     let geometry = Geometry::new(&scene.mesh)?;
     let faces = geometry.face_count();
     let views: Vec<View> = [(30.0, 25.0), (200.0, -30.0)]
@@ -595,7 +595,7 @@ fn markdown(command: &str, rows: &[Row], scaling: &[ScalingRow], resolution: u32
     if !scaling.is_empty() {
         let _ = writeln!(
             s,
-            "\n## Scaling (generated torus, orthographic 512², two views)\n\n| faces | sorter | build | frame | items | note |\n|---:|---|---:|---:|---:|---|"
+            "\n## Scaling (generated planar torus, orthographic 512², two views)\n\n| faces | sorter | build | frame | items | note |\n|---:|---|---:|---:|---:|---|"
         );
         for r in scaling {
             let _ = writeln!(

@@ -8,50 +8,7 @@ use face_sort::{CullMode, PolygonMesh};
 
 use crate::workspace_root;
 
-/// A small seeded generator (SplitMix64): reproducible scenes without a dependency.
-#[derive(Clone, Debug)]
-pub struct Rng(u64);
-
-impl Rng {
-    /// A generator from a seed.
-    pub fn new(seed: u64) -> Self {
-        Rng(seed ^ 0x9E37_79B9_7F4A_7C15)
-    }
-
-    /// The next 64 random bits.
-    pub fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in `[0, 1)`.
-    pub fn unit(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
-    }
-
-    /// Uniform in `[lo, hi)`.
-    pub fn range(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.unit()
-    }
-
-    /// A uniformly random unit vector.
-    pub fn direction(&mut self) -> DVec3 {
-        loop {
-            let v = DVec3::new(
-                self.range(-1.0, 1.0),
-                self.range(-1.0, 1.0),
-                self.range(-1.0, 1.0),
-            );
-            let len = v.length();
-            if len > 0.1 && len <= 1.0 {
-                return v / len;
-            }
-        }
-    }
-}
+pub use test_support::Rng;
 
 /// A scene to measure: a mesh, and the cull mode it is meant to be seen with (open sheets
 /// of quads are seen from both sides).
@@ -206,32 +163,14 @@ pub fn random_quads(count: usize, seed: u64) -> Result<Scene> {
     b.build(&format!("random-quads-{count}"), CullMode::None)
 }
 
-/// A torus of about `faces` planar quads (surface-of-revolution grid quads are planar).
-pub fn torus(faces: usize) -> Result<Scene> {
-    let minor = ((faces as f64 / 3.0).sqrt().round() as usize).max(3);
-    let major = (faces / minor).max(3);
-    let (big, small) = (1.0, 0.35);
-    let mut positions = Vec::with_capacity(major * minor);
-    for i in 0..major {
-        let u = i as f64 / major as f64 * std::f64::consts::TAU;
-        for j in 0..minor {
-            let v = j as f64 / minor as f64 * std::f64::consts::TAU;
-            let r = big + small * v.cos();
-            positions.push(DVec3::new(r * u.cos(), small * v.sin(), r * u.sin()));
-        }
-    }
-    let idx = |i: usize, j: usize| ((i % major) * minor + (j % minor)) as u32;
-    let faces: Vec<[u32; 4]> = (0..major)
-        .flat_map(|i| {
-            (0..minor).map(move |j| [idx(i, j), idx(i, j + 1), idx(i + 1, j + 1), idx(i + 1, j)])
-        })
-        .collect();
-    let mesh = PolygonMesh::new(positions, &faces).context("torus")?;
-    Ok(Scene {
-        name: format!("torus-{}", faces.len()),
+/// The planar torus of about `faces` quads ([`test_support::models::planar_torus`]).
+pub fn planar_torus(faces: usize) -> Scene {
+    let mesh = test_support::models::planar_torus(faces);
+    Scene {
+        name: test_support::models::model_name("planar-torus", mesh.face_count()),
         mesh,
         cull: CullMode::Back,
-    })
+    }
 }
 
 /// The repository's test models used by the bench: (name, path relative to the root).
@@ -270,7 +209,7 @@ pub fn load_model(
 
 /// Converts a loaded mesh to the sorters' input.
 pub fn to_polygon_mesh(mesh: &obj_quads::Mesh) -> Result<PolygonMesh> {
-    PolygonMesh::new(mesh.positions().to_vec(), mesh.faces()).map_err(|e| anyhow::anyhow!("{e}"))
+    test_support::try_polygon_mesh(mesh).map_err(|e| anyhow::anyhow!("{e}"))
 }
 
 /// A repository model as a bench scene (culled per its own winding; the cornell box, the

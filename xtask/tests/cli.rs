@@ -58,10 +58,8 @@ fn render_bad_obj_fails_with_a_message() {
 fn render_json_has_the_keys() {
     let dir = temp_dir("json");
     let out = dir.join("box.png");
-    let model = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../assets/models/assimp-obj/box.obj"
-    );
+    let model = test_support::model_path("assimp-obj/box.obj");
+    let model = model.to_str().unwrap();
     let result = xtask(&[
         "render",
         model,
@@ -98,10 +96,8 @@ fn render_json_has_the_keys() {
 fn render_ids_writes_an_id_image() {
     let dir = temp_dir("ids");
     let out = dir.join("ids.png");
-    let model = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../assets/models/assimp-obj/box.obj"
-    );
+    let model = test_support::model_path("assimp-obj/box.obj");
+    let model = model.to_str().unwrap();
     let result = xtask(&[
         "render",
         model,
@@ -181,10 +177,8 @@ fn render_summary(model: &str, extra: &[&str], name: &str) -> serde_json::Value 
 
 #[test]
 fn auto_culls_a_convex_box_only_and_stays_exact() {
-    let model = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../assets/models/assimp-obj/box.obj"
-    );
+    let model = test_support::model_path("assimp-obj/box.obj");
+    let model = model.to_str().unwrap();
     for (i, extra) in [
         &["--yaw", "30", "--pitch", "-20"][..],
         &["--yaw", "200", "--pitch", "50", "--persp", "150"][..],
@@ -208,10 +202,8 @@ fn auto_culls_a_convex_box_only_and_stays_exact() {
 
 #[test]
 fn auto_takes_newell_for_one_picture_of_a_curved_model() {
-    let model = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../assets/models/keenan-crane/spot/spot_quadrangulated.obj"
-    );
+    let model = test_support::model_path("keenan-crane/spot/spot_quadrangulated.obj");
+    let model = model.to_str().unwrap();
     let value = render_summary(model, &["--yaw", "120", "--pitch", "15"], "spot-auto");
     assert_eq!(value["sorter"], "newell", "{value}");
     assert!(
