@@ -289,24 +289,50 @@ impl FaceSorter for Auto {
 /// every piece, within `PLANE_SIDE · diagonal`. `Some(true)`: all behind (outward normals);
 /// `Some(false)`: all in front (inward normals); `None`: not in convex position.
 fn convex_position(pieces: &PolygonSet, diagonal: f64) -> Option<bool> {
+    let tolerance = PLANE_SIDE * diagonal;
+    // `signed_distance = n · p − offset` with a unit normal: in front means above the plane.
+    let oriented = |plane: &crate::Plane, outward: bool| {
+        if outward {
+            (plane.normal(), plane.offset() + tolerance)
+        } else {
+            (-plane.normal(), -plane.offset() + tolerance)
+        }
+    };
+    // Most meshes fail at once: test every plane against a few vertices spread over the
+    // mesh (one corner of every `step`-th piece) before building the tree for the proof.
+    let step = (pieces.len() / SAMPLE_PIECES).max(1);
+    let sample: Vec<DVec3> = (0..pieces.len())
+        .step_by(step)
+        .map(|i| pieces.corners(i)[0])
+        .collect();
+    let candidates: Vec<bool> = [true, false]
+        .into_iter()
+        .filter(|&outward| {
+            pieces.planes().iter().all(|plane| {
+                let (n, limit) = oriented(plane, outward);
+                sample.iter().all(|p| n.dot(*p) <= limit)
+            })
+        })
+        .collect();
+    if candidates.is_empty() {
+        return None;
+    }
     let points: Vec<DVec3> = (0..pieces.len())
         .flat_map(|i| pieces.corners(i).iter().copied())
         .collect();
     let tree = PointTree::new(points);
-    let tolerance = PLANE_SIDE * diagonal;
     let mut stack = Vec::new();
-    [true, false].into_iter().find(|&outward| {
+    candidates.into_iter().find(|&outward| {
         pieces.planes().iter().all(|plane| {
-            let (n, offset) = if outward {
-                (plane.normal(), plane.offset())
-            } else {
-                (-plane.normal(), -plane.offset())
-            };
-            // `signed_distance = n · p − offset` with a unit normal; nothing may lie in front.
-            !tree.any_above(n, offset + tolerance, &mut stack)
+            let (n, limit) = oriented(plane, outward);
+            !tree.any_above(n, limit, &mut stack)
         })
     })
 }
+
+/// Pieces whose first corner the quick rejection of [`convex_position`] tests every plane
+/// against.
+const SAMPLE_PIECES: usize = 64;
 
 /// A bounding-volume hierarchy over points, for "does any point lie above this plane"
 /// queries: a subtree whose box lies below the plane is skipped whole.
