@@ -7,7 +7,7 @@
 use glam::{DVec2, DVec3};
 
 use crate::polygon::{Box2, clip_convex_2d, signed_area_2d};
-use crate::tolerance::{ORACLE_DEPTH, OVERLAP_AREA};
+use crate::tolerance::{ORACLE_DEPTH, ORACLE_INTERIOR, OVERLAP_AREA};
 use crate::{DrawList, PixelRays, ProjectionScratch, View};
 
 /// One violating pair.
@@ -114,7 +114,7 @@ fn for_each_violation(view: &View, list: &DrawList, mut report: impl FnMut(Viola
             let mut worst = f64::NEG_INFINITY;
             for &corner in overlap.iter().chain(std::iter::once(&centroid)) {
                 // A hair inside the overlap, so the point is interior.
-                let point = corner + (centroid - corner) * 1e-9;
+                let point = corner + (centroid - corner) * ORACLE_INTERIOR;
                 let gap = rays.depth(point, ne, ke) - rays.depth(point, nl, kl);
                 if gap.is_finite() {
                     worst = worst.max(gap);

@@ -4,6 +4,7 @@
 use glam::DVec2;
 
 use crate::polygon::Box2;
+use crate::tolerance::UNDERFLOW_ABS;
 
 /// Buckets of item indices by the grid cells their boxes touch.
 ///
@@ -27,7 +28,7 @@ impl ScreenGrid {
     /// per cell, at most 256 × 256 cells. Keeps every buffer's capacity.
     pub(crate) fn reset(&mut self, bounds: Box2, items: usize) {
         let side = ((items as f64).sqrt().ceil() as usize).clamp(1, 256);
-        let size = (bounds.max - bounds.min).max(DVec2::splat(1e-300));
+        let size = (bounds.max - bounds.min).max(DVec2::splat(UNDERFLOW_ABS));
         self.origin = bounds.min;
         self.columns = side;
         self.rows = side;

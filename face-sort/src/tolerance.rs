@@ -1,7 +1,10 @@
 //! Every tolerance the crate uses, in one place.
 //!
-//! All of them are *relative*: multiply by the model's bounding-box diagonal `L`
-//! (see [`Bounds::diagonal`](crate::Bounds::diagonal)) or by a face's own size.
+//! Names follow one rule in every crate of the workspace: a bare name is *relative* (multiply
+//! by the model's bounding-box diagonal `L`, see [`Bounds::diagonal`](crate::Bounds::diagonal),
+//! or by the size its doc names); `_PX` is in pixels; `_ABS` is an absolute guard against
+//! underflow. The same idea has the same name in every crate (`PLANARITY`, `DEGENERATE_AREA`,
+//! `UNDERFLOW_ABS`, …). docs/ROBUSTNESS.md says what these tolerances mean for exactness.
 
 /// A face is planar when every corner lies within `PLANARITY · D` of its fitted plane,
 /// `D` being the face's largest corner-to-corner distance (CONVENTIONS.md).
@@ -25,3 +28,16 @@ pub const OVERLAP_AREA: f64 = 1e-14;
 
 /// Perspective near plane: geometry is clipped to `w ≥ NEAR_W` (CONVENTIONS.md).
 pub const NEAR_W: f64 = 1e-3;
+
+/// The oracle samples depths at points moved `ORACLE_INTERIOR` of the way from each corner of
+/// an overlap toward its centroid, so that every sample lies inside both polygons.
+pub const ORACLE_INTERIOR: f64 = 1e-9;
+
+/// Corners closer than `SAME_CORNER · L` are one corner when `Topological` finds pieces that
+/// share an edge: planar faces are snapped onto their planes (by up to [`PLANARITY`]` · D`),
+/// so corners that a file shares move apart.
+pub const SAME_CORNER: f64 = 1e-5;
+
+/// Absolute: lengths are clamped to at least this before dividing by them (a zero-size
+/// screen box or median radius), far below any length a model can have.
+pub const UNDERFLOW_ABS: f64 = 1e-300;

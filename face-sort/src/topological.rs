@@ -9,7 +9,7 @@ use std::time::Instant;
 use glam::DVec3;
 
 use crate::plane::Side;
-use crate::tolerance::PLANE_SIDE;
+use crate::tolerance::{PLANE_SIDE, SAME_CORNER, UNDERFLOW_ABS};
 use crate::{DrawList, FaceSorter, Geometry, PolygonSet, SorterStats, View};
 
 /// Tag bit on an adjacency entry: the relation holds both ways with the same side (each
@@ -23,9 +23,6 @@ const FRONT: u32 = 1 << 30;
 const ADJACENT: u32 = 1 << 29;
 /// The piece index in an adjacency entry.
 const INDEX: u32 = ADJACENT - 1;
-/// Corners closer than this (relative to `L`) are the same corner, for adjacency: planar
-/// faces are snapped onto their planes (by up to `1e-6 · D`), so shared corners move apart.
-const SAME_CORNER: f64 = 1e-5;
 
 /// Meshes up to this many pieces test every pair; larger ones only pairs within reach.
 const ALL_PAIRS_LIMIT: usize = 512;
@@ -295,7 +292,7 @@ fn for_each_near_pair(centroids: &[DVec3], radii: &[f64], f: &mut impl FnMut(usi
     let n = centroids.len();
     let mut sorted = radii.to_vec();
     sorted.sort_unstable_by(f64::total_cmp);
-    let median = sorted[n / 2].max(1e-300);
+    let median = sorted[n / 2].max(UNDERFLOW_ABS);
     let cell = 2.0 * median * (1.0 + REACH_IN_DIAMETERS);
     let key = |p: DVec3| {
         let c = (p / cell).floor();
