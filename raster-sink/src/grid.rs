@@ -5,6 +5,8 @@ use face_sort::{Bounds, View};
 
 use face_sort::PixelRays;
 
+use crate::tolerance::UNDERFLOW_ABS;
+
 /// A square grid on the model's ground plane `y = bounds.min.y`, centred under the model.
 ///
 /// Add [`quad`](Self::quad) to the mesh as one more face (so it is culled, sorted and split
@@ -194,8 +196,8 @@ impl<'a> GridShader<'a> {
         }
         // Footprint of one pixel in ground units, per ground axis (like GLSL fwidth).
         let (dx, dy) = (gx - g, gy - g);
-        let fw =
-            DVec2::new(dx.x.abs() + dy.x.abs(), dx.y.abs() + dy.y.abs()).max(DVec2::splat(1e-300));
+        let fw = DVec2::new(dx.x.abs() + dy.x.abs(), dx.y.abs() + dy.y.abs())
+            .max(DVec2::splat(UNDERFLOW_ABS));
         let footprint = fw.x.max(fw.y);
         let finest = ((GroundGrid::MIN_SPACING_PX * footprint / grid.cell)
             .log10()

@@ -13,7 +13,7 @@ use std::hash::{BuildHasherDefault, Hasher};
 
 use face_sort::glam::DVec2;
 
-use crate::tolerance::SHARED_EDGE_PX;
+use crate::tolerance::{PARALLEL_EDGES, SHARED_EDGE_PX};
 
 /// Polygons drawn in one frame: screen points stored flat.
 #[derive(Debug, Default)]
@@ -205,7 +205,7 @@ pub(crate) fn outset_polygon(points: &[DVec2], shared: &[bool], outset: f64, out
         }
         let (n1, n2) = (normal(prev), normal(i));
         let det = n1.perp_dot(n2);
-        let miter = if det.abs() > 1e-9 {
+        let miter = if det.abs() > PARALLEL_EDGES {
             Some(DVec2::new(o1 * n2.y - o2 * n1.y, n1.x * o2 - n2.x * o1) / det)
         } else if n1.dot(n2) > 0.0 && o1 == o2 {
             Some(n1 * o1)

@@ -6,6 +6,7 @@ use face_sort::glam::{DVec2, DVec3};
 use tiny_skia::Pixmap;
 
 use crate::grid::GroundGrid;
+use crate::tolerance::{SINGULAR_DET, UNDERFLOW_ABS};
 
 /// How one face is painted.
 #[derive(Clone, Debug)]
@@ -76,7 +77,7 @@ impl UvMap {
             axis_t,
             k,
         };
-        if !k.iter().all(|v| v.is_finite()) || k[0].perp_dot(k[1]).abs() < 1e-300 {
+        if !k.iter().all(|v| v.is_finite()) || k[0].perp_dot(k[1]).abs() < UNDERFLOW_ABS {
             return None;
         }
         Some(map)
@@ -100,7 +101,7 @@ fn solve3(m: [[f64; 3]; 3], rhs: [DVec2; 3]) -> Option<[DVec2; 3]> {
     };
     let det = det3(m);
     let scale = m.iter().flatten().fold(0.0f64, |a, &b| a.max(b.abs()));
-    if det.is_nan() || det.abs() <= 1e-12 * scale * scale * scale {
+    if det.is_nan() || det.abs() <= SINGULAR_DET * scale * scale * scale {
         return None;
     }
     let mut out = [DVec2::ZERO; 3];

@@ -1,4 +1,8 @@
 //! Every tolerance the crate uses, in one place (CONVENTIONS.md sets the first two).
+//!
+//! Names follow the workspace's rule (as in `face_sort::tolerance`): a bare name is
+//! *relative* to the size its doc names; `_PX` is in pixels; `_ABS` is an absolute guard
+//! against underflow. docs/ROBUSTNESS.md lists them all.
 
 /// A pixel is unambiguous only when its centre is at least this far (pixels) from every
 /// projected edge of every drawn piece.
@@ -16,3 +20,15 @@ pub const DEGENERATE_PROJECTED_AREA: f64 = 1e-12;
 /// Edges of two drawn polygons whose endpoints (or, for T-junctions, whose lines and
 /// overlap) agree within this many pixels count as shared for the seam outset.
 pub const SHARED_EDGE_PX: f64 = 1e-3;
+
+/// Two edge normals (unit vectors) are parallel for the seam outset's miter when the sine of
+/// their angle, `|n1 × n2|`, is at most `PARALLEL_EDGES`.
+pub const PARALLEL_EDGES: f64 = 1e-9;
+
+/// A texture's uv map is singular (the face is drawn without it) when its 3×3 system's
+/// determinant is at most `SINGULAR_DET · m³`, `m` the system's largest entry.
+pub const SINGULAR_DET: f64 = 1e-12;
+
+/// Absolute: magnitudes below this count as zero (the area of a texture's uv axes, a grid
+/// line's pixel footprint before dividing by it).
+pub const UNDERFLOW_ABS: f64 = 1e-300;
