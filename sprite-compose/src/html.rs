@@ -5,6 +5,7 @@ use std::fmt::Write as _;
 use glam::{DMat4, DVec2, DVec3, DVec4};
 
 use crate::svg::{hex, project_sprite};
+use crate::tolerance::UNDERFLOW_ABS;
 use crate::{Scene, id_colour, perspective_matrix};
 
 /// How the page orders faces.
@@ -99,7 +100,7 @@ pub fn css_matrix3d(m: &DMat4) -> String {
         if k > 0 {
             s.push(',');
         }
-        let v = if v.abs() < 1e-300 { 0.0 } else { *v };
+        let v = if v.abs() < UNDERFLOW_ABS { 0.0 } else { *v };
         let _ = write!(s, "{v:e}");
     }
     s.push(')');

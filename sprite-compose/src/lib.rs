@@ -59,6 +59,7 @@ mod pick;
 mod recording;
 mod root;
 mod svg;
+pub mod tolerance;
 mod transform;
 
 pub use bake::{
@@ -71,13 +72,11 @@ pub use compositor::{
 pub use hidden::{HiddenParts, Visibility, visible_parts};
 pub use html::{HtmlMode, HtmlOptions, css_matrix3d, write_html};
 pub use painter::{FrameStats, RotationHandle, RotationSource, SpritePainter};
-pub use pick::{OUTLINE_PROBE_PX, ProjectedFrame, contains, outline_svg_path};
+pub use pick::{ProjectedFrame, contains, outline_svg_path};
 pub use recording::{RecordingCompositor, Scene, SceneSprite};
 pub use root::{perspective_matrix, root_transform, rotation_from_yaw_pitch_roll};
 pub use svg::{SvgOptions, project_sprite, write_svg};
-pub use transform::{
-    MapKind, PARALLELOGRAM, PieceMap, PieceMaps, SpriteSpace, SpriteTransform, piece_map,
-};
+pub use transform::{MapKind, PieceMap, PieceMaps, SpriteSpace, SpriteTransform, piece_map};
 
 pub use face_sort;
 pub use glam;

@@ -3,9 +3,7 @@
 use face_sort::{Box2, DrawItem, DrawList, ProjectionScratch, View, signed_area_2d};
 use glam::DVec2;
 
-/// Offset (pixels) to either side of an edge at which the selection outline tests which face
-/// is on top.
-pub const OUTLINE_PROBE_PX: f64 = 1e-4;
+use crate::tolerance::{EDGE_PARAMETER, OUTLINE_PROBE_PX, PARALLEL_EDGES, SAME_POINT_PX};
 
 /// The drawn polygons of one frame projected to pixels, in paint order (back to front).
 #[derive(Clone, Debug, Default)]
@@ -137,7 +135,7 @@ impl ProjectedFrame {
             cuts.sort_unstable_by(f64::total_cmp);
             let mut open: Option<DVec2> = None;
             for w in cuts.windows(2) {
-                if w[1] - w[0] <= 1e-12 {
+                if w[1] - w[0] <= EDGE_PARAMETER {
                     continue;
                 }
                 let m = a + d * (0.5 * (w[0] + w[1]));
@@ -162,12 +160,12 @@ impl ProjectedFrame {
 
 /// Removes segments that repeat another one (shared edges of neighbouring polygons).
 fn dedup_segments(segments: &mut Vec<[DVec2; 2]>) {
-    const SAME: f64 = 1e-9;
     let mut kept: Vec<[DVec2; 2]> = Vec::with_capacity(segments.len());
     for s in segments.iter() {
         let dup = kept.iter().any(|k| {
-            ((k[0] - s[0]).length() < SAME && (k[1] - s[1]).length() < SAME)
-                || ((k[0] - s[1]).length() < SAME && (k[1] - s[0]).length() < SAME)
+            ((k[0] - s[0]).length() < SAME_POINT_PX && (k[1] - s[1]).length() < SAME_POINT_PX)
+                || ((k[0] - s[1]).length() < SAME_POINT_PX
+                    && (k[1] - s[0]).length() < SAME_POINT_PX)
         });
         if !dup {
             kept.push(*s);
@@ -181,12 +179,12 @@ fn crossing(a: DVec2, b: DVec2, c: DVec2, g: DVec2) -> Option<f64> {
     let r = b - a;
     let s = g - c;
     let denom = r.perp_dot(s);
-    if denom.abs() <= 1e-18 * r.length_squared().max(s.length_squared()) {
+    if denom.abs() <= PARALLEL_EDGES * r.length_squared().max(s.length_squared()) {
         return None;
     }
     let t = (c - a).perp_dot(s) / denom;
     let u = (c - a).perp_dot(r) / denom;
-    let eps = 1e-12;
+    let eps = EDGE_PARAMETER;
     ((-eps..=1.0 + eps).contains(&t) && (-eps..=1.0 + eps).contains(&u) && t > 0.0 && t < 1.0)
         .then_some(t)
 }

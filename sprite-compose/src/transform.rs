@@ -3,9 +3,7 @@
 use face_sort::{Geometry, View};
 use glam::{DMat4, DVec2, DVec3, DVec4};
 
-/// A quad is a parallelogram (and gets an exact affine map) when its corners satisfy
-/// `|P0 + P2 − P1 − P3| ≤ PARALLELOGRAM · D`, `D` being the quad's longest diagonal.
-pub const PARALLELOGRAM: f64 = 1e-9;
+use crate::tolerance::{HOMOGRAPHY_W, PARALLELOGRAM, SINGULAR_DET, UNDERFLOW_ABS};
 
 /// Where sprites live before the root transform: **rest pixel space**.
 ///
@@ -110,7 +108,7 @@ impl SpriteTransform {
 fn solve_2x2_least_squares(a: DVec3, b: DVec3, r: DVec3) -> Option<DVec2> {
     let (aa, ab, bb) = (a.dot(a), a.dot(b), b.dot(b));
     let det = aa * bb - ab * ab;
-    if !det.is_finite() || det.abs() <= 1e-300 || det.abs() <= 1e-24 * aa * bb {
+    if !det.is_finite() || det.abs() <= UNDERFLOW_ABS || det.abs() <= SINGULAR_DET * aa * bb {
         return None;
     }
     let (ar, br) = (a.dot(r), b.dot(r));
@@ -193,7 +191,7 @@ fn quad(p: &[DVec3], n: DVec3) -> Option<SpriteTransform> {
     let w_min = [1.0, 1.0 + g, 1.0 + h, 1.0 + g + h]
         .into_iter()
         .fold(f64::INFINITY, f64::min);
-    if !w_min.is_finite() || w_min <= 1e-6 {
+    if !w_min.is_finite() || w_min <= HOMOGRAPHY_W {
         return None;
     }
     let a = q[1] * (1.0 + g) - q[0];

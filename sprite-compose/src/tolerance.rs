@@ -1,0 +1,38 @@
+//! Every tolerance the crate uses, in one place.
+//!
+//! Names follow the workspace's rule (as in `face_sort::tolerance` and
+//! `raster_sink::tolerance`): a bare name is *relative* to the size its doc names; `_PX` is in
+//! pixels; `_ABS` is an absolute guard against underflow. docs/ROBUSTNESS.md lists them all.
+
+/// A quad is a parallelogram (and gets an exact affine map) when its corners satisfy
+/// `|P0 + P2 − P1 − P3| ≤ PARALLELOGRAM · D`, `D` being the quad's longest diagonal.
+pub const PARALLELOGRAM: f64 = 1e-9;
+
+/// Two sprite axes `a`, `b` are parallel (no map solves for them) when the determinant of
+/// their normal equations, `|a|²|b|² − (a·b)²`, is at most `SINGULAR_DET · |a|²|b|²`: the
+/// sine of their angle below `1e-12`.
+pub const SINGULAR_DET: f64 = 1e-24;
+
+/// A general quad gets its homography only when the projective weight `w = g u + h v + 1`
+/// stays above `HOMOGRAPHY_W` on the whole unit square (it is 1 for a parallelogram);
+/// otherwise the quad is drawn through a clip polygon.
+pub const HOMOGRAPHY_W: f64 = 1e-6;
+
+/// Offset (pixels) to either side of an edge at which the selection outline tests which face
+/// is on top.
+pub const OUTLINE_PROBE_PX: f64 = 1e-4;
+
+/// Crossings along an edge are parameters in `[0, 1]`: two closer than `EDGE_PARAMETER` are
+/// one, and a crossing counts when it lies within `EDGE_PARAMETER` of the edge's ends.
+pub const EDGE_PARAMETER: f64 = 1e-12;
+
+/// Two edges are parallel (no crossing) when the cross product of their direction vectors is
+/// at most `PARALLEL_EDGES` times the longer one's squared length.
+pub const PARALLEL_EDGES: f64 = 1e-18;
+
+/// Outline segments whose ends agree within this many pixels are one segment.
+pub const SAME_POINT_PX: f64 = 1e-9;
+
+/// Absolute: magnitudes below this count as zero (a determinant before dividing by it, a
+/// matrix entry written to CSS), far below anything a model or page can hold.
+pub const UNDERFLOW_ABS: f64 = 1e-300;
