@@ -6,7 +6,8 @@
 //!   ([`polygon_mesh`], [`load_polygon_mesh`]);
 //! - one seeded random generator ([`Rng`], SplitMix64);
 //! - named generated models ([`models`]): every generated model has one name, and one name
-//!   means one model.
+//!   means one model;
+//! - loader fuzzing's seeds, its one check and the committed loader cases ([`loaders`]).
 //!
 //! The crate is `publish = false`; library crates take it as a dev-dependency only.
 //!
@@ -23,6 +24,7 @@
 //! assert_eq!(models::planar_torus(1_000).face_count(), models::planar_torus(1_000).face_count());
 //! ```
 
+pub mod loaders;
 pub mod models;
 mod paths;
 mod rng;
