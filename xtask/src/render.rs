@@ -97,6 +97,10 @@ pub struct RenderArgs {
     /// Also write an HTML/CSS 3D page of the same view (sprite-compose writer).
     #[arg(long, value_name = "OUT.html")]
     html: Option<PathBuf>,
+    /// Write every polygon into --svg, hidden parts included (the default leaves out every
+    /// polygon, or part of one, that opaque polygons in front cover).
+    #[arg(long)]
+    keep_hidden: bool,
     /// Read files the model names (glTF buffers and images, OBJ mtllib, MTL map_Kd) even
     /// when they resolve outside the model's folder. Only for files you trust.
     #[arg(long)]
@@ -181,6 +185,19 @@ struct Summary {
     pixel_error: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     violations: Option<usize>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    svg: Option<SvgSummary>,
+}
+
+/// What `--svg` wrote.
+#[derive(Debug, Serialize)]
+struct SvgSummary {
+    /// `<polygon>` and `<path>` elements.
+    shapes: usize,
+    bytes: usize,
+    /// Hidden-part removal and writing.
+    write_ms: f64,
+    keep_hidden: bool,
 }
 
 /// Builds the sorter; for `auto`, the planner's choice for one picture, and why.
@@ -313,6 +330,7 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
     } else {
         raster::face_style(&geometry, &mesh, texture, grid.as_ref())?
     };
+    let mut svg_summary = None;
     if args.svg.is_some() || args.html.is_some() {
         // The sprite tree of the same geometry, sorter kind and view, in the materials'
         // colours (a texture as its mean colour), or ID colours with --ids.
@@ -333,13 +351,26 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
         painter.frame();
         let scene = painter.compositor().scene();
         if let Some(path) = &args.svg {
+            let start = Instant::now();
+            let hidden = if args.keep_hidden {
+                sprite_compose::HiddenParts::Keep
+            } else {
+                sprite_compose::HiddenParts::Remove
+            };
             let svg = sprite_compose::write_svg(
                 scene,
                 &sprite_compose::SvgOptions::DEFAULT
                     .with_size(width, height)
                     .with_ids(args.ids)
-                    .with_seam_stroke(1.0),
+                    .with_seam_stroke(1.0)
+                    .with_hidden(hidden),
             );
+            svg_summary = Some(SvgSummary {
+                shapes: svg.matches("<polygon").count() + svg.matches("<path").count(),
+                bytes: svg.len(),
+                write_ms: ms(start),
+                keep_hidden: args.keep_hidden,
+            });
             std::fs::write(path, svg).with_context(|| format!("writing {}", path.display()))?;
         }
         if let Some(path) = &args.html {
@@ -406,6 +437,7 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
         raster_ms,
         pixel_error,
         violations,
+        svg: svg_summary,
     };
     if args.json {
         println!("{}", serde_json::to_string(&summary)?);
@@ -432,6 +464,19 @@ fn line(s: &Summary) -> String {
         out.push_str(&format!(
             "; pixel error {:.4} %, {v} order violations",
             e * 100.0
+        ));
+    }
+    if let Some(svg) = &s.svg {
+        out.push_str(&format!(
+            "; svg {} shapes, {} bytes, {:.1} ms{}",
+            svg.shapes,
+            svg.bytes,
+            svg.write_ms,
+            if svg.keep_hidden {
+                " (hidden kept)"
+            } else {
+                ""
+            }
         ));
     }
     out.push_str(&format!(" -> {}", s.output));

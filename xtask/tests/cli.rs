@@ -213,3 +213,27 @@ fn auto_takes_newell_for_one_picture_of_a_curved_model() {
     assert_eq!(value["violations"], 0, "{value}");
     assert_eq!(value["pixel_error"], 0.0, "{value}");
 }
+
+#[test]
+fn svg_leaves_hidden_parts_out_unless_asked() {
+    let model = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../assets/models/keenan-crane/spot/spot_control_mesh.obj"
+    );
+    let dir = temp_dir("svg-hidden");
+    let mut shapes = Vec::new();
+    for keep in [false, true] {
+        let svg = dir.join(format!("spot-{keep}.svg"));
+        let mut extra = vec!["--cull", "none", "--svg", svg.to_str().unwrap()];
+        if keep {
+            extra.push("--keep-hidden");
+        }
+        let value = render_summary(model, &extra, &format!("svg-hidden-{keep}"));
+        assert_eq!(value["svg"]["keep_hidden"], keep, "{value}");
+        let written = std::fs::read_to_string(&svg).unwrap();
+        assert_eq!(value["svg"]["bytes"], written.len(), "{value}");
+        shapes.push(value["svg"]["shapes"].as_u64().unwrap());
+    }
+    // With no culling about half of the polygons face away and lie behind the others.
+    assert!(shapes[0] * 10 <= shapes[1] * 6, "{shapes:?}");
+}
