@@ -215,6 +215,17 @@ fn auto_takes_newell_for_one_picture_of_a_curved_model() {
 }
 
 #[test]
+fn bench_docs_check_accepts_the_committed_report() {
+    let result = xtask(&["bench", "--docs", "--check"]);
+    assert!(result.status.success(), "{}", text(&result.stderr));
+    assert!(
+        text(&result.stdout).contains("in the current report format"),
+        "{}",
+        text(&result.stdout)
+    );
+}
+
+#[test]
 fn svg_leaves_hidden_parts_out_unless_asked() {
     let model = concat!(
         env!("CARGO_MANIFEST_DIR"),

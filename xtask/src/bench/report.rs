@@ -1,0 +1,447 @@
+//! The report: rows, the Markdown table (docs/bench.md), its format check, and the
+//! console summary.
+
+use std::fmt::Write as _;
+
+use anyhow::{Result, bail};
+use serde::Serialize;
+
+/// One row of the report: a sorter on a scene under one projection, over every view.
+#[derive(Clone, Debug, Serialize)]
+pub struct Row {
+    /// Sorter name (`plane-split` for the peer).
+    pub sorter: String,
+    /// Scene name.
+    pub scene: String,
+    /// `ortho` or `persp`.
+    pub projection: String,
+    /// Faces of the mesh.
+    pub faces: usize,
+    /// Pieces (planar faces plus fan triangles of non-planar ones).
+    pub pieces: usize,
+    /// Views measured.
+    pub views: usize,
+    /// Median per-frame cull+order time over every timed frame, microseconds.
+    pub frame_us: f64,
+    /// `frame_us` ÷ the centroid sorter's on the same scene and projection.
+    pub frame_ratio_vs_centroid: f64,
+    /// Build time of cached state, milliseconds (0 for sorters without any).
+    pub build_ms: f64,
+    /// Mean number of items drawn per view (fragments included).
+    pub fragments: f64,
+    /// Wrong ÷ unambiguous pixels against the z-buffer truth, summed over views (a fraction,
+    /// not a percentage); `null` when not measured.
+    pub pixel_error: Option<f64>,
+    /// Order violations from the oracle, summed over views.
+    pub violations: usize,
+    /// Anything skipped or unusual.
+    pub note: String,
+}
+
+/// One row of the scaling series.
+#[derive(Clone, Debug, Serialize)]
+pub struct ScalingRow {
+    /// Sorter name.
+    pub sorter: String,
+    /// Faces of the generated planar torus.
+    pub faces: usize,
+    /// Build time, milliseconds (`null` when skipped).
+    pub build_ms: Option<f64>,
+    /// Median per-frame time, microseconds (`null` when skipped).
+    pub frame_us: Option<f64>,
+    /// Mean items drawn.
+    pub fragments: Option<f64>,
+    /// Why a measurement was skipped.
+    pub note: String,
+}
+
+pub(super) fn fmt_error(e: Option<f64>) -> String {
+    match e {
+        None => "n/a".to_owned(),
+        Some(0.0) => "0".to_owned(),
+        Some(e) => format!("{:.3} %", e * 100.0),
+    }
+}
+
+pub(super) fn fmt_time(us: f64) -> String {
+    if us.is_nan() {
+        "—".to_owned()
+    } else if us < 1000.0 {
+        format!("{us:.1} µs")
+    } else {
+        format!("{:.2} ms", us / 1000.0)
+    }
+}
+
+/// The Markdown report (what `--docs` writes to docs/bench.md).
+pub(super) fn markdown(
+    command: &str,
+    rows: &[Row],
+    scaling: &[ScalingRow],
+    resolution: u32,
+) -> String {
+    let mut s = String::new();
+    let _ = writeln!(s, "# Bench: time against error\n");
+    let _ = writeln!(
+        s,
+        "Command: `{command}` (release build). Per scene and projection, every view of the set \
+         (yaws × pitches) is measured; **frame** is the median cull+order time over all timed \
+         frames, **× centroid** its ratio to the centroid baseline in the same run, **build** \
+         the one-time cost, **items** the mean polygons drawn per view (fragments included), \
+         **pixel error** wrong ÷ unambiguous pixels against the z-buffer truth at \
+         {resolution}×{resolution} (CONVENTIONS.md), **violations** the oracle's order \
+         violations summed over views. plane-split is rebuilt every frame (as WebRender does).\n"
+    );
+    let _ = writeln!(
+        s,
+        "| scene | proj | faces | pieces | sorter | frame | × centroid | build | items | pixel error | violations | note |"
+    );
+    let _ = writeln!(
+        s,
+        "|---|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---|"
+    );
+    for r in rows {
+        let _ = writeln!(
+            s,
+            "| {} | {} | {} | {} | {} | {} | {} | {:.2} ms | {:.0} | {} | {} | {} |",
+            r.scene,
+            r.projection,
+            r.faces,
+            r.pieces,
+            r.sorter,
+            fmt_time(r.frame_us),
+            if r.frame_ratio_vs_centroid.is_finite() {
+                format!("{:.2}", r.frame_ratio_vs_centroid)
+            } else {
+                "—".to_owned()
+            },
+            r.build_ms,
+            r.fragments,
+            fmt_error(r.pixel_error),
+            if r.views == 0 {
+                "—".to_owned()
+            } else {
+                r.violations.to_string()
+            },
+            r.note
+        );
+    }
+    if !scaling.is_empty() {
+        let _ = writeln!(
+            s,
+            "\n## Scaling (generated planar torus, orthographic 512², two views)\n\n| faces | sorter | build | frame | items | note |\n|---:|---|---:|---:|---:|---|"
+        );
+        for r in scaling {
+            let _ = writeln!(
+                s,
+                "| {} | {} | {} | {} | {} | {} |",
+                r.faces,
+                r.sorter,
+                r.build_ms.map_or("—".to_owned(), |b| format!("{b:.1} ms")),
+                r.frame_us.map_or("—".to_owned(), fmt_time),
+                r.fragments.map_or("—".to_owned(), |f| format!("{f:.0}")),
+                r.note
+            );
+        }
+    }
+    s
+}
+
+/// The console summary: per sorter, geometric-mean ratio to centroid, mean pixel error,
+/// violations.
+pub(super) fn summary(rows: &[Row]) -> String {
+    let mut s =
+        String::from("sorter        ×centroid (geo-mean)  mean pixel error  violations  rows\n");
+    let mut seen: Vec<&str> = Vec::new();
+    for r in rows {
+        let name = r.sorter.as_str();
+        if seen.contains(&name) {
+            continue;
+        }
+        seen.push(name);
+        let mine: Vec<&Row> = rows
+            .iter()
+            .filter(|r| r.sorter == name && r.views > 0)
+            .collect();
+        let ratios: Vec<f64> = mine
+            .iter()
+            .map(|r| r.frame_ratio_vs_centroid)
+            .filter(|r| r.is_finite() && *r > 0.0)
+            .collect();
+        let geo = (ratios.iter().map(|r| r.ln()).sum::<f64>() / ratios.len().max(1) as f64).exp();
+        let errors: Vec<f64> = mine.iter().filter_map(|r| r.pixel_error).collect();
+        let mean_error = errors.iter().sum::<f64>() / errors.len().max(1) as f64;
+        let violations: usize = mine.iter().map(|r| r.violations).sum();
+        let _ = writeln!(
+            s,
+            "{name:<13} {geo:>20.2} {:>17} {violations:>11} {:>5}",
+            if errors.is_empty() {
+                "n/a".to_owned()
+            } else {
+                format!("{:.3} %", mean_error * 100.0)
+            },
+            mine.len()
+        );
+    }
+    s.trim_end().to_owned()
+}
+
+/// Checks that `text` (docs/bench.md) is in the format [`markdown`] writes: its command,
+/// resolution, rows and scaling rows are parsed back and written again, and the result must
+/// be `text` exactly. A changed column, heading, explanation or number format fails.
+pub(super) fn check_format(text: &str) -> Result<()> {
+    let parsed = parse(text)?;
+    let again = markdown(
+        &parsed.command,
+        &parsed.rows,
+        &parsed.scaling,
+        parsed.resolution,
+    );
+    if again == text {
+        return Ok(());
+    }
+    let (line, (want, got)) = again
+        .lines()
+        .zip(text.lines())
+        .enumerate()
+        .find(|(_, (a, b))| a != b)
+        .unwrap_or((
+            again.lines().count().min(text.lines().count()),
+            ("(end of text)", "(end of text)"),
+        ));
+    bail!(
+        "line {}: the current format writes\n  {want}\nbut the file has\n  {got}",
+        line + 1
+    )
+}
+
+/// The rows of a report table (docs/bench.md), as [`markdown`] wrote them.
+pub(super) fn parse_rows(text: &str) -> Result<Vec<Row>> {
+    Ok(parse(text)?.rows)
+}
+
+/// What a report table holds.
+struct Parsed {
+    command: String,
+    resolution: u32,
+    rows: Vec<Row>,
+    scaling: Vec<ScalingRow>,
+}
+
+fn parse(text: &str) -> Result<Parsed> {
+    let command = text
+        .split_once("Command: `")
+        .and_then(|(_, rest)| rest.split_once('`'))
+        .map(|(c, _)| c.to_owned())
+        .ok_or_else(|| anyhow::anyhow!("no \"Command: `…`\" line"))?;
+    let resolution = text
+        .split_once("z-buffer truth at ")
+        .and_then(|(_, rest)| rest.split_once('×'))
+        .and_then(|(r, _)| r.parse().ok())
+        .ok_or_else(|| anyhow::anyhow!("no \"z-buffer truth at N×N\" resolution"))?;
+    let mut rows = Vec::new();
+    let mut scaling = Vec::new();
+    let mut in_scaling = false;
+    for line in text.lines() {
+        if line.starts_with("## Scaling") {
+            in_scaling = true;
+            continue;
+        }
+        if !line.starts_with("| ") || line.starts_with("| scene ") || line.starts_with("| faces ") {
+            continue;
+        }
+        let cells: Vec<&str> = line
+            .strip_prefix("| ")
+            .and_then(|l| l.strip_suffix(" |"))
+            .unwrap_or(line)
+            .split(" | ")
+            .collect();
+        if in_scaling {
+            scaling.push(parse_scaling_row(&cells).map_err(|e| anyhow::anyhow!("{line}: {e}"))?);
+        } else {
+            rows.push(parse_row(&cells).map_err(|e| anyhow::anyhow!("{line}: {e}"))?);
+        }
+    }
+    Ok(Parsed {
+        command,
+        resolution,
+        rows,
+        scaling,
+    })
+}
+
+/// Inverse of [`fmt_time`].
+fn parse_time(cell: &str) -> Result<f64> {
+    if cell == "—" {
+        return Ok(f64::NAN);
+    }
+    if let Some(us) = cell.strip_suffix(" µs") {
+        return Ok(us.parse()?);
+    }
+    if let Some(ms) = cell.strip_suffix(" ms") {
+        return Ok(ms.parse::<f64>()? * 1000.0);
+    }
+    bail!("not a time: {cell:?}")
+}
+
+/// Inverse of [`fmt_error`].
+fn parse_error(cell: &str) -> Result<Option<f64>> {
+    Ok(match cell {
+        "n/a" => None,
+        "0" => Some(0.0),
+        _ => match cell.strip_suffix(" %") {
+            Some(p) => Some(p.parse::<f64>()? / 100.0),
+            None => bail!("not a pixel error: {cell:?}"),
+        },
+    })
+}
+
+fn parse_row(cells: &[&str]) -> Result<Row> {
+    let [
+        scene,
+        projection,
+        faces,
+        pieces,
+        sorter,
+        frame,
+        ratio,
+        build,
+        items,
+        error,
+        violations,
+        note,
+    ] = cells
+    else {
+        bail!("{} cells, the table has 12", cells.len());
+    };
+    let build = build
+        .strip_suffix(" ms")
+        .ok_or_else(|| anyhow::anyhow!("build time without ms: {build:?}"))?;
+    Ok(Row {
+        sorter: (*sorter).to_owned(),
+        scene: (*scene).to_owned(),
+        projection: (*projection).to_owned(),
+        faces: faces.parse()?,
+        pieces: pieces.parse()?,
+        views: usize::from(*violations != "—"),
+        frame_us: parse_time(frame)?,
+        frame_ratio_vs_centroid: if *ratio == "—" {
+            f64::NAN
+        } else {
+            ratio.parse()?
+        },
+        build_ms: build.parse()?,
+        fragments: items.parse()?,
+        pixel_error: parse_error(error)?,
+        violations: if *violations == "—" {
+            0
+        } else {
+            violations.parse()?
+        },
+        note: note.trim_end().to_owned(),
+    })
+}
+
+fn parse_scaling_row(cells: &[&str]) -> Result<ScalingRow> {
+    let [faces, sorter, build, frame, items, note] = cells else {
+        bail!("{} cells, the scaling table has 6", cells.len());
+    };
+    let optional = |cell: &str| cell != "—";
+    Ok(ScalingRow {
+        sorter: (*sorter).to_owned(),
+        faces: faces.parse()?,
+        build_ms: match build.strip_suffix(" ms") {
+            Some(b) if optional(build) => Some(b.parse()?),
+            _ => None,
+        },
+        frame_us: if optional(frame) {
+            Some(parse_time(frame)?)
+        } else {
+            None
+        },
+        fragments: if optional(items) {
+            Some(items.parse()?)
+        } else {
+            None
+        },
+        note: note.trim_end().to_owned(),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn row(sorter: &str, frame_us: f64, error: Option<f64>) -> Row {
+        Row {
+            sorter: sorter.to_owned(),
+            scene: "spot".to_owned(),
+            projection: "ortho".to_owned(),
+            faces: 2928,
+            pieces: 5854,
+            views: 16,
+            frame_us,
+            frame_ratio_vs_centroid: frame_us / 75.7,
+            build_ms: 0.05,
+            fragments: 2927.0,
+            pixel_error: error,
+            violations: 29,
+            note: String::new(),
+        }
+    }
+
+    fn sample() -> String {
+        let rows = [
+            row("centroid", 75.7, Some(0.0)),
+            row("topological", 12010.0, Some(0.00059)),
+            Row {
+                views: 0,
+                note: "skipped: 20000 pieces".to_owned(),
+                ..row("plane-split", f64::NAN, None)
+            },
+        ];
+        let scaling = [
+            ScalingRow {
+                sorter: "bsp".to_owned(),
+                faces: 1014,
+                build_ms: Some(3.2),
+                frame_us: Some(25.0),
+                fragments: Some(1500.0),
+                note: String::new(),
+            },
+            ScalingRow {
+                sorter: "plane-split".to_owned(),
+                faces: 100_000,
+                build_ms: None,
+                frame_us: None,
+                fragments: None,
+                note: "skipped".to_owned(),
+            },
+        ];
+        markdown("cargo xtask bench", &rows, &scaling, 256)
+    }
+
+    #[test]
+    fn the_written_format_passes_its_check() {
+        check_format(&sample()).unwrap();
+    }
+
+    #[test]
+    fn a_changed_format_fails_the_check() {
+        let text = sample();
+        // A column dropped from every row, a heading renamed, a number written differently.
+        let dropped = text.replace(" | 0.05 ms |", " |");
+        assert!(check_format(&dropped).is_err());
+        let renamed = text.replace("## Scaling (generated planar torus", "## Scaling (torus");
+        assert!(check_format(&renamed).is_err());
+        let reformatted = text.replace("75.7 µs", "75.70 µs");
+        assert!(check_format(&reformatted).is_err());
+    }
+
+    #[test]
+    fn the_committed_docs_are_in_the_current_format() {
+        let path = crate::workspace_root().join("docs/bench.md");
+        let text = std::fs::read_to_string(&path).unwrap();
+        check_format(&text).unwrap();
+    }
+}

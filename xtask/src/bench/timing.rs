@@ -1,0 +1,181 @@
+//! Timing and checking on the repository's scenes: views, timed frames, medians, and the
+//! per-(sorter, projection) accumulation of fragments, pixel error and oracle violations.
+
+use std::time::Instant;
+
+use anyhow::{Context, Result};
+use face_sort::{DrawList, FaceSorter, Geometry, SorterKind, View, oracle};
+
+use super::{Budget, PEER, Row};
+use crate::peer::PlaneSplitPeer;
+use crate::raster;
+use crate::scenes::Scene;
+
+/// The bench's views of a scene: `yaws` yaws (offset from the axes) × pitches.
+fn views(geometry: &Geometry, scene: &Scene, budget: &Budget, size: u32, persp: bool) -> Vec<View> {
+    let mut out = Vec::new();
+    for k in 0..budget.yaws {
+        let yaw = 15.0 + 360.0 * k as f64 / budget.yaws as f64;
+        for &pitch in budget.pitches {
+            let mut view = View::fit(&geometry.bounds(), size, size)
+                .with_yaw_pitch_roll(yaw, pitch, 0.0)
+                .with_cull(scene.cull);
+            if persp {
+                view = view.with_perspective(f64::from(size));
+            }
+            out.push(view);
+        }
+    }
+    out
+}
+
+/// Times `frame` until `budget.frames` frames or `budget.per_view` elapsed (at least 3).
+pub(super) fn time_frames(budget: &Budget, times: &mut Vec<f64>, mut frame: impl FnMut()) {
+    frame(); // warm-up: first-frame allocations are not the steady state.
+    let start = Instant::now();
+    for i in 0..budget.frames {
+        let t = Instant::now();
+        frame();
+        times.push(t.elapsed().as_secs_f64() * 1e6);
+        if i >= 2 && start.elapsed() >= budget.per_view {
+            break;
+        }
+    }
+}
+
+/// The median (NaN for none); sorts `values`.
+pub(super) fn median(values: &mut [f64]) -> f64 {
+    if values.is_empty() {
+        return f64::NAN;
+    }
+    values.sort_by(f64::total_cmp);
+    let n = values.len();
+    if n % 2 == 1 {
+        values[n / 2]
+    } else {
+        0.5 * (values[n / 2 - 1] + values[n / 2])
+    }
+}
+
+/// Accumulates one (sorter, projection) over views.
+#[derive(Default)]
+struct Acc {
+    times: Vec<f64>,
+    items: usize,
+    wrong: u64,
+    unambiguous: u64,
+    error_measured: bool,
+    violations: usize,
+    views: usize,
+}
+
+impl Acc {
+    fn check(&mut self, view: &View, list: &DrawList, truth: Option<&raster::Truth>) {
+        self.views += 1;
+        self.items += list.len();
+        self.violations += oracle::count_violations(view, list);
+        if let Some(truth) = truth {
+            let error = raster::pixel_error(view, list, truth);
+            self.wrong += error.wrong;
+            self.unambiguous += error.pixels;
+            self.error_measured = true;
+        }
+    }
+
+    fn row(
+        mut self,
+        sorter: &str,
+        scene: &Scene,
+        geometry: &Geometry,
+        projection: &str,
+        build_ms: f64,
+    ) -> Row {
+        Row {
+            sorter: sorter.to_owned(),
+            scene: scene.name.clone(),
+            projection: projection.to_owned(),
+            faces: geometry.face_count(),
+            pieces: geometry.pieces().len(),
+            views: self.views,
+            frame_us: median(&mut self.times),
+            frame_ratio_vs_centroid: f64::NAN,
+            build_ms,
+            fragments: self.items as f64 / self.views.max(1) as f64,
+            pixel_error: self
+                .error_measured
+                .then(|| self.wrong as f64 / self.unambiguous.max(1) as f64),
+            violations: self.violations,
+            note: String::new(),
+        }
+    }
+}
+
+/// Every sorter and the peer on one scene, orthographic and perspective.
+pub(super) fn bench_scene(scene: &Scene, budget: &Budget, resolution: u32) -> Result<Vec<Row>> {
+    let geometry = Geometry::new(&scene.mesh).with_context(|| format!("scene {}", scene.name))?;
+    let mut sorters: Vec<(Box<dyn FaceSorter>, f64)> = SorterKind::ALL
+        .into_iter()
+        .map(|kind| {
+            let start = Instant::now();
+            let sorter = kind.build(&geometry);
+            let measured = start.elapsed().as_secs_f64() * 1e3;
+            (sorter, measured)
+        })
+        .collect();
+    let pieces = geometry.pieces().len();
+    let run_peer = pieces <= budget.peer_pieces;
+    let mut peer = PlaneSplitPeer::new(&geometry);
+    let mut list = DrawList::new();
+    let mut rows = Vec::new();
+    for (projection, persp) in [("ortho", false), ("persp", true)] {
+        let views = views(&geometry, scene, budget, resolution, persp);
+        let mut accs: Vec<Acc> = sorters.iter().map(|_| Acc::default()).collect();
+        let mut peer_acc = Acc::default();
+        for view in &views {
+            let truth = raster::truth(view, &geometry);
+            for ((sorter, _), acc) in sorters.iter_mut().zip(accs.iter_mut()) {
+                time_frames(budget, &mut acc.times, || sorter.sort(view, &mut list));
+                acc.check(view, &list, truth.as_ref());
+            }
+            if run_peer {
+                time_frames(budget, &mut peer_acc.times, || {
+                    peer.frame(view);
+                });
+                peer.write_draw_list(view, &mut list);
+                peer_acc.check(view, &list, truth.as_ref());
+            }
+        }
+        let mut scene_rows: Vec<Row> = sorters
+            .iter()
+            .zip(accs)
+            .map(|((sorter, measured), acc)| {
+                let build_ms = match sorter.stats().build_ms {
+                    b if b > 0.0 => b,
+                    _ => *measured,
+                };
+                acc.row(sorter.name(), scene, &geometry, projection, build_ms)
+            })
+            .collect();
+        if run_peer {
+            let mut row = peer_acc.row(PEER, scene, &geometry, projection, 0.0);
+            row.note = "rebuilt every frame".to_owned();
+            scene_rows.push(row);
+        } else {
+            let mut row = Acc::default().row(PEER, scene, &geometry, projection, 0.0);
+            row.note = format!(
+                "skipped: {pieces} pieces > {} (per-frame rebuild)",
+                budget.peer_pieces
+            );
+            scene_rows.push(row);
+        }
+        let base = scene_rows
+            .iter()
+            .find(|r| r.sorter == "centroid")
+            .map_or(f64::NAN, |r| r.frame_us);
+        for row in &mut scene_rows {
+            row.frame_ratio_vs_centroid = row.frame_us / base;
+        }
+        rows.extend(scene_rows);
+    }
+    Ok(rows)
+}
