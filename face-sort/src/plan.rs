@@ -25,7 +25,7 @@ use std::sync::Arc;
 use glam::DVec3;
 
 use crate::tolerance::PLANE_SIDE;
-use crate::{Bsp, DrawList, FaceSorter, Geometry, Newell, PolygonSet, SorterStats, View};
+use crate::{Bsp, DrawItem, DrawList, FaceSorter, Geometry, Newell, PolygonSet, SorterStats, View};
 
 /// What the caller will do with the sorter, for the planner's cost model.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -244,9 +244,18 @@ impl FaceSorter for CullOnly {
 
 /// The planner's sorter: analyses the geometry once ([`Plan::analyse`]) and runs what the
 /// plan names. The default of the command line.
+///
+/// **Same view, no work:** when `sort` is called with the view of its previous call and a list
+/// that still holds what that call wrote (same polygons, same items, compared in one pass),
+/// it returns at once; [`skipped_frames`](Self::skipped_frames) counts those calls.
 pub struct Auto {
     plan: Plan,
     inner: Box<dyn FaceSorter>,
+    last_view: Option<View>,
+    last_shared: Option<Arc<PolygonSet>>,
+    last_items: Vec<DrawItem>,
+    last_frame_polygons: usize,
+    skipped: u64,
 }
 
 impl std::fmt::Debug for Auto {
@@ -261,7 +270,21 @@ impl Auto {
     pub fn new(geometry: &Geometry, hint: PlanHint) -> Self {
         let plan = Plan::analyse(geometry, hint);
         let inner = plan.build(geometry);
-        Auto { plan, inner }
+        Auto {
+            plan,
+            inner,
+            last_view: None,
+            last_shared: None,
+            last_items: Vec::new(),
+            last_frame_polygons: 0,
+            skipped: 0,
+        }
+    }
+
+    /// Calls of `sort` that found the view and the list unchanged and did nothing.
+    #[must_use]
+    pub fn skipped_frames(&self) -> u64 {
+        self.skipped
     }
 
     /// The plan followed.
@@ -277,7 +300,24 @@ impl FaceSorter for Auto {
     }
 
     fn sort(&mut self, view: &View, out: &mut DrawList) {
+        let same_polygons = match (out.shared(), &self.last_shared) {
+            (Some(now), Some(last)) => Arc::ptr_eq(now, last),
+            _ => false,
+        };
+        if self.last_view.as_ref() == Some(view)
+            && same_polygons
+            && out.frame_fragments() == self.last_frame_polygons
+            && out.items() == self.last_items.as_slice()
+        {
+            self.skipped += 1;
+            return;
+        }
         self.inner.sort(view, out);
+        self.last_view = Some(*view);
+        self.last_shared = out.shared().cloned();
+        self.last_frame_polygons = out.frame_fragments();
+        self.last_items.clear();
+        self.last_items.extend_from_slice(out.items());
     }
 
     fn stats(&self) -> SorterStats {

@@ -167,3 +167,32 @@ fn one_frame_of_a_real_model_takes_newell_and_animation_takes_bsp() {
         }
     }
 }
+
+#[test]
+fn the_same_view_again_costs_nothing_and_a_changed_list_is_redone() {
+    let spot = common::read_obj(&common::asset("keenan-crane/spot/spot_quadrangulated.obj"));
+    let geometry = Geometry::new(&spot).unwrap();
+    for hint in [PlanHint::ONE_FRAME, PlanHint::ANIMATION] {
+        let mut auto = Auto::new(&geometry, hint);
+        let view = View::fit(&geometry.bounds(), 200, 200).with_yaw_pitch_roll(40.0, 10.0, 0.0);
+        let mut list = DrawList::new();
+        auto.sort(&view, &mut list);
+        let first = list.items().to_vec();
+        auto.sort(&view, &mut list);
+        assert_eq!(auto.skipped_frames(), 1);
+        assert_eq!(list.items(), first.as_slice());
+        // A list changed since: sorted again.
+        list.items_mut().pop();
+        auto.sort(&view, &mut list);
+        assert_eq!(auto.skipped_frames(), 1);
+        assert_eq!(list.items(), first.as_slice());
+        // Another list that never held this frame: sorted.
+        let mut other = DrawList::new();
+        auto.sort(&view, &mut other);
+        assert_eq!(auto.skipped_frames(), 1);
+        assert_eq!(other.items(), first.as_slice());
+        // Another view: sorted.
+        auto.sort(&view.with_yaw_pitch_roll(41.0, 10.0, 0.0), &mut list);
+        assert_eq!(auto.skipped_frames(), 1);
+    }
+}
