@@ -126,3 +126,8 @@ impl SorterKind {
         }
     }
 }
+
+/// The crate's README: its examples are compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;

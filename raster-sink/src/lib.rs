@@ -94,3 +94,8 @@ pub use tiny_skia;
 pub const MAX_IMAGE_SIDE: u32 = 16384;
 /// Largest pixel count the colour raster accepts (after supersampling).
 pub const MAX_IMAGE_PIXELS: u64 = 1 << 28;
+
+/// The crate's README: its examples are compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;

@@ -80,3 +80,8 @@ pub use transform::{MapKind, PieceMap, PieceMaps, SpriteSpace, SpriteTransform, 
 
 pub use face_sort;
 pub use glam;
+
+/// The crate's README: its examples are compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;

@@ -39,7 +39,7 @@ fn temp_dir(name: &str) -> PathBuf {
     dir
 }
 
-/// Screenshots `html` at `SIZE × SIZE` with the flags of DEPENDENCIES.md; returns RGBA bytes.
+/// Screenshots `html` at `SIZE × SIZE` with the flags of docs/CHROMIUM.md; returns RGBA bytes.
 fn screenshot(browser: &Path, html: &str, name: &str) -> Vec<u8> {
     let dir = temp_dir(name);
     let page = dir.join("page.html");
