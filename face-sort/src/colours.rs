@@ -8,13 +8,28 @@ pub const PALETTE_VALUE: f64 = 0.92;
 /// The palette's hue step per face, in degrees (the golden angle).
 pub const GOLDEN_ANGLE_DEG: f64 = 137.508;
 
-/// The ID colour of a face (CONVENTIONS.md): `face + 1` as 24-bit RGB, R the high byte, opaque.
-/// Face indices from `2^24 − 1` on wrap.
+/// The ID value of a face (CONVENTIONS.md): its index + 1; 0 is the background.
+#[inline]
+#[must_use]
+pub fn id_value(face: u32) -> u32 {
+    face.wrapping_add(1)
+}
+
+/// The 24-bit RGB encoding of an ID value (not a face index: see [`id_value`]), R the high
+/// byte, as stored in ID images.
+#[inline]
+#[must_use]
+pub fn id_value_to_rgb(value: u32) -> [u8; 3] {
+    [(value >> 16) as u8, (value >> 8) as u8, value as u8]
+}
+
+/// The ID colour of a face (CONVENTIONS.md): [`id_value`] `= face + 1` as 24-bit RGB
+/// ([`id_value_to_rgb`]), opaque. Face indices from `2^24 − 1` on wrap.
 #[inline]
 #[must_use]
 pub fn id_colour(face: u32) -> [u8; 4] {
-    let id = face.wrapping_add(1);
-    [(id >> 16) as u8, (id >> 8) as u8, id as u8, 255]
+    let [r, g, b] = id_value_to_rgb(id_value(face));
+    [r, g, b, 255]
 }
 
 /// The seed's fallback palette: hue `face · 137.508°`, saturation 0.55, value 0.92, opaque.
@@ -46,6 +61,8 @@ mod tests {
     fn id_colour_is_face_plus_one() {
         assert_eq!(id_colour(0), [0, 0, 1, 255]);
         assert_eq!(id_colour(0x01_0202), [1, 2, 3, 255]);
+        assert_eq!(id_value_to_rgb(id_value(0x01_0202)), [1, 2, 3]);
+        assert_eq!(id_value_to_rgb(0), [0, 0, 0]); // the background
     }
 
     #[test]

@@ -3,6 +3,7 @@
 use std::io::BufWriter;
 use std::path::Path;
 
+use face_sort::colours::id_value_to_rgb;
 use face_sort::{DrawList, View};
 
 use crate::RasterError;
@@ -67,7 +68,7 @@ impl IdImage {
     pub fn to_rgb_bytes(&self) -> Vec<u8> {
         let mut out = Vec::with_capacity(self.ids.len() * 3);
         for &id in &self.ids {
-            out.extend_from_slice(&id_to_rgb(id));
+            out.extend_from_slice(&id_value_to_rgb(id));
         }
         out
     }
@@ -126,13 +127,6 @@ impl IdImage {
             .collect();
         IdImage::new(info.width, info.height, ids)
     }
-}
-
-/// The RGB encoding of an ID value (R high byte).
-#[inline]
-#[must_use]
-pub fn id_to_rgb(id: u32) -> [u8; 3] {
-    [(id >> 16) as u8, (id >> 8) as u8, id as u8]
 }
 
 /// Renders the ID image of a draw list: every item filled at pixel centres (f64, top-left

@@ -9,7 +9,7 @@
 //!   nearest, in f64, with the mask of unambiguous pixels; [`pixel_error`] compares a
 //!   painter's ID image with it. An exact order gives exactly 0.
 //! - **Colour** ([`render_colour`], [`run_steps`]) on tiny-skia: anti-aliased, with solid,
-//!   textured ([`UvMap`]) and palette brushes ([`golden_angle_colour`]), flat Lambert
+//!   textured ([`UvMap`]) and palette brushes ([`face_sort::colours::golden_angle_colour`]), flat Lambert
 //!   shading ([`Light`]), supersampling, override brushes, a small list of render [`Step`]s,
 //!   and a procedural [`GroundGrid`].
 //!
@@ -76,14 +76,11 @@ pub use colour::{
 pub use error::RasterError;
 pub use fill::{for_each_pixel_near_segment, for_each_span};
 pub use grid::GroundGrid;
-pub use ids::{IdImage, MAX_ID_FACE, id_to_rgb, render_ids, render_ids_into};
+pub use ids::{IdImage, MAX_ID_FACE, render_ids, render_ids_into};
 pub use materials::{
     FaceMaterials, MaterialOptions, MaterialStyle, load_texture, load_texture_with,
 };
-pub use style::{
-    Brush, GOLDEN_ANGLE_DEG, PALETTE_SATURATION, PALETTE_VALUE, Style, TextureBrush, UvMap,
-    golden_angle_colour,
-};
+pub use style::{Brush, Style, TextureBrush, UvMap};
 pub use truth::{PixelError, Truth, pixel_error, truth};
 
 pub use face_sort;

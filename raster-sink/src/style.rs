@@ -124,7 +124,7 @@ pub struct Style {
 }
 
 impl Style {
-    /// Every face in its palette colour ([`golden_angle_colour`]).
+    /// Every face in its palette colour ([`face_sort::colours::golden_angle_colour`]).
     #[must_use]
     pub fn palette() -> Self {
         Style::default()
@@ -180,7 +180,3 @@ impl Style {
             .or(self.default.as_ref())
     }
 }
-
-pub use face_sort::colours::{
-    GOLDEN_ANGLE_DEG, PALETTE_SATURATION, PALETTE_VALUE, golden_angle_colour,
-};

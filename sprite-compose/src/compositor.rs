@@ -36,7 +36,8 @@ pub enum Brush {
         /// Colour used by backends that cannot draw textures.
         fallback: [u8; 4],
     },
-    /// The golden-angle palette colour of the sprite's face ([`golden_angle_colour`]).
+    /// The golden-angle palette colour of the sprite's face
+    /// ([`face_sort::colours::golden_angle_colour`]).
     Palette,
 }
 
@@ -53,7 +54,7 @@ impl Brush {
     }
 }
 
-pub use face_sort::colours::{golden_angle_colour, id_colour};
+use face_sort::colours::golden_angle_colour;
 
 /// A retained compositor without a depth buffer: a stack of sprites (bottom first, painted in
 /// stack order) under one root transform.
@@ -183,6 +184,7 @@ impl<C: Compositor + ?Sized> Compositor for Counting<'_, C> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use face_sort::colours::id_colour;
 
     #[test]
     fn id_colour_is_face_plus_one() {

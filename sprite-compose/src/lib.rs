@@ -66,9 +66,7 @@ pub use bake::{
     AngleRange, Bake, BakeCell, BakeSlot, BakedContainer, BakedGraph, BakedSprite, FacingPredicate,
     convex_facing_predicates,
 };
-pub use compositor::{
-    Brush, Compositor, OpCounts, SpriteId, TextureId, golden_angle_colour, id_colour,
-};
+pub use compositor::{Brush, Compositor, OpCounts, SpriteId, TextureId};
 pub use hidden::{HiddenParts, Visibility, visible_parts};
 pub use html::{HtmlMode, HtmlOptions, css_matrix3d, write_html};
 pub use painter::{FrameStats, RotationHandle, RotationSource, SpritePainter};
@@ -79,6 +77,8 @@ pub use svg::{SvgOptions, project_sprite, write_svg};
 pub use transform::{MapKind, PieceMap, PieceMaps, SpriteSpace, SpriteTransform, piece_map};
 
 pub use face_sort;
+// The ID colour for the writers (`crate::id_colour`); exported once, by face-sort.
+use face_sort::colours::id_colour;
 pub use glam;
 
 /// The crate's README: its examples are compiled and run as doctests.

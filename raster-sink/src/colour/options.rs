@@ -7,7 +7,7 @@ use super::shading::Light;
 /// A brush that replaces every face's own brush in a draw step.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Override {
-    /// Each face's brush from the [`Style`].
+    /// Each face's brush from the [`Style`](crate::Style).
     #[default]
     None,
     /// Everything in one colour (sRGB, straight alpha).
@@ -16,7 +16,7 @@ pub enum Override {
     /// Drawn by tiny-skia, so not exact at shared edges: use
     /// [`render_ids`](crate::render_ids) for measurements.
     IdColours,
-    /// Each face in its palette colour ([`golden_angle_colour`]).
+    /// Each face in its palette colour ([`face_sort::colours::golden_angle_colour`]).
     Palette,
 }
 

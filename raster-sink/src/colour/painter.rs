@@ -11,10 +11,10 @@ use super::shading::{lambert, shade_colour};
 use crate::RasterError;
 use crate::fill::for_each_span;
 use crate::grid::GridShader;
-use crate::ids::id_to_rgb;
 use crate::project::Projector;
 use crate::seams::{ScreenPolygons, SharedEdges, outset_polygon};
-use crate::style::{Brush, Style, golden_angle_colour};
+use crate::style::{Brush, Style};
+use face_sort::colours::{golden_angle_colour, id_colour};
 
 /// What a draw step paints and how: the same for every polygon of the step.
 #[derive(Clone, Copy)]
@@ -100,10 +100,7 @@ impl Painter {
             };
             let colour = match brush_override {
                 Override::Solid(c) => Some(c),
-                Override::IdColours => {
-                    let [r, g, b] = id_to_rgb(item.face.wrapping_add(1));
-                    Some([r, g, b, 255])
-                }
+                Override::IdColours => Some(id_colour(item.face)),
                 Override::Palette => Some(golden_angle_colour(item.face)),
                 Override::None => match brush {
                     None => Some(golden_angle_colour(item.face)),

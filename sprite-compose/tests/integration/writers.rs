@@ -1,11 +1,11 @@
 //! SVG through resvg and picking, compared with raster-sink at the same view.
 
 use raster_sink::{IdImage, Truth, pixel_error, render_ids, truth};
+use sprite_compose::face_sort::colours::{golden_angle_colour, id_colour};
 use sprite_compose::face_sort::{Geometry, SorterKind, View};
 use sprite_compose::glam::DVec2;
 use sprite_compose::{
-    Brush, RecordingCompositor, SpritePainter, SvgOptions, golden_angle_colour, id_colour,
-    outline_svg_path, write_svg,
+    Brush, RecordingCompositor, SpritePainter, SvgOptions, outline_svg_path, write_svg,
 };
 
 use crate::support::{self, Rng};
