@@ -315,10 +315,29 @@ impl FaceSorter for Newell {
         self.stack.clear();
         self.projected.clear();
         self.fallbacks = 0;
+        // Frustum culling: a piece whose projection misses the image (in view units, like
+        // the work boxes) covers no pixel and orders nothing that is seen; it is not drawn.
+        let inv_scale = 1.0 / view.scale();
+        let image = Box2 {
+            min: DVec2::ZERO,
+            max: DVec2::new(f64::from(view.width()), f64::from(view.height())) * inv_scale,
+        };
         for i in 0..self.pieces.len() {
             if cull.is_drawn(self.pieces.plane(i), self.pieces.corners(i)[0]) {
                 let w = self.add_work(view, out, i as u32, self.pieces.face(i));
-                self.remaining.push(w);
+                let bounds = self.work[w as usize].bounds;
+                let in_image = bounds.min.x < image.max.x
+                    && image.min.x < bounds.max.x
+                    && bounds.min.y < image.max.y
+                    && image.min.y < bounds.max.y;
+                if in_image {
+                    self.remaining.push(w);
+                } else {
+                    let start = self.work[w as usize].projected_start as usize;
+                    self.projected.truncate(start);
+                    self.work.pop();
+                    self.done.pop();
+                }
             }
         }
         let work = &self.work;

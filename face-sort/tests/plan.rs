@@ -196,3 +196,51 @@ fn the_same_view_again_costs_nothing_and_a_changed_list_is_redone() {
         assert_eq!(auto.skipped_frames(), 1);
     }
 }
+
+#[test]
+fn newell_leaves_out_pieces_outside_the_image() {
+    use face_sort::Newell;
+    let spot = common::read_obj(&common::asset("keenan-crane/spot/spot_quadrangulated.obj"));
+    let geometry = Geometry::new(&spot).unwrap();
+    let fit = View::fit(&geometry.bounds(), 200, 200).with_yaw_pitch_roll(30.0, 10.0, 0.0);
+    let mut newell = Newell::new(&geometry);
+    let mut whole = DrawList::new();
+    newell.sort(&fit, &mut whole);
+    for (zoom, persp) in [(4.0, None), (6.0, Some(300.0))] {
+        let mut view = fit.with_scale(fit.scale() * zoom);
+        if let Some(d) = persp {
+            view = view.with_perspective(d);
+        }
+        let mut list = DrawList::new();
+        newell.sort(&view, &mut list);
+        assert!(
+            list.len() * 2 < whole.len(),
+            "{} of {}",
+            list.len(),
+            whole.len()
+        );
+        assert_eq!(oracle::count_violations(&view, &list), 0);
+        // Every item left overlaps the image.
+        for &item in list.items() {
+            let corners: Vec<_> = list
+                .corners(item)
+                .iter()
+                .map(|&c| view.to_view(c))
+                .collect();
+            let (mut lo, mut hi) = (
+                glam::DVec2::splat(f64::INFINITY),
+                glam::DVec2::splat(f64::NEG_INFINITY),
+            );
+            for c in &corners {
+                if let Some(p) = view.project_view_point(*c) {
+                    lo = lo.min(p);
+                    hi = hi.max(p);
+                }
+            }
+            assert!(
+                hi.x > 0.0 && lo.x < 200.0 && hi.y > 0.0 && lo.y < 200.0,
+                "{lo} {hi}"
+            );
+        }
+    }
+}
