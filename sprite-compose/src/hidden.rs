@@ -17,6 +17,8 @@
 //! them but cover nothing.
 
 use glam::DVec2;
+
+use crate::tolerance::{HIDDEN_GRID_BITS, MIN_PART_AREA_PX2};
 use i_overlay::core::fill_rule::FillRule;
 use i_overlay::core::overlay::{IntOverlayOptions, Overlay};
 use i_overlay::core::overlay_rule::OverlayRule;
@@ -47,15 +49,6 @@ pub enum HiddenParts {
     Remove,
 }
 
-/// Bits of the grid across the largest coordinate: an f64's mantissa.
-const GRID_BITS: i32 = 52;
-
-/// Visible parts (and holes) smaller than this many square pixels are not written: the
-/// square of the 1e-4 px to which the writers print coordinates. What it drops are the
-/// slivers, a grid step wide, that rounding leaves where a corner of one polygon lies on an
-/// edge of another (T-junctions); a dropped hole is painted over by the polygon in front.
-const MIN_PART_AREA_PX2: f64 = 1e-8;
-
 /// The picture's integer grid: `round((p − origin) · scale)`.
 struct Grid {
     origin: DVec2,
@@ -71,7 +64,7 @@ impl Grid {
         let origin = (lo + hi) * 0.5;
         let reach = (hi - lo).max_element() * 0.5;
         let scale = if reach.is_finite() && reach > 0.0 {
-            2f64.powi(GRID_BITS) / reach
+            2f64.powi(HIDDEN_GRID_BITS) / reach
         } else {
             1.0
         };

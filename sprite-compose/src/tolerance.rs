@@ -36,3 +36,15 @@ pub const SAME_POINT_PX: f64 = 1e-9;
 /// Absolute: magnitudes below this count as zero (a determinant before dividing by it, a
 /// matrix entry written to CSS), far below anything a model or page can hold.
 pub const UNDERFLOW_ABS: f64 = 1e-300;
+
+/// Hidden-part removal ([`visible_parts`](crate::visible_parts)) does not write visible parts
+/// or holes smaller than this many square pixels: the square of the 1e-4 px to which the
+/// writers print coordinates. What it drops are the slivers, one grid step wide, that
+/// rounding leaves where a corner of one polygon lies on an edge of another (T-junctions); a
+/// dropped hole is painted over by the polygon in front.
+pub const MIN_PART_AREA_PX2: f64 = 1e-8;
+
+/// Bits of hidden-part removal's integer grid across the largest coordinate of a picture:
+/// an f64's mantissa, so that rounding onto it moves no corner by more than the coordinate's
+/// own precision.
+pub const HIDDEN_GRID_BITS: i32 = 52;
