@@ -82,6 +82,11 @@ mod gltf_load;
 #[cfg(feature = "obj")]
 mod obj;
 
+/// The crate's README: its examples are compiled and run as doctests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;
+
 use std::io::Read;
 use std::path::Path;
 
@@ -141,6 +146,16 @@ pub(crate) fn read_file_capped(path: &Path, file: &str, max: u64) -> Result<Vec<
         file: file.to_owned(),
         source,
     };
+    // Check before opening: opening a FIFO or a device can block or have effects.
+    let not_regular = || {
+        io(std::io::Error::new(
+            std::io::ErrorKind::InvalidInput,
+            "not a regular file",
+        ))
+    };
+    if !std::fs::metadata(path).map_err(io)?.is_file() {
+        return Err(not_regular());
+    }
     let f = std::fs::File::open(path).map_err(io)?;
     let meta = f.metadata().map_err(io)?;
     if !meta.is_file() {

@@ -129,6 +129,30 @@ fn gltf_buffer_through_a_symlink_out_is_refused() {
     assert!(load(&model, &trusted()).is_ok());
 }
 
+#[cfg(unix)]
+#[test]
+fn special_files_are_not_opened() {
+    // A FIFO would block `open` until a writer comes: it must be refused before.
+    let dir = scratch("fifo");
+    let fifo = dir.join("model/pipe.bin");
+    fs::create_dir_all(dir.join("model")).unwrap();
+    let made = std::process::Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .expect("mkfifo runs");
+    assert!(made.success());
+    let model = dir.join("model/scene.gltf");
+    write(&model, gltf_with("pipe.bin", "t.png"));
+    let e = load(&model, &LoadOptions::DEFAULT).unwrap_err();
+    assert!(
+        matches!(&e, LoadError::Io { file, .. } if file.ends_with("pipe.bin")),
+        "{e}"
+    );
+    assert!(e.to_string().contains("not a regular file"), "{e}");
+    let e = load_texture(&fifo, &LoadOptions::DEFAULT).unwrap_err();
+    assert!(e.to_string().contains("not a regular file"), "{e}");
+}
+
 #[test]
 fn gltf_buffers_inside_the_folder_and_data_uris_load() {
     let dir = scratch("buffer-inside");

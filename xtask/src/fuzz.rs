@@ -30,6 +30,10 @@ pub struct FuzzArgs {
     /// Largest number of failing cases saved per sorter.
     #[arg(long, default_value_t = 5)]
     save: usize,
+    /// Fuzz the model loaders (OBJ, MTL, glTF, GLB) instead of the sorters: --cases mutated
+    /// seed files, each failure shrunk and saved under tests/data/loaders/ (or --out).
+    #[arg(long)]
+    loaders: bool,
 }
 
 #[derive(Default)]
@@ -41,6 +45,9 @@ struct Tally {
 
 /// Runs the fuzzer. Fails when an exact sorter (Newell, BSP) has a violation.
 pub fn run(args: &FuzzArgs) -> Result<ExitCode> {
+    if args.loaders {
+        return crate::fuzz_loaders::run(args.cases, args.seed, args.out.clone());
+    }
     let out = args
         .out
         .clone()

@@ -15,6 +15,7 @@
 mod bench;
 mod ci;
 mod fuzz;
+mod fuzz_loaders;
 mod peer;
 mod progress;
 mod raster;
