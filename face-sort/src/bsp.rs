@@ -209,6 +209,21 @@ impl BspTree {
         })
     }
 
+    /// The node planes as `[nx, ny, nz, offset]`, exactly the rows whose viewer side
+    /// ([`Viewer::facing`](crate::Viewer::facing) `>= 0`) orders each node's children in
+    /// [`Bsp`]'s sort. For event computations along an animation (`aspect-bake`).
+    #[must_use]
+    pub fn node_rows(&self) -> &[[f64; 4]] {
+        &self.plane_rows
+    }
+
+    /// The pieces' planes as `[nx, ny, nz, offset]`, exactly the rows whose facing value
+    /// decides culling and, within convex leaves, facing-away-first order in [`Bsp`]'s sort.
+    #[must_use]
+    pub fn piece_rows(&self) -> &[[f64; 4]] {
+        &self.piece_rows
+    }
+
     /// Number of fragments (pieces, some cut in parts).
     #[must_use]
     pub fn fragment_count(&self) -> usize {

@@ -1,0 +1,374 @@
+//! Baking: events, intervals, the live sorter inside each, merged cells.
+
+use std::f64::consts::TAU;
+use std::time::Instant;
+
+use face_sort::DrawList;
+use rayon::prelude::*;
+
+use crate::BakeError;
+use crate::axis::Spin;
+use crate::cells::{AngleRange, Bake, BakeCell, Breakpoint, Method, cell_bytes};
+use crate::event::EventFn;
+use crate::source::{Event, EventSource};
+use crate::tolerance::SAME_ROOT_RAD;
+
+/// How far a bake has got: `done` of `total` draw lists computed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Progress {
+    /// Draw lists computed.
+    pub done: usize,
+    /// Draw lists to compute.
+    pub total: usize,
+}
+
+/// Options of [`bake`] and [`bake_sampled`].
+#[derive(Clone, Copy)]
+pub struct BakeOptions<'a> {
+    /// `Some((lo, hi))` degrees bakes `[lo, hi]` only; `None` the full period.
+    pub range_deg: Option<(f64, f64)>,
+    /// The bake stops with [`BakeError::SizeBudget`] when its full per-cell lists would
+    /// exceed this many bytes.
+    pub budget_bytes: usize,
+    /// The bake stops with [`BakeError::EventBudget`] beyond this many sign changes.
+    pub max_events: usize,
+    /// Called from the baking thread after each block of draw lists.
+    pub progress: Option<&'a (dyn Fn(Progress) + Sync)>,
+}
+
+impl std::fmt::Debug for BakeOptions<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("BakeOptions")
+            .field("range_deg", &self.range_deg)
+            .field("budget_bytes", &self.budget_bytes)
+            .field("max_events", &self.max_events)
+            .field("progress", &self.progress.is_some())
+            .finish()
+    }
+}
+
+impl BakeOptions<'_> {
+    /// Full period, 1 GiB, 50 million events, no progress callback.
+    pub const DEFAULT: BakeOptions<'static> = BakeOptions {
+        range_deg: None,
+        budget_bytes: 1 << 30,
+        max_events: 50_000_000,
+        progress: None,
+    };
+}
+
+impl Default for BakeOptions<'_> {
+    fn default() -> Self {
+        BakeOptions::DEFAULT
+    }
+}
+
+/// The domain in radians: `(start, end, periodic)`.
+fn domain(spin: &Spin, options: &BakeOptions) -> Result<(f64, f64, bool), BakeError> {
+    if spin.template().cull_margin() > 0.0 {
+        return Err(BakeError::CullMargin {
+            degrees: spin.template().cull_margin(),
+        });
+    }
+    match options.range_deg {
+        None => Ok((0.0, TAU, true)),
+        Some((lo, hi)) => {
+            if !(lo.is_finite() && hi.is_finite() && hi > lo && hi - lo <= 360.0) {
+                return Err(BakeError::Range { lo, hi });
+            }
+            Ok((lo.to_radians(), hi.to_radians(), false))
+        }
+    }
+}
+
+fn domain_range(start: f64, end: f64, periodic: bool) -> AngleRange {
+    AngleRange {
+        lo: start.to_degrees(),
+        hi: if periodic {
+            start.to_degrees() + 360.0
+        } else {
+            end.to_degrees()
+        },
+        period: periodic.then_some(360.0),
+    }
+}
+
+/// Draw lists (polygon indices) of the live sorter at each angle, on all cores.
+pub(crate) fn lists_at(source: &dyn EventSource, spin: &Spin, thetas: &[f64]) -> Vec<Vec<u32>> {
+    let threads = rayon::current_num_threads().max(1);
+    let chunk = thetas.len().div_ceil(threads * 4).max(1);
+    thetas
+        .par_chunks(chunk)
+        .flat_map_iter(|chunk| {
+            let mut sorter = source.sorter();
+            let mut list = DrawList::new();
+            chunk
+                .iter()
+                .map(|&t| {
+                    sorter.sort(&spin.view_at(t), &mut list);
+                    list.items().iter().map(|i| i.polygon).collect::<Vec<u32>>()
+                })
+                .collect::<Vec<_>>()
+        })
+        .collect()
+}
+
+/// Lists per interval, merged into cells as they come, under the size budget.
+struct Merger<'a> {
+    cells: Vec<(f64, f64, Vec<u32>, Option<EventFn>)>,
+    bytes: usize,
+    options: &'a BakeOptions<'a>,
+}
+
+impl Merger<'_> {
+    fn push(&mut self, lo: f64, hi: f64, order: Vec<u32>, event: Option<EventFn>) {
+        if let Some(last) = self.cells.last_mut()
+            && last.2 == order
+        {
+            last.1 = hi;
+            return;
+        }
+        self.bytes += cell_bytes(order.len());
+        self.cells.push((lo, hi, order, event));
+    }
+
+    fn check(&self, done: usize, total: usize) -> Result<(), BakeError> {
+        if let Some(progress) = self.options.progress {
+            progress(Progress { done, total });
+        }
+        if self.bytes > self.options.budget_bytes {
+            return Err(BakeError::SizeBudget {
+                bytes_so_far: self.bytes,
+                cells_so_far: self.cells.len(),
+                done,
+                total,
+                estimated_bytes: (self.bytes as f64 * total as f64 / done.max(1) as f64) as usize,
+                budget: self.options.budget_bytes,
+            });
+        }
+        Ok(())
+    }
+
+    /// The cells (wrapping the last into the first over a full period) and breakpoints.
+    fn finish(mut self, periodic: bool) -> (Vec<BakeCell>, Vec<Breakpoint>) {
+        if periodic && self.cells.len() > 1 {
+            let last = self.cells.len() - 1;
+            if self.cells[0].2 == self.cells[last].2 {
+                let first = self.cells.remove(0);
+                let last = self.cells.last_mut().expect("more than one cell");
+                last.1 = first.1 + TAU;
+            }
+        }
+        let period = periodic.then_some(360.0);
+        let skip = usize::from(!periodic || self.cells.len() == 1);
+        let breakpoints = self
+            .cells
+            .iter()
+            .skip(skip)
+            .map(|c| Breakpoint {
+                degrees: c.0.to_degrees(),
+                event: c.3,
+            })
+            .collect();
+        let cells = self
+            .cells
+            .into_iter()
+            .map(|(lo, hi, order, _)| BakeCell {
+                range: AngleRange {
+                    lo: lo.to_degrees(),
+                    hi: hi.to_degrees(),
+                    period,
+                },
+                order,
+            })
+            .collect();
+        (cells, breakpoints)
+    }
+}
+
+/// Draw lists per block: bounded memory between budget checks.
+const BLOCK: usize = 2048;
+
+/// The exact bake: every sign change of the source's event functions in closed form, roots
+/// closer than [`SAME_ROOT_RAD`] merged, the live sorter run once inside each interval
+/// between consecutive roots (in parallel), equal neighbours merged.
+///
+/// # Errors
+/// [`BakeError::CullMargin`], [`BakeError::Range`], [`BakeError::EventBudget`],
+/// [`BakeError::SizeBudget`].
+pub fn bake(
+    source: &dyn EventSource,
+    spin: &Spin,
+    options: &BakeOptions,
+) -> Result<Bake, BakeError> {
+    let started = Instant::now();
+    let (start, end, periodic) = domain(spin, options)?;
+    let mut events: Vec<Event> = Vec::new();
+    source.events(spin, start, end, options.max_events, &mut events)?;
+    events.sort_by(|a, b| a.theta.total_cmp(&b.theta));
+    // Breakpoint candidates: groups of roots within SAME_ROOT_RAD, the domain's ends apart.
+    let mut candidates: Vec<Event> = Vec::new();
+    for e in &events {
+        let near_end =
+            !periodic && (e.theta - start < SAME_ROOT_RAD || end - e.theta < SAME_ROOT_RAD);
+        let near_last = candidates
+            .last()
+            .is_some_and(|c| e.theta - c.theta < SAME_ROOT_RAD);
+        let near_wrap = periodic
+            && candidates
+                .first()
+                .is_some_and(|c| c.theta + TAU - e.theta < SAME_ROOT_RAD);
+        if !(near_end || near_last || near_wrap) {
+            candidates.push(*e);
+        }
+    }
+    // Intervals [lo, hi) with the event at their start.
+    let mut intervals: Vec<(f64, f64, Option<EventFn>)> = Vec::new();
+    if periodic {
+        if candidates.is_empty() {
+            intervals.push((start, end, None));
+        }
+        for (k, c) in candidates.iter().enumerate() {
+            let hi = candidates
+                .get(k + 1)
+                .map_or(candidates[0].theta + TAU, |n| n.theta);
+            intervals.push((c.theta, hi, Some(c.function)));
+        }
+    } else {
+        let mut lo = (start, None);
+        for c in &candidates {
+            intervals.push((lo.0, c.theta, lo.1));
+            lo = (c.theta, Some(c.function));
+        }
+        intervals.push((lo.0, end, lo.1));
+    }
+    let mut merger = Merger {
+        cells: Vec::new(),
+        bytes: 0,
+        options,
+    };
+    let total = intervals.len();
+    for (b, block) in intervals.chunks(BLOCK).enumerate() {
+        let mids: Vec<f64> = block.iter().map(|i| 0.5 * (i.0 + i.1)).collect();
+        for (i, order) in block.iter().zip(lists_at(source, spin, &mids)) {
+            merger.push(i.0, i.1, order, i.2);
+        }
+        merger.check((b * BLOCK + block.len()).min(total), total)?;
+    }
+    let (cells, breakpoints) = merger.finish(periodic);
+    Ok(Bake {
+        axis: spin.axis(),
+        sorter: source.name().to_owned(),
+        method: Method::Exact,
+        domain: domain_range(start, end, periodic),
+        polygons: std::sync::Arc::clone(source.polygons()),
+        cells,
+        breakpoints,
+        events: events.len(),
+        bake_ms: started.elapsed().as_secs_f64() * 1e3,
+    })
+}
+
+/// The seed's baseline behind the same interface: the live sorter at `samples` evenly spaced
+/// angles, and between two samples whose lists differ, bisection on "same list as the left
+/// end" down to `tolerance_deg`. Two changes within one step are seen as one, or not at all
+/// when the list comes back ([`Bake::missed`] counts them against an exact bake).
+///
+/// # Errors
+/// As [`bake`], and [`BakeError::Samples`] for fewer than 2 samples or a tolerance that is
+/// not positive.
+pub fn bake_sampled(
+    source: &dyn EventSource,
+    spin: &Spin,
+    samples: usize,
+    tolerance_deg: f64,
+    options: &BakeOptions,
+) -> Result<Bake, BakeError> {
+    let started = Instant::now();
+    let (start, end, periodic) = domain(spin, options)?;
+    if samples < 2 || tolerance_deg.is_nan() || tolerance_deg <= 0.0 {
+        return Err(BakeError::Samples {
+            samples,
+            tolerance_deg,
+        });
+    }
+    let tolerance = tolerance_deg.to_radians();
+    let step = if periodic {
+        (end - start) / samples as f64
+    } else {
+        (end - start) / (samples - 1) as f64
+    };
+    let thetas: Vec<f64> = (0..samples).map(|k| start + step * k as f64).collect();
+    let lists = lists_at(source, spin, &thetas);
+    // Brackets (left angle, right angle) whose lists differ, the last wrapping round.
+    let pairs = if periodic { samples } else { samples - 1 };
+    let changes: Vec<usize> = (0..pairs)
+        .filter(|&k| lists[k] != lists[(k + 1) % samples])
+        .collect();
+    let found: Vec<(f64, Vec<u32>)> = changes
+        .par_iter()
+        .map(|&k| {
+            let mut sorter = source.sorter();
+            let mut list = DrawList::new();
+            let (mut lo, mut hi) = (thetas[k], thetas[k] + step);
+            let mut right = lists[(k + 1) % samples].clone();
+            while hi - lo > tolerance {
+                let mid = 0.5 * (lo + hi);
+                sorter.sort(&spin.view_at(mid), &mut list);
+                let order: Vec<u32> = list.items().iter().map(|i| i.polygon).collect();
+                if order == lists[k] {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                    right = order;
+                }
+            }
+            (hi, right)
+        })
+        .collect();
+    let mut merger = Merger {
+        cells: Vec::new(),
+        bytes: 0,
+        options,
+    };
+    if periodic {
+        if found.is_empty() {
+            merger.push(start, end, lists[0].clone(), None);
+        }
+        for (j, (at, right)) in found.iter().enumerate() {
+            let hi = found.get(j + 1).map_or(found[0].0 + TAU, |n| n.0);
+            merger.push(*at, hi, right.clone(), None);
+        }
+    } else {
+        let mut lo = (start, lists[0].clone());
+        for (at, right) in &found {
+            merger.push(lo.0, *at, lo.1, None);
+            lo = (*at, right.clone());
+        }
+        merger.push(lo.0, end, lo.1, None);
+    }
+    merger.check(samples, samples)?;
+    let (cells, mut breakpoints) = merger.finish(periodic);
+    for b in &mut breakpoints {
+        b.degrees = reduce_degrees(b.degrees, periodic);
+    }
+    breakpoints.sort_by(|a, b| a.degrees.total_cmp(&b.degrees));
+    Ok(Bake {
+        axis: spin.axis(),
+        sorter: source.name().to_owned(),
+        method: Method::Sampled {
+            samples,
+            tolerance_deg,
+        },
+        domain: domain_range(start, end, periodic),
+        polygons: std::sync::Arc::clone(source.polygons()),
+        cells,
+        breakpoints,
+        events: changes.len(),
+        bake_ms: started.elapsed().as_secs_f64() * 1e3,
+    })
+}
+
+fn reduce_degrees(d: f64, periodic: bool) -> f64 {
+    if periodic { d.rem_euclid(360.0) } else { d }
+}

@@ -1,0 +1,162 @@
+//! Checking a bake against the live sorter.
+
+use face_sort::DrawList;
+use rayon::prelude::*;
+
+use crate::axis::Spin;
+use crate::cells::Bake;
+use crate::source::EventSource;
+use crate::tolerance::VERIFY_SIDE_RAD;
+
+/// What [`verify`] checked.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct VerifyReport {
+    /// Interior angles compared with the live sorter.
+    pub interior_checks: usize,
+    /// Breakpoints checked (sign change of their event and the lists on both sides).
+    pub breakpoint_checks: usize,
+}
+
+/// A place where a bake disagrees with the live sorter.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum VerifyError {
+    /// The live sorter's draw list at an angle inside a cell is not the cell's.
+    #[error("cell {cell} [{lo}°, {hi}°): the live sorter's list at {degrees}° differs")]
+    Interior {
+        /// Cell index.
+        cell: usize,
+        /// Cell start, degrees.
+        lo: f64,
+        /// Cell end, degrees.
+        hi: f64,
+        /// Where, degrees.
+        degrees: f64,
+    },
+    /// At a breakpoint, no recorded event function changes sign, or the lists just before
+    /// and after are not those of the two cells.
+    #[error("breakpoint {index} at {degrees}°: {what}")]
+    Breakpoint {
+        /// Breakpoint index.
+        index: usize,
+        /// Where, degrees.
+        degrees: f64,
+        /// What failed.
+        what: String,
+    },
+}
+
+/// SplitMix64: a few random interior angles per cell, reproducible from a seed.
+fn unit(state: &mut u64) -> f64 {
+    *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    let mut z = *state;
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+}
+
+/// Checks `bake` against `source`'s live sorter along `spin`: at `per_cell` random angles
+/// strictly inside every cell the live draw list equals the cell's; at every breakpoint of an
+/// exact bake, its event function has opposite strict signs just before and just after
+/// (a real sign change, not a tangency), and the live lists there are the two cells' lists.
+/// "Just" is [`VERIFY_SIDE_RAD`], or a quarter of the narrower neighbouring cell.
+///
+/// # Errors
+/// The first disagreement found.
+pub fn verify(
+    bake: &Bake,
+    source: &dyn EventSource,
+    spin: &Spin,
+    per_cell: usize,
+    seed: u64,
+) -> Result<VerifyReport, VerifyError> {
+    let n = bake.cells.len();
+    let results: Vec<Result<usize, VerifyError>> = (0..n)
+        .into_par_iter()
+        .map_init(
+            || (source.sorter(), DrawList::new()),
+            |(sorter, list), k| {
+                let cell = &bake.cells[k];
+                let mut state = seed ^ (k as u64).wrapping_mul(0x2545_F491_4F6C_DD1D);
+                let mut live = |degrees: f64| {
+                    sorter.sort(&spin.view_at(degrees.to_radians()), list);
+                    list.items().iter().map(|i| i.polygon).collect::<Vec<u32>>()
+                };
+                for _ in 0..per_cell {
+                    // Strictly inside: away from both ends by a margin.
+                    let f = 0.001 + 0.998 * unit(&mut state);
+                    let degrees = cell.range.lerp(f);
+                    if live(degrees) != cell.order {
+                        return Err(VerifyError::Interior {
+                            cell: k,
+                            lo: cell.range.lo,
+                            hi: cell.range.hi,
+                            degrees,
+                        });
+                    }
+                }
+                Ok(per_cell)
+            },
+        )
+        .collect();
+    let mut report = VerifyReport::default();
+    for r in results {
+        report.interior_checks += r?;
+    }
+    if bake.breakpoints.iter().any(|b| b.event.is_none()) {
+        return Ok(report);
+    }
+    let checks: Vec<Result<(), VerifyError>> = bake
+        .breakpoints
+        .par_iter()
+        .enumerate()
+        .map_init(
+            || (source.sorter(), DrawList::new()),
+            |(sorter, list), (index, b)| {
+                let fail = |what: String| VerifyError::Breakpoint {
+                    index,
+                    degrees: b.degrees,
+                    what,
+                };
+                let Some(event) = b.event else {
+                    return Ok(());
+                };
+                let Some(right) = bake.cell_at(b.degrees) else {
+                    return Err(fail("outside the domain".into()));
+                };
+                let left = if right == 0 { n - 1 } else { right - 1 };
+                let width = |c: usize| {
+                    let r = bake.cells[c].range;
+                    (r.hi - r.lo).to_radians()
+                };
+                let side = VERIFY_SIDE_RAD.min(0.25 * width(left).min(width(right)));
+                let t = b.degrees.to_radians();
+                let (before, after) = (event.value(t - side), event.value(t + side));
+                if before * after >= 0.0 || before.is_nan() || after.is_nan() {
+                    return Err(fail(format!(
+                        "its event does not change sign ({before:e} before, {after:e} after)"
+                    )));
+                }
+                let mut live = |theta: f64| {
+                    sorter.sort(&spin.view_at(theta), list);
+                    list.items().iter().map(|i| i.polygon).collect::<Vec<u32>>()
+                };
+                if live(t - side) != bake.cells[left].order {
+                    return Err(fail(
+                        "the live list just before is not the left cell's".into(),
+                    ));
+                }
+                if live(t + side) != bake.cells[right].order {
+                    return Err(fail(
+                        "the live list just after is not the right cell's".into(),
+                    ));
+                }
+                Ok(())
+            },
+        )
+        .collect();
+    for c in checks {
+        c?;
+        report.breakpoint_checks += 1;
+    }
+    Ok(report)
+}
