@@ -79,6 +79,8 @@ struct FaceLine {
 fn prescan(text: &str, file: &str, options: &LoadOptions) -> Result<Vec<FaceLine>, LoadError> {
     let mut lines = Vec::new();
     let mut vertices = 0usize;
+    let mut texcoords = 0usize;
+    let mut normals = 0usize;
     let mut faces = 0usize;
     let mut object = "unnamed_object".to_owned();
     for (i, line) in text.lines().enumerate() {
@@ -104,6 +106,29 @@ fn prescan(text: &str, file: &str, options: &LoadOptions) -> Result<Vec<FaceLine
                             what: format!("vertex {vertices} (object `{object}`)"),
                         });
                     }
+                }
+            }
+            // Texture coordinates and normals are capped like positions.
+            Some("vt") => {
+                texcoords += 1;
+                if texcoords > options.max_vertices {
+                    return Err(too_large(
+                        file,
+                        "texture coordinate count",
+                        texcoords,
+                        options.max_vertices,
+                    ));
+                }
+            }
+            Some("vn") => {
+                normals += 1;
+                if normals > options.max_vertices {
+                    return Err(too_large(
+                        file,
+                        "normal count",
+                        normals,
+                        options.max_vertices,
+                    ));
                 }
             }
             Some(kw @ ("f" | "l")) => {

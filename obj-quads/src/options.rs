@@ -77,7 +77,8 @@ pub struct LoadOptions {
     pub max_face_corners: usize,
     /// Largest accepted number of faces read (default [`limits::DEFAULT_MAX_FACES`]).
     pub max_faces: usize,
-    /// Largest accepted number of vertices (default [`limits::DEFAULT_MAX_VERTICES`]).
+    /// Largest accepted number of vertices (default [`limits::DEFAULT_MAX_VERTICES`]);
+    /// OBJ texture coordinates (`vt`) and normals (`vn`) are capped by it too.
     pub max_vertices: usize,
     /// Largest accepted model file, MTL library and glTF buffer, in bytes
     /// (default [`limits::DEFAULT_MAX_FILE_BYTES`]).

@@ -309,6 +309,14 @@ fn vertex_face_and_file_size_limits() {
     };
     let e = obj_quads::load_obj_str(quad, &LoadOptions::DEFAULT.with_max_vertices(3)).unwrap_err();
     too_large(e, "vertex count");
+    let with_uvs = format!("vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n{quad}");
+    let e =
+        obj_quads::load_obj_str(&with_uvs, &LoadOptions::DEFAULT.with_max_vertices(3)).unwrap_err();
+    too_large(e, "texture coordinate count");
+    let with_normals = format!("vn 0 0 1\nvn 0 0 1\nvn 0 0 1\nvn 0 0 1\n{quad}");
+    let e = obj_quads::load_obj_str(&with_normals, &LoadOptions::DEFAULT.with_max_vertices(3))
+        .unwrap_err();
+    too_large(e, "normal count");
     let e = obj_quads::load_obj_str(quad, &LoadOptions::DEFAULT.with_max_faces(1)).unwrap_err();
     too_large(e, "face count");
     let e = obj_quads::load_obj_reader(
@@ -606,5 +614,30 @@ fn jpeg_limits_are_read_from_the_frame_header() {
     // Truncated headers.
     for cut in [2, 5, 9, 14] {
         assert!(obj_quads::texture_header(&jpeg[..cut], "cut.jpg").is_err());
+    }
+}
+
+#[test]
+fn jpeg_within_limits_decodes() {
+    let jpeg = test_support::loaders::grey_jpeg();
+    let header = obj_quads::texture_header(&jpeg, "grey.jpg").unwrap();
+    assert_eq!((header.width, header.height), (16, 8));
+    let texture = decode_texture(&jpeg, "grey.jpg", &LoadOptions::DEFAULT).unwrap();
+    assert_eq!((texture.width, texture.height), (16, 8));
+    assert_eq!(texture.rgba.len(), 16 * 8 * 4);
+    for pixel in texture.rgba.chunks_exact(4) {
+        assert!(
+            pixel[..3].iter().all(|&c| c.abs_diff(144) <= 1),
+            "{pixel:?}"
+        );
+        assert_eq!(pixel[3], 255);
+    }
+    // The side limit applies to JPEG as to PNG.
+    let small = LoadOptions::DEFAULT.with_max_texture_side(8);
+    match decode_texture(&jpeg, "grey.jpg", &small) {
+        Err(LoadError::TooLarge { what, actual, .. }) => {
+            assert_eq!((what, actual), ("texture width in pixels", 16))
+        }
+        other => panic!("{other:?}"),
     }
 }

@@ -1,4 +1,4 @@
-//! Loader fuzzing and its committed regression cases (`tests/data/loaders/`): the seed
+//! Loader fuzzing (models and textures) and its committed regression cases (`tests/data/loaders/`): the seed
 //! inputs, the one check every loader input must pass, and the list of saved cases.
 //!
 //! The check: no loader panics, and every input either loads into a valid mesh (faces,
@@ -23,15 +23,21 @@ pub enum LoaderFormat {
     Gltf,
     /// Binary glTF (`.glb`).
     Glb,
+    /// PNG texture (`.png`), decoded by `obj_quads::decode_texture`.
+    Png,
+    /// JPEG texture (`.jpg`), decoded by `obj_quads::decode_texture`.
+    Jpeg,
 }
 
 impl LoaderFormat {
     /// Every format.
-    pub const ALL: [LoaderFormat; 4] = [
+    pub const ALL: [LoaderFormat; 6] = [
         LoaderFormat::Obj,
         LoaderFormat::Mtl,
         LoaderFormat::Gltf,
         LoaderFormat::Glb,
+        LoaderFormat::Png,
+        LoaderFormat::Jpeg,
     ];
 
     /// The file extension of saved cases.
@@ -42,6 +48,8 @@ impl LoaderFormat {
             LoaderFormat::Mtl => "mtl",
             LoaderFormat::Gltf => "gltf",
             LoaderFormat::Glb => "glb",
+            LoaderFormat::Png => "png",
+            LoaderFormat::Jpeg => "jpg",
         }
     }
 
@@ -123,7 +131,41 @@ pub fn loader_seeds(format: LoaderFormat) -> Vec<(String, Vec<u8>)> {
                 glb(&json, &read("gltf/Box/Box0.bin")),
             )]
         }
+        LoaderFormat::Png => named(&[
+            "gltf/BoxTextured/CesiumLogoFlat.png",
+            "gltf/Cube/Cube_MetallicRoughness.png",
+            "combobulate-samples/pages.png",
+        ]),
+        LoaderFormat::Jpeg => vec![("16x8 grey baseline JPEG".to_owned(), grey_jpeg())],
     }
+}
+
+/// A baseline JPEG of 16 × 8 grey pixels of value 144, written by hand (the repository has
+/// no JPEG asset): one quantisation table of ones, DC-only blocks (the first DC is
+/// 8 · 16 = 128, category 8; the second a zero difference), every AC block an end-of-block.
+#[must_use]
+pub fn grey_jpeg() -> Vec<u8> {
+    let mut j = vec![0xFF, 0xD8];
+    // DQT: table 0, 8-bit, all ones.
+    j.extend([0xFF, 0xDB, 0x00, 0x43, 0x00]);
+    j.extend([1u8; 64]);
+    // SOF0: 8 bits, 8 high, 16 wide, one component (id 1, 1x1 sampling, table 0).
+    j.extend([
+        0xFF, 0xC0, 0x00, 0x0B, 0x08, 0x00, 0x08, 0x00, 0x10, 0x01, 0x01, 0x11, 0x00,
+    ]);
+    // DHT DC 0: two codes of length 2 for categories 0 and 8.
+    j.extend([0xFF, 0xC4, 0x00, 0x15, 0x00, 0, 2]);
+    j.extend([0u8; 14]);
+    j.extend([0x00, 0x08]);
+    // DHT AC 0: one code of length 2 for end-of-block.
+    j.extend([0xFF, 0xC4, 0x00, 0x14, 0x10, 0, 1]);
+    j.extend([0u8; 14]);
+    j.extend([0x00]);
+    // SOS, then the scan: 01 10000000 00 | 00 00.
+    j.extend([0xFF, 0xDA, 0x00, 0x08, 0x01, 0x01, 0x00, 0x00, 0x3F, 0x00]);
+    j.extend([0x60, 0x00]);
+    j.extend([0xFF, 0xD9]);
+    j
 }
 
 /// Assembles a GLB container from a JSON chunk and a binary chunk.
@@ -157,11 +199,12 @@ usemtl white\nf 1/1 2/2 3/3 4/4\n\
 usemtl spot\nf 1/1 2/2 6/3 5/4\n\
 usemtl cover\nf 4/1 3/2 6/3 5/4\n";
 
-/// How an input fared under the default options: loaded (with its face count) or refused
-/// with a typed error. (The other option sets are checked for bugs only.)
+/// How an input fared under the default options: loaded (with its face count, or a
+/// texture's pixel count) or refused with a typed error. (The other option sets are
+/// checked for bugs only.)
 #[derive(Debug)]
 pub enum Verdict {
-    /// Loaded; the face count.
+    /// Loaded; the face count (models) or pixel count (textures).
     Loaded(usize),
     /// Refused with this typed error's message.
     Refused(String),
@@ -190,11 +233,15 @@ pub fn check_loader_input(
     bytes: &[u8],
     scratch: &Path,
 ) -> Result<Verdict, String> {
+    if matches!(format, LoaderFormat::Png | LoaderFormat::Jpeg) {
+        return check_texture(bytes);
+    }
+    let file = prepare(format, bytes, scratch)?;
     let mut verdict = None;
     for options in option_sets() {
         let mut loaded = None;
         let mut refused = None;
-        for (what, result) in load_all(format, bytes, scratch, &options)? {
+        for (what, result) in load_all(format, bytes, file.as_deref(), &options)? {
             match result {
                 Ok((mesh, report)) => {
                     validate(&mesh, &report).map_err(|e| format!("{what}: {e}"))?;
@@ -216,20 +263,53 @@ pub fn check_loader_input(
     verdict.ok_or_else(|| "no load attempted".to_owned())
 }
 
+/// Textures: decoded under the default limits and under small ones (64 pixels a side, 1024
+/// pixels); a decoded image must have the declared size within the limits and 4 bytes a
+/// pixel.
+fn check_texture(bytes: &[u8]) -> Result<Verdict, String> {
+    let small = LoadOptions::DEFAULT
+        .with_max_texture_side(64)
+        .with_max_texture_pixels(1024);
+    let mut verdict = None;
+    for options in [LoadOptions::DEFAULT, small] {
+        let result = catch_unwind(AssertUnwindSafe(|| {
+            obj_quads::decode_texture(bytes, "case", &options)
+        }))
+        .map_err(|panic| format!("decode_texture panicked: {}", panic_message(&*panic)))?;
+        let outcome = match result {
+            Ok(t) => {
+                let pixels = u64::from(t.width) * u64::from(t.height);
+                if t.width > options.max_texture_side
+                    || t.height > options.max_texture_side
+                    || pixels > options.max_texture_pixels
+                {
+                    return Err(format!(
+                        "decoded {}×{} beyond the limits",
+                        t.width, t.height
+                    ));
+                }
+                if t.rgba.len() as u64 != pixels * 4 {
+                    return Err(format!(
+                        "{} bytes for {}×{} RGBA",
+                        t.rgba.len(),
+                        t.width,
+                        t.height
+                    ));
+                }
+                Verdict::Loaded(pixels as usize)
+            }
+            Err(e) => Verdict::Refused(e.to_string()),
+        };
+        verdict.get_or_insert(outcome);
+    }
+    verdict.ok_or_else(|| "no decode attempted".to_owned())
+}
+
 type LoadResult = Result<(Mesh, LoadReport), obj_quads::LoadError>;
 
-/// Every way `format` is loaded, each guarded against panics.
-fn load_all(
-    format: LoaderFormat,
-    bytes: &[u8],
-    scratch: &Path,
-    options: &LoadOptions,
-) -> Result<Vec<(&'static str, LoadResult)>, String> {
-    let guard = |what: &'static str, f: &dyn Fn() -> LoadResult| {
-        catch_unwind(AssertUnwindSafe(f))
-            .map(|r| (what, r))
-            .map_err(|panic| format!("{what} panicked: {}", panic_message(&*panic)))
-    };
+/// Writes the files an input is loaded from (once per input): the MTL and its host OBJ, or
+/// the glTF / GLB next to the Box sample's buffer. Returns the file to load, if any.
+fn prepare(format: LoaderFormat, bytes: &[u8], scratch: &Path) -> Result<Option<PathBuf>, String> {
     let write = |name: &str, data: &[u8]| {
         let path = scratch.join(name);
         std::fs::write(&path, data)
@@ -237,32 +317,50 @@ fn load_all(
             .map_err(|e| format!("writing {}: {e}", scratch.display()))
     };
     match format {
-        LoaderFormat::Obj => Ok(vec![guard("OBJ from memory", &|| {
-            obj_quads::load_obj_reader(bytes, None, options)
-        })?]),
+        LoaderFormat::Obj | LoaderFormat::Png | LoaderFormat::Jpeg => Ok(None),
         LoaderFormat::Mtl => {
             write("case.mtl", bytes)?;
-            let obj = write("case.obj", MTL_HOST_OBJ.as_bytes())?;
-            Ok(vec![guard("MTL through its OBJ", &|| {
-                obj_quads::load(&obj, options)
-            })?])
+            write("case.obj", MTL_HOST_OBJ.as_bytes()).map(Some)
         }
         LoaderFormat::Gltf | LoaderFormat::Glb => {
-            let name = format!("case.{}", format.extension());
-            write(
-                "Box0.bin",
-                &std::fs::read(crate::model_path("gltf/Box/Box0.bin"))
-                    .map_err(|e| e.to_string())?,
-            )?;
-            let path = write(&name, bytes)?;
-            Ok(vec![
-                guard("glTF from memory", &|| {
-                    obj_quads::load_gltf_slice(bytes, options)
-                })?,
-                guard("glTF from a file", &|| obj_quads::load(&path, options))?,
-            ])
+            let buffer = scratch.join("Box0.bin");
+            if !buffer.is_file() {
+                let data = std::fs::read(crate::model_path("gltf/Box/Box0.bin"))
+                    .map_err(|e| e.to_string())?;
+                write("Box0.bin", &data)?;
+            }
+            write(&format!("case.{}", format.extension()), bytes).map(Some)
         }
     }
+}
+
+/// Every way `format` is loaded (from `file`, written by [`prepare`]), each guarded
+/// against panics.
+fn load_all(
+    format: LoaderFormat,
+    bytes: &[u8],
+    file: Option<&Path>,
+    options: &LoadOptions,
+) -> Result<Vec<(&'static str, LoadResult)>, String> {
+    let guard = |what: &'static str, f: &dyn Fn() -> LoadResult| {
+        catch_unwind(AssertUnwindSafe(f))
+            .map(|r| (what, r))
+            .map_err(|panic| format!("{what} panicked: {}", panic_message(&*panic)))
+    };
+    let mut out = Vec::new();
+    match format {
+        LoaderFormat::Obj => out.push(guard("OBJ from memory", &|| {
+            obj_quads::load_obj_reader(bytes, None, options)
+        })?),
+        LoaderFormat::Gltf | LoaderFormat::Glb => out.push(guard("glTF from memory", &|| {
+            obj_quads::load_gltf_slice(bytes, options)
+        })?),
+        LoaderFormat::Mtl | LoaderFormat::Png | LoaderFormat::Jpeg => {}
+    }
+    if let Some(file) = file {
+        out.push(guard("from a file", &|| obj_quads::load(file, options))?);
+    }
+    Ok(out)
 }
 
 /// The invariants of a loaded mesh and its report.

@@ -29,89 +29,119 @@ const SLOW: Duration = Duration::from_secs(2);
 
 /// Tokens worth inserting, per format: keywords, separators, extreme numbers, paths that
 /// leave the folder.
-fn tokens(format: LoaderFormat) -> &'static [&'static str] {
+fn tokens(format: LoaderFormat) -> &'static [&'static [u8]] {
     match format {
         LoaderFormat::Obj => &[
-            "\nv ",
-            "\nf ",
-            "\nvt ",
-            "\nvn ",
-            "\nl ",
-            "\no x",
-            "\ng ",
-            "\nusemtl ",
-            "\nmtllib ../x.mtl",
-            " ",
-            "/",
-            "//",
-            "\n",
-            "#",
-            "\\\n",
-            "\r",
-            "\0",
-            "0",
-            "-1",
-            "1e308",
-            "-1e308",
-            "1e-320",
-            "nan",
-            "inf",
-            "4294967295",
-            "-9223372036854775808",
-            "18446744073709551616",
-            " 1 2 3 4",
+            b"\nv ",
+            b"\nf ",
+            b"\nvt ",
+            b"\nvn ",
+            b"\nl ",
+            b"\no x",
+            b"\ng ",
+            b"\nusemtl ",
+            b"\nmtllib ../x.mtl",
+            b" ",
+            b"/",
+            b"//",
+            b"\n",
+            b"#",
+            b"\\\n",
+            b"\r",
+            b"\0",
+            b"0",
+            b"-1",
+            b"1e308",
+            b"-1e308",
+            b"1e-320",
+            b"nan",
+            b"inf",
+            b"4294967295",
+            b"-9223372036854775808",
+            b"18446744073709551616",
+            b" 1 2 3 4",
         ],
         LoaderFormat::Mtl => &[
-            "\nnewmtl ",
-            "\nKd ",
-            "\nKa ",
-            "\nKs ",
-            "\nd ",
-            "\nTr ",
-            "\nmap_Kd ",
-            "../",
-            "/etc/passwd",
-            "-s 1 1 1 ",
-            "\n",
-            " ",
-            "#",
-            "\0",
-            "0",
-            "-1",
-            "nan",
-            "inf",
-            "1e308",
+            b"\nnewmtl ",
+            b"\nKd ",
+            b"\nKa ",
+            b"\nKs ",
+            b"\nd ",
+            b"\nTr ",
+            b"\nmap_Kd ",
+            b"../",
+            b"/etc/passwd",
+            b"-s 1 1 1 ",
+            b"\n",
+            b" ",
+            b"#",
+            b"\0",
+            b"0",
+            b"-1",
+            b"nan",
+            b"inf",
+            b"1e308",
         ],
         LoaderFormat::Gltf | LoaderFormat::Glb => &[
-            "\"",
-            "{",
-            "}",
-            "[",
-            "]",
-            ",",
-            ":",
-            "null",
-            "true",
-            "-1",
-            "0",
-            "4294967295",
-            "18446744073709551616",
-            "1e400",
-            "\"children\": [0],",
-            "\"uri\": \"../x.bin\",",
-            "\"uri\": \"/etc/passwd\",",
-            "\"byteLength\": 99999999999,",
-            "\"count\": 4294967295,",
-            "\"mode\": 1,",
-            "data:application/octet-stream;base64,",
-            "%FF",
-            "%2E%2E/",
-            "\"byteStride\": 4,",
-            "\"sparse\": {\"count\": 1},",
-            "\"scene\": 7,",
-            "\"matrix\": [1e400],",
-            "\"componentType\": 5121,",
-            "\"type\": \"SCALAR\",",
+            b"\"",
+            b"{",
+            b"}",
+            b"[",
+            b"]",
+            b",",
+            b":",
+            b"null",
+            b"true",
+            b"-1",
+            b"0",
+            b"4294967295",
+            b"18446744073709551616",
+            b"1e400",
+            b"\"children\": [0],",
+            b"\"uri\": \"../x.bin\",",
+            b"\"uri\": \"/etc/passwd\",",
+            b"\"byteLength\": 99999999999,",
+            b"\"count\": 4294967295,",
+            b"\"mode\": 1,",
+            b"data:application/octet-stream;base64,",
+            b"%FF",
+            b"%2E%2E/",
+            b"\"byteStride\": 4,",
+            b"\"sparse\": {\"count\": 1},",
+            b"\"scene\": 7,",
+            b"\"matrix\": [1e400],",
+            b"\"componentType\": 5121,",
+            b"\"type\": \"SCALAR\",",
+        ],
+        LoaderFormat::Png => &[
+            b"IHDR",
+            b"IDAT",
+            b"PLTE",
+            b"tRNS",
+            b"IEND",
+            b"acTL",
+            b"fcTL",
+            b"\xff\xff\xff\xff",
+            b"\x7f\xff\xff\xff",
+            b"\0\0\0\0",
+            b"\x00\x01\x00\x00",
+            b"\x10",
+            b"\x03",
+            b"\x01",
+        ],
+        LoaderFormat::Jpeg => &[
+            b"\xff\xc0",
+            b"\xff\xc2",
+            b"\xff\xc4",
+            b"\xff\xda",
+            b"\xff\xd9",
+            b"\xff\xdb",
+            b"\xff\xdd",
+            b"\xff\xd0",
+            b"\xff\xff",
+            b"\xff\x00",
+            b"\x00\x00",
+            b"\xff\xe1",
         ],
     }
 }
@@ -133,6 +163,39 @@ enum Mutation {
     Number(Index, Index),
     /// glTF: parse the JSON, change one value (by its pre-order position), write it back.
     Json(Index, JsonEdit),
+    /// PNG: recompute every chunk's CRC (as far as the chunk structure holds).
+    FixCrcs,
+}
+
+/// Recomputes the CRC of every PNG chunk whose length fits the bytes.
+fn fix_png_crcs(bytes: &mut [u8]) {
+    fn crc32(data: &[u8]) -> u32 {
+        let mut crc = 0xFFFF_FFFFu32;
+        for &b in data {
+            crc ^= u32::from(b);
+            for _ in 0..8 {
+                crc = if crc & 1 == 1 {
+                    (crc >> 1) ^ 0xEDB8_8320
+                } else {
+                    crc >> 1
+                };
+            }
+        }
+        !crc
+    }
+    let mut at = 8;
+    while at + 12 <= bytes.len() {
+        let len = u32::from_be_bytes([bytes[at], bytes[at + 1], bytes[at + 2], bytes[at + 3]]);
+        let Some(end) = (at + 8).checked_add(len as usize) else {
+            return;
+        };
+        if end + 4 > bytes.len() {
+            return;
+        }
+        let crc = crc32(&bytes[at + 4..end]);
+        bytes[end..end + 4].copy_from_slice(&crc.to_be_bytes());
+        at = end + 4;
+    }
 }
 
 /// One edit of a JSON value.
@@ -237,7 +300,17 @@ fn mutation() -> impl Strategy<Value = Mutation> {
 fn mutations(format: LoaderFormat) -> BoxedStrategy<Vec<Mutation>> {
     let raw = prop::collection::vec(mutation(), 1..6);
     match format {
-        LoaderFormat::Obj | LoaderFormat::Mtl => raw.boxed(),
+        LoaderFormat::Obj | LoaderFormat::Mtl | LoaderFormat::Jpeg => raw.boxed(),
+        // PNG: chunk CRCs are fixed after mutating two times in three (else the decoder
+        // stops at the first CRC).
+        LoaderFormat::Png => prop_oneof![
+            2 => prop::collection::vec(mutation(), 1..6).prop_map(|mut m| {
+                m.push(Mutation::FixCrcs);
+                m
+            }),
+            1 => raw,
+        ]
+        .boxed(),
         LoaderFormat::Gltf | LoaderFormat::Glb => {
             let json = (any::<Index>(), json_edit()).prop_map(|(at, e)| Mutation::Json(at, e));
             prop_oneof![
@@ -376,7 +449,7 @@ fn apply(format: LoaderFormat, seed: &[u8], mutations: &[Mutation]) -> Vec<u8> {
             Mutation::Insert(i, t) => {
                 let k = at(i, &bytes);
                 let tokens = tokens(format);
-                let token = tokens[t.index(tokens.len())].as_bytes();
+                let token = tokens[t.index(tokens.len())];
                 bytes.splice(k..k, token.iter().copied());
             }
             Mutation::Delete(i, n) => {
@@ -398,7 +471,7 @@ fn apply(format: LoaderFormat, seed: &[u8], mutations: &[Mutation]) -> Vec<u8> {
                         Some((json, bin)) => (Some(json), Some(bin)),
                         None => (None, None),
                     },
-                    LoaderFormat::Obj | LoaderFormat::Mtl => (None, None),
+                    _ => (None, None),
                 };
                 if let Some(mut root) = text.and_then(|t| serde_json::from_str(&t).ok()) {
                     edit_json(&mut root, i, edit);
@@ -409,6 +482,7 @@ fn apply(format: LoaderFormat, seed: &[u8], mutations: &[Mutation]) -> Vec<u8> {
                     };
                 }
             }
+            Mutation::FixCrcs => fix_png_crcs(&mut bytes),
             Mutation::Number(i, n) => {
                 let spans = number_spans(&bytes);
                 if !spans.is_empty() {
