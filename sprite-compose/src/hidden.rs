@@ -18,7 +18,9 @@
 
 use glam::DVec2;
 
+use crate::svg::project_sprite;
 use crate::tolerance::{HIDDEN_GRID_BITS, MIN_PART_AREA_PX2};
+use crate::{Scene, SceneSprite};
 use i_overlay::core::fill_rule::FillRule;
 use i_overlay::core::overlay::{IntOverlayOptions, Overlay};
 use i_overlay::core::overlay_rule::OverlayRule;
@@ -79,6 +81,46 @@ impl Grid {
     fn to_float(&self, p: IntPoint<i64>) -> DVec2 {
         DVec2::new(p.x as f64, p.y as f64) / self.scale + self.origin
     }
+}
+
+/// One sprite as the vector writers draw it: its projected polygon (pixels, near-plane
+/// clipped) and what of it is seen ([`Visibility::Whole`] or [`Visibility::Parts`]).
+pub(crate) struct VectorShape<'a> {
+    pub(crate) sprite: &'a SceneSprite,
+    pub(crate) polygon: Vec<DVec2>,
+    pub(crate) visible: Visibility,
+}
+
+/// The scene's visible sprites in paint order as the vector writers draw them, leaving out
+/// what projects to nothing and, under [`HiddenParts::Remove`], what is covered. In ID mode
+/// every sprite is opaque; otherwise a sprite is opaque when its solid colour is.
+pub(crate) fn vector_shapes(scene: &Scene, ids: bool, hidden: HiddenParts) -> Vec<VectorShape<'_>> {
+    let sprites: Vec<&SceneSprite> = scene.visible().map(|(_, sprite)| sprite).collect();
+    let polygons: Vec<Vec<DVec2>> = sprites
+        .iter()
+        .map(|sprite| project_sprite(scene.root(), sprite))
+        .collect();
+    let visibility = match hidden {
+        HiddenParts::Keep => vec![Visibility::Whole; polygons.len()],
+        HiddenParts::Remove => {
+            let opaque: Vec<bool> = sprites
+                .iter()
+                .map(|sprite| ids || sprite.brush.solid_colour(sprite.face)[3] == 255)
+                .collect();
+            visible_parts(&polygons, &opaque)
+        }
+    };
+    sprites
+        .into_iter()
+        .zip(polygons)
+        .zip(visibility)
+        .filter(|((_, polygon), visible)| polygon.len() >= 3 && *visible != Visibility::Hidden)
+        .map(|((sprite, polygon), visible)| VectorShape {
+            sprite,
+            polygon,
+            visible,
+        })
+        .collect()
 }
 
 /// The visible part of each polygon, given the polygons in paint order (back to front, in

@@ -5,7 +5,8 @@ use std::fmt::Write as _;
 use face_sort::tolerance::NEAR_W;
 use glam::{DAffine2, DMat4, DVec2, DVec4};
 
-use crate::{Brush, HiddenParts, Scene, SceneSprite, Visibility, id_colour, visible_parts};
+use crate::hidden::{VectorShape, vector_shapes};
+use crate::{Brush, HiddenParts, Scene, SceneSprite, Visibility, id_colour};
 
 /// Options of [`write_svg`].
 #[derive(Clone, Debug, PartialEq)]
@@ -187,31 +188,17 @@ pub fn write_svg(scene: &Scene, options: &SvgOptions) -> String {
             opacity(bg)
         );
     }
-    let sprites: Vec<&SceneSprite> = scene.visible().map(|(_, sprite)| sprite).collect();
-    let polygons: Vec<Vec<DVec2>> = sprites
-        .iter()
-        .map(|sprite| project_sprite(scene.root(), sprite))
-        .collect();
-    let visibility = match options.hidden {
-        HiddenParts::Keep => vec![Visibility::Whole; polygons.len()],
-        HiddenParts::Remove => {
-            let opaque: Vec<bool> = sprites
-                .iter()
-                .map(|sprite| options.ids || sprite.brush.solid_colour(sprite.face)[3] == 255)
-                .collect();
-            visible_parts(&polygons, &opaque)
-        }
-    };
     let mut clip_count = 0usize;
-    for ((sprite, polygon), visible) in sprites.iter().zip(&polygons).zip(&visibility) {
-        if polygon.len() < 3 {
-            continue;
-        }
+    for VectorShape {
+        sprite,
+        polygon,
+        visible,
+    } in vector_shapes(scene, options.ids, options.hidden)
+    {
         // The element's geometry: the polygon, or the even-odd path of its visible parts.
-        let shape = match visible {
-            Visibility::Hidden => continue,
-            Visibility::Whole => Shape::Polygon(points_attribute(polygon)),
+        let shape = match &visible {
             Visibility::Parts(parts) => Shape::Path(path_data(parts)),
+            _ => Shape::Polygon(points_attribute(&polygon)),
         };
         let texture = match sprite.brush {
             Brush::Texture { texture, uv, .. } if !options.ids => options

@@ -97,8 +97,12 @@ pub struct RenderArgs {
     /// Also write an HTML/CSS 3D page of the same view (sprite-compose writer).
     #[arg(long, value_name = "OUT.html")]
     html: Option<PathBuf>,
-    /// Write every polygon into --svg, hidden parts included (the default leaves out every
-    /// polygon, or part of one, that opaque polygons in front cover).
+    /// Also write a one-page PDF of the same view (sprite-compose writer; one pixel to one
+    /// point).
+    #[arg(long, value_name = "OUT.pdf")]
+    pdf: Option<PathBuf>,
+    /// Write every polygon into --svg and --pdf, hidden parts included (the default leaves out
+    /// every polygon, or part of one, that opaque polygons in front cover).
     #[arg(long)]
     keep_hidden: bool,
     /// Read files the model names (glTF buffers and images, OBJ mtllib, MTL map_Kd) even
@@ -186,14 +190,17 @@ struct Summary {
     #[serde(skip_serializing_if = "Option::is_none")]
     violations: Option<usize>,
     #[serde(skip_serializing_if = "Option::is_none")]
-    svg: Option<SvgSummary>,
+    svg: Option<VectorSummary>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pdf: Option<VectorSummary>,
 }
 
-/// What `--svg` wrote.
+/// What `--svg` or `--pdf` wrote.
 #[derive(Debug, Serialize)]
-struct SvgSummary {
-    /// `<polygon>` and `<path>` elements.
-    shapes: usize,
+struct VectorSummary {
+    /// SVG: `<polygon>` and `<path>` elements.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    shapes: Option<usize>,
     bytes: usize,
     /// Hidden-part removal and writing.
     write_ms: f64,
@@ -325,13 +332,19 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
     };
     let shade = (args.shade || demo).then_some(raster_sink::Light::DEFAULT);
     // ID images need no brushes (and no textures).
-    let style = if args.ids && args.svg.is_none() && args.html.is_none() {
+    let vector = args.svg.is_some() || args.html.is_some() || args.pdf.is_some();
+    let style = if args.ids && !vector {
         raster_sink::Style::palette()
     } else {
         raster::face_style(&geometry, &mesh, texture, grid.as_ref())?
     };
-    let mut svg_summary = None;
-    if args.svg.is_some() || args.html.is_some() {
+    let (mut svg_summary, mut pdf_summary) = (None, None);
+    let hidden = if args.keep_hidden {
+        sprite_compose::HiddenParts::Keep
+    } else {
+        sprite_compose::HiddenParts::Remove
+    };
+    if vector {
         // The sprite tree of the same geometry, sorter kind and view, in the materials'
         // colours (a texture as its mean colour), or ID colours with --ids.
         let brushes = style.sprite_brushes(&mesh, shade.as_ref().map(|light| (&view, light)));
@@ -352,11 +365,6 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
         let scene = painter.compositor().scene();
         if let Some(path) = &args.svg {
             let start = Instant::now();
-            let hidden = if args.keep_hidden {
-                sprite_compose::HiddenParts::Keep
-            } else {
-                sprite_compose::HiddenParts::Remove
-            };
             let svg = sprite_compose::write_svg(
                 scene,
                 &sprite_compose::SvgOptions::DEFAULT
@@ -365,13 +373,32 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
                     .with_seam_stroke(1.0)
                     .with_hidden(hidden),
             );
-            svg_summary = Some(SvgSummary {
-                shapes: svg.matches("<polygon").count() + svg.matches("<path").count(),
+            svg_summary = Some(VectorSummary {
+                shapes: Some(svg.matches("<polygon").count() + svg.matches("<path").count()),
                 bytes: svg.len(),
                 write_ms: ms(start),
                 keep_hidden: args.keep_hidden,
             });
             std::fs::write(path, svg).with_context(|| format!("writing {}", path.display()))?;
+        }
+        if let Some(path) = &args.pdf {
+            let start = Instant::now();
+            let pdf = sprite_compose::write_pdf(
+                scene,
+                &sprite_compose::PdfOptions::DEFAULT
+                    .with_size(width, height)
+                    .with_ids(args.ids)
+                    .with_background(args.ids.then_some([0, 0, 0, 255]))
+                    .with_seam_stroke(if args.ids { 0.0 } else { 1.0 })
+                    .with_hidden(hidden),
+            );
+            pdf_summary = Some(VectorSummary {
+                shapes: None,
+                bytes: pdf.len(),
+                write_ms: ms(start),
+                keep_hidden: args.keep_hidden,
+            });
+            std::fs::write(path, pdf).with_context(|| format!("writing {}", path.display()))?;
         }
         if let Some(path) = &args.html {
             let html = sprite_compose::write_html(
@@ -438,6 +465,7 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
         pixel_error,
         violations,
         svg: svg_summary,
+        pdf: pdf_summary,
     };
     if args.json {
         println!("{}", serde_json::to_string(&summary)?);
@@ -466,18 +494,18 @@ fn line(s: &Summary) -> String {
             e * 100.0
         ));
     }
-    if let Some(svg) = &s.svg {
-        out.push_str(&format!(
-            "; svg {} shapes, {} bytes, {:.1} ms{}",
-            svg.shapes,
-            svg.bytes,
-            svg.write_ms,
-            if svg.keep_hidden {
-                " (hidden kept)"
-            } else {
-                ""
-            }
-        ));
+    for (name, written) in [("svg", &s.svg), ("pdf", &s.pdf)] {
+        if let Some(v) = written {
+            let shapes = v
+                .shapes
+                .map(|n| format!("{n} shapes, "))
+                .unwrap_or_default();
+            let kept = if v.keep_hidden { " (hidden kept)" } else { "" };
+            out.push_str(&format!(
+                "; {name} {shapes}{} bytes, {:.1} ms{kept}",
+                v.bytes, v.write_ms
+            ));
+        }
     }
     out.push_str(&format!(" -> {}", s.output));
     out

@@ -248,3 +248,17 @@ fn svg_leaves_hidden_parts_out_unless_asked() {
     // With no culling about half of the polygons face away and lie behind the others.
     assert!(shapes[0] * 10 <= shapes[1] * 6, "{shapes:?}");
 }
+
+#[test]
+fn pdf_is_written_beside_the_png() {
+    let model = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../assets/models/suzanne/suzanne.obj"
+    );
+    let pdf = temp_dir("pdf").join("suzanne.pdf");
+    let value = render_summary(model, &["--ids", "--pdf", pdf.to_str().unwrap()], "pdf");
+    let bytes = std::fs::read(&pdf).unwrap();
+    assert!(bytes.starts_with(b"%PDF-"), "not a PDF");
+    assert_eq!(value["pdf"]["bytes"], bytes.len(), "{value}");
+    assert_eq!(value["pdf"]["keep_hidden"], false, "{value}");
+}

@@ -7,4 +7,5 @@ mod bake;
 mod browser;
 mod hidden;
 mod painter;
+mod pdf;
 mod writers;

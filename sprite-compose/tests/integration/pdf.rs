@@ -1,0 +1,157 @@
+//! PDF through a real consumer: poppler's `pdftoppm`, anti-aliasing off, in ID mode against
+//! raster-sink's truth.
+//!
+//! Poppler's non-anti-aliased fill paints every pixel a shape touches within its scanline, not
+//! the pixels whose centres it covers. Where the visible face changes along an edge of a drawn
+//! piece that makes no difference (unambiguous pixels are 0.75 px from those edges, more than a
+//! pixel's half-diagonal), but where it changes along an interpenetration curve (spot's
+//! control mesh has some between neighbouring fan triangles) or a BSP cut, a pixel whose centre
+//! is clear of the curve can still be touched. So each page is also rasterised at 5× (pdftoppm
+//! `-r 360`) and sampled at the centre of each 5 × 5 block, the hi-res pixel whose centre is the
+//! pixel centre: there touching reaches 0.3 px, and the PDF must be exact. The 1× counts are
+//! printed beside it.
+//!
+//! Needs `pdftoppm` (Debian package `poppler-utils`). Without it the tests print a notice and
+//! pass, unless the environment variable `CI` is set: then they fail (`.ci/run` installs it).
+
+use std::path::PathBuf;
+use std::process::Command;
+
+use raster_sink::{pixel_error, truth};
+use sprite_compose::face_sort::{CullMode, Geometry, SorterKind, View};
+use sprite_compose::{HiddenParts, PdfOptions, RecordingCompositor, SpritePainter, write_pdf};
+
+use crate::support;
+use crate::writers::ids_of_rgba;
+
+const PDFTOPPM: &str = "pdftoppm";
+const SIZE: u32 = 200;
+/// Odd, so that one hi-res pixel is centred on each pixel centre.
+const ZOOM: u32 = 5;
+
+fn pdftoppm_available() -> bool {
+    let found = Command::new(PDFTOPPM).arg("-v").output().is_ok();
+    if !found {
+        assert!(
+            std::env::var_os("CI").is_none(),
+            "pdftoppm is missing and CI is set: install the Debian package `poppler-utils`"
+        );
+        eprintln!("notice: pdftoppm not found; skipping the PDF tests (set CI to make this fail)");
+    }
+    found
+}
+
+/// Rasterises a one-page PDF at `72 · zoom` dpi (one point to `zoom` pixels), anti-aliasing off.
+fn rasterise(pdf: &[u8], name: &str, zoom: u32) -> resvg::tiny_skia::Pixmap {
+    let dir =
+        std::env::temp_dir().join(format!("sprite-compose-pdf-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    let input = dir.join("page.pdf");
+    std::fs::write(&input, pdf).expect("write pdf");
+    let stem: PathBuf = dir.join("page");
+    let output = Command::new(PDFTOPPM)
+        .args(["-r", &(72 * zoom).to_string()])
+        .args(["-aa", "no", "-aaVector", "no", "-png", "-singlefile"])
+        .arg(&input)
+        .arg(&stem)
+        .output()
+        .expect("run pdftoppm");
+    assert!(
+        output.status.success(),
+        "pdftoppm: {}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    resvg::tiny_skia::Pixmap::load_png(stem.with_extension("png")).expect("pdftoppm's PNG")
+}
+
+/// ID-mode PDFs of a model (hidden parts kept and removed) rasterised by poppler: every
+/// unambiguous pixel must carry the truth's face.
+fn check_model(name: &str, geometry: &Geometry, views: &[View]) {
+    for (k, view) in views.iter().enumerate() {
+        for kind in [SorterKind::Bsp, SorterKind::Newell] {
+            let mut painter = SpritePainter::new(
+                geometry,
+                kind.build(geometry),
+                *view,
+                RecordingCompositor::new(),
+            );
+            painter.frame();
+            let t = truth(view, geometry);
+            for hidden in [HiddenParts::Keep, HiddenParts::Remove] {
+                let pdf = write_pdf(
+                    painter.compositor().scene(),
+                    &PdfOptions::DEFAULT
+                        .with_size(SIZE, SIZE)
+                        .with_ids(true)
+                        .with_background(Some([0, 0, 0, 255]))
+                        .with_hidden(hidden),
+                );
+                let at_size = rasterise(&pdf, &format!("{name}-{k}"), 1);
+                assert_eq!(
+                    (at_size.width(), at_size.height()),
+                    (SIZE, SIZE),
+                    "page size"
+                );
+                // Pixmap data is premultiplied; the page is opaque, so it is the colour.
+                let e1 = pixel_error(&ids_of_rgba(SIZE, SIZE, at_size.data()), &t);
+                let fine = rasterise(&pdf, &format!("{name}-{k}-x{ZOOM}"), ZOOM);
+                assert_eq!(fine.width(), SIZE * ZOOM, "page size at {ZOOM}x");
+                let centres: Vec<u8> = (0..SIZE * SIZE)
+                    .flat_map(|i| {
+                        let (x, y) = (i % SIZE, i / SIZE);
+                        let at =
+                            ((y * ZOOM + ZOOM / 2) * SIZE * ZOOM + x * ZOOM + ZOOM / 2) as usize;
+                        fine.data()[4 * at..4 * at + 4].to_vec()
+                    })
+                    .collect();
+                let e = pixel_error(&ids_of_rgba(SIZE, SIZE, &centres), &t);
+                println!(
+                    "pdf {name} view {k} {} {hidden:?}: {} bytes; wrong at 1x {}/{}, at pixel centres ({ZOOM}x) {}/{}",
+                    kind.name(),
+                    pdf.len(),
+                    e1.wrong,
+                    e1.pixels,
+                    e.wrong,
+                    e.pixels
+                );
+                assert!(e.pixels > 0, "{name}: nothing judged");
+                assert_eq!(
+                    e.wrong,
+                    0,
+                    "{name} view {k} {} {hidden:?}: {e:?}",
+                    kind.name()
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn pdf_ids_through_poppler_are_exact_on_the_models() {
+    if !pdftoppm_available() {
+        return;
+    }
+    for model in [
+        "keenan-crane/spot/spot_control_mesh.obj",
+        "suzanne/suzanne.obj",
+        "cornell-box/cornell_box.obj",
+        "fandisk-quads/fandisk_quads.converted.obj",
+    ] {
+        let geometry = support::geometry(&support::load_obj(model));
+        let base = View::fit(&geometry.bounds(), SIZE, SIZE);
+        let cull = if model.starts_with("cornell") {
+            CullMode::None
+        } else {
+            CullMode::Back
+        };
+        let views = [
+            base.with_yaw_pitch_roll(35.0, 20.0, 0.0).with_cull(cull),
+            base.with_yaw_pitch_roll(200.0, -30.0, 10.0)
+                .with_perspective(f64::from(SIZE))
+                .with_cull(cull),
+        ];
+        let name = model.rsplit('/').next().unwrap_or(model);
+        check_model(name, &geometry, &views);
+    }
+}
