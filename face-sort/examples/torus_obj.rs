@@ -3,8 +3,6 @@
 //!
 //! `cargo run --release -p face-sort --example torus_obj -- 60000 target/torus60k.obj`
 
-use std::fmt::Write as _;
-
 fn main() {
     let mut args = std::env::args().skip(1);
     let faces: usize = args
@@ -13,17 +11,12 @@ fn main() {
         .expect("usage: torus_obj FACES OUT.obj");
     let out = args.next().expect("usage: torus_obj FACES OUT.obj");
     let mesh = face_sort::generate::torus(faces);
-    let mut text = format!("# face_sort::generate::torus({faces})\n");
-    for p in mesh.positions() {
-        let _ = writeln!(text, "v {} {} {}", p.x, p.y, p.z);
-    }
-    for face in mesh.faces() {
-        text.push('f');
-        for &i in face {
-            let _ = write!(text, " {}", i + 1);
-        }
-        text.push('\n');
-    }
+    let text = test_support::to_obj(
+        &mesh,
+        &[format!(
+            "face_sort::generate::torus({faces}) (test_support::models::bumpy_torus)"
+        )],
+    );
     std::fs::write(&out, text).unwrap_or_else(|e| panic!("writing {out}: {e}"));
     println!("{out}: {} faces", mesh.face_count());
 }

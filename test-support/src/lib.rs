@@ -5,6 +5,7 @@
 //! - the one conversion from a loaded [`obj_quads::Mesh`] to a [`face_sort::PolygonMesh`]
 //!   ([`polygon_mesh`], [`load_polygon_mesh`]);
 //! - one seeded random generator ([`Rng`], SplitMix64);
+//! - a polygon mesh written back as OBJ text ([`to_obj`]);
 //! - named generated models ([`models`]): every generated model has one name, and one name
 //!   means one model;
 //! - loader fuzzing's seeds, its one check and the committed loader cases ([`loaders`]).
@@ -26,9 +27,11 @@
 
 pub mod loaders;
 pub mod models;
+mod obj_text;
 mod paths;
 mod rng;
 
+pub use obj_text::to_obj;
 pub use paths::{
     load_model, load_model_at, load_polygon_mesh, model_path, polygon_mesh, test_data_dir,
     try_polygon_mesh, workspace_root,
