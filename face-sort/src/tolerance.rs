@@ -13,10 +13,16 @@ pub const PLANARITY: f64 = 1e-6;
 /// A piece whose Newell normal is shorter than `DEGENERATE_AREA · D²` has no area and is dropped.
 pub const DEGENERATE_AREA: f64 = 1e-12;
 
-/// Plane-side classification (BSP build, Newell tests, splits): a point within
-/// `PLANE_SIDE · L` of a plane is on it. Far below the oracle's depth tolerance and far
-/// above f64 round-off of centred coordinates (about `1e-16 · L`).
-pub const PLANE_SIDE: f64 = 1e-11;
+/// Plane-side classification (BSP build, Newell tests, splits, the planner's convexity
+/// proof): a point within `PLANE_SIDE · L` of a plane is on it. Far above f64 round-off of
+/// centred coordinates (about `1e-16 · L`), and far below the oracle's depth tolerance
+/// [`ORACLE_DEPTH`] even where it matters most: a point misclassified by `PLANE_SIDE · L`
+/// shows, along a view ray meeting the plane at a grazing angle θ, as a depth error of
+/// `PLANE_SIDE · L / sin θ`. At `1e-11` (the earlier value) `cargo xtask stress` found
+/// violations of `3e-9 · L` on a UV sphere moved by 1e6 and 1e7 units (faces seen at
+/// `sin θ ≈ 3e-3`, pieces one rounding apart); `1e-13` keeps such errors inside
+/// [`ORACLE_DEPTH`] down to `sin θ = 1e-4` (face-sort/tests/stress.rs).
+pub const PLANE_SIDE: f64 = 1e-13;
 
 /// Order-violation depth tolerance: a later polygon must lie behind an earlier one by
 /// more than `ORACLE_DEPTH · L` in view depth to count (CONVENTIONS.md).
