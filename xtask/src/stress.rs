@@ -1,7 +1,8 @@
 //! `cargo xtask stress`: numerical stability of every exact sorter (issue 10).
 //!
 //! Every case is a mesh (a transformed copy of a repository model, or a generated scene)
-//! seen from a few views. Per case and sorter the run reports the oracle's order violations,
+//! seen from a few views. The sorters are `Bsp`, `Newell` and the planner `Auto` (which may
+//! pick culling alone on a mesh in convex position), all exact. Per case and sorter the run reports the oracle's order violations,
 //! the pixel error against raster-sink's z-buffer truth, fragments, NaN or infinite
 //! coordinates in the draw list, fallbacks (exactness given up), time, and any panic (each
 //! case runs under `catch_unwind` on its own thread, with a time limit, so one failure does
@@ -21,7 +22,9 @@ use std::time::{Duration, Instant};
 use anyhow::{Context, Result, bail};
 use clap::Args;
 use face_sort::glam::{DMat3, DVec3, EulerRot};
-use face_sort::{CullMode, DrawList, Geometry, PolygonMesh, SorterKind, View, oracle};
+use face_sort::{
+    Auto, CullMode, DrawList, FaceSorter, Geometry, PlanHint, PolygonMesh, SorterKind, View, oracle,
+};
 use serde::Serialize;
 
 use crate::scenes::{self, Rng};
@@ -154,6 +157,8 @@ pub struct Outcome {
     pub ms: f64,
     /// Panic message, if the sorter panicked.
     pub panic: Option<String>,
+    /// For `auto`: the strategy its plan picked (`cull-only`, `newell`, `bsp`).
+    pub plan: Option<String>,
 }
 
 /// A case's figures.
@@ -190,8 +195,7 @@ impl CaseReport {
             if let Some(p) = &o.panic {
                 out.push(format!("{} / {}: panic: {p}", self.name, o.sorter));
             }
-            let exact = SorterKind::EXACT.iter().any(|k| k.name() == o.sorter);
-            if !exact || !self.judged {
+            if !is_exact(&o.sorter) || !self.judged {
                 continue;
             }
             if o.violations > 0 || o.wrong_pixels > 0 || o.non_finite > 0 || o.fallbacks > 0 {
@@ -206,7 +210,21 @@ impl CaseReport {
 }
 
 /// The sorters run on every case: the exact ones, then the reference.
-const SORTERS: [SorterKind; 3] = [SorterKind::Bsp, SorterKind::Newell, SorterKind::Centroid];
+const SORTERS: [&str; 4] = ["bsp", "newell", "auto", "centroid"];
+
+/// The sorters whose failures fail the run.
+fn is_exact(name: &str) -> bool {
+    matches!(name, "bsp" | "newell" | "auto")
+}
+
+/// Builds a sorter by its name in [`SORTERS`].
+fn build_sorter(name: &str, geometry: &Geometry) -> Box<dyn FaceSorter> {
+    match SorterKind::from_name(name) {
+        Some(kind) => kind.build(geometry),
+        // The planner as an animation would use it (it may pick any of its strategies).
+        None => Box::new(Auto::new(geometry, PlanHint::ANIMATION)),
+    }
+}
 
 /// Runs the stress suite.
 pub fn run(args: &StressArgs) -> Result<ExitCode> {
@@ -353,12 +371,12 @@ fn run_case(case: &Case, size: u32) -> CaseReport {
             return report;
         }
     };
-    for kind in SORTERS {
+    for name in SORTERS {
         let outcome = catch_unwind(AssertUnwindSafe(|| {
-            run_sorter(kind, &geometry, &views, &truths)
+            run_sorter(name, &geometry, &views, &truths)
         }))
         .unwrap_or_else(|payload| Outcome {
-            sorter: kind.name().to_owned(),
+            sorter: name.to_owned(),
             panic: Some(panic_message(payload.as_ref())),
             ..Outcome::default()
         });
@@ -368,20 +386,25 @@ fn run_case(case: &Case, size: u32) -> CaseReport {
 }
 
 fn run_sorter(
-    kind: SorterKind,
+    name: &str,
     geometry: &Geometry,
     views: &[View],
     truths: &[raster_sink::Truth],
 ) -> Outcome {
     let mut outcome = Outcome {
-        sorter: kind.name().to_owned(),
+        sorter: name.to_owned(),
         ..Outcome::default()
     };
     let mut elapsed = Duration::ZERO;
     let start = Instant::now();
-    let mut sorter = kind.build(geometry);
+    let mut sorter = build_sorter(name, geometry);
     elapsed += start.elapsed();
-    if kind == SorterKind::Bsp {
+    // `Auto` names itself after the strategy it runs.
+    let runs = sorter.name();
+    if name == "auto" {
+        outcome.plan = Some(runs.to_owned());
+    }
+    if runs == "bsp" {
         outcome.fragments = sorter
             .stats()
             .polygons
@@ -393,7 +416,7 @@ fn run_sorter(
         sorter.sort(view, &mut list);
         elapsed += start.elapsed();
         outcome.fallbacks += sorter.stats().fallbacks;
-        if kind == SorterKind::Newell {
+        if runs == "newell" {
             outcome.fragments = outcome.fragments.max(list.frame_fragments());
         }
         outcome.drawn_max = outcome.drawn_max.max(list.len());
@@ -480,6 +503,14 @@ fn base_models() -> Result<Vec<(String, PolygonMesh, CullMode)>> {
         "assets/models/keenan-crane/spot/spot_quadrangulated.obj",
     )?;
     out.push(("spot".to_owned(), spot.mesh, spot.cull));
+    // Meshes in convex position, where the planner orders by culling alone.
+    let cube = scenes::model_scene("box", "assets/models/assimp-obj/box.obj")?;
+    out.push(("box".to_owned(), cube.mesh, CullMode::Back));
+    out.push((
+        "uv-sphere-512".to_owned(),
+        face_sort::generate::uv_sphere(32, 16),
+        CullMode::Back,
+    ));
     let quads = scenes::random_quads(40, 11)?;
     out.push(("random-quads-40".to_owned(), quads.mesh, CullMode::None));
     out.push((
@@ -771,8 +802,29 @@ fn duplicate_vertices(mesh: &PolygonMesh) -> Result<PolygonMesh, String> {
     PolygonMesh::new(positions, &faces).map_err(|e| format!("MeshError: {e}"))
 }
 
+/// Pages of a book opened all the way round the z axis: quads in planes through the axis, so
+/// that a view down the axis (orthographic, or perspective with the eye on it) sees every
+/// page exactly edge-on; a closing square at each end.
+fn pages() -> Result<PolygonMesh, String> {
+    let mut polygons = Vec::new();
+    for k in 0..8 {
+        let a = f64::from(k) * std::f64::consts::TAU / 8.0 + 0.1;
+        let d = DVec3::new(a.cos(), a.sin(), 0.0);
+        polygons.push(vec![
+            d * 0.2 + DVec3::Z * -1.0,
+            d + DVec3::Z * -1.0,
+            d + DVec3::Z,
+            d * 0.2 + DVec3::Z,
+        ]);
+    }
+    polygons.push(rect(DVec3::Z * -1.3, DVec3::X * 0.9, DVec3::Y * 0.9));
+    polygons.push(rect(DVec3::Z * 1.3, DVec3::X * 0.5, DVec3::Y * 0.5));
+    soup(&polygons)
+}
+
 /// Views along the axes (edge-on to every axis-aligned face), and perspective with the eye
-/// close to, at the surface of, and inside the model.
+/// close to, at the surface of, and inside the model (down to `0.01 · L` from its centre;
+/// closer, the oracle's own pixel-space round-off decides: docs/ROBUSTNESS.md).
 fn view_shots(cull: CullMode) -> Vec<Shot> {
     vec![
         Shot::ortho(0.0, 0.0, 0.0, cull),
@@ -803,6 +855,11 @@ pub fn quick_cases() -> Result<Vec<Case>> {
     let models = vec![
         ("cornell-box".to_owned(), box_scene.mesh, CullMode::None),
         ("random-quads-16".to_owned(), quads.mesh, CullMode::None),
+        (
+            "uv-sphere-128".to_owned(),
+            face_sort::generate::uv_sphere(16, 8),
+            CullMode::Back,
+        ),
     ];
     let mut out = transform_cases(&models, true);
     out.extend(generated_cases(&models, true)?);
@@ -964,6 +1021,11 @@ fn generated_cases(models: &[(String, PolygonMesh, CullMode)], quick: bool) -> R
             .map(|(n, m, c)| (n.clone(), Ok(m.clone()), *c))
             .collect();
         v.push(("T-junction boxes".to_owned(), t_junctions(), CullMode::Back));
+        v.push((
+            "book pages round the view axis".to_owned(),
+            pages(),
+            CullMode::None,
+        ));
         let nested = scenes::nested_boxes()?;
         v.push(("nested-boxes".to_owned(), Ok(nested.mesh), CullMode::None));
         v
@@ -999,15 +1061,16 @@ pub fn markdown(reports: &[CaseReport], size: u32) -> String {
          fragments beyond the pieces (BSP: the tree's; Newell: most cut in one frame) / \
          milliseconds (build + sorts). **px** unambiguous pixels judged per sorter; \
          **NaN, fb** non-finite coordinates in the exact sorters' draw lists and frames \
-         where they gave up exactness. `centroid` is the inexact reference.\n"
+         where they gave up exactness. `auto` is the planner (in brackets what it ran: \
+         `cull-only` on meshes in convex position); `centroid` is the inexact reference.\n"
     );
     let _ = writeln!(
         s,
-        "| group | case | pieces | views | px | bsp | newell | centroid | NaN, fb | status |"
+        "| group | case | pieces | views | px | bsp | newell | auto | centroid | NaN, fb | status |"
     );
     let _ = writeln!(
         s,
-        "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |"
+        "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |"
     );
     for r in reports {
         let head = format!(
@@ -1018,11 +1081,11 @@ pub fn markdown(reports: &[CaseReport], size: u32) -> String {
             r.views.len()
         );
         if let Some(f) = &r.failure {
-            let _ = writeln!(s, "{head} | | | | | **FAIL**: {f} |");
+            let _ = writeln!(s, "{head} | | | | | | **FAIL**: {f} |");
             continue;
         }
         if let Some(e) = &r.error {
-            let _ = writeln!(s, "{head} | | | | | typed error: {e} |");
+            let _ = writeln!(s, "{head} | | | | | | typed error: {e} |");
             continue;
         }
         let pixels = r.outcomes.first().map_or(0, |o| o.unambiguous_pixels);
@@ -1033,16 +1096,19 @@ pub fn markdown(reports: &[CaseReport], size: u32) -> String {
                 .map_or_else(String::new, |o| match &o.panic {
                     Some(_) => "panic".to_owned(),
                     None if name == "centroid" => format!("{} / {}", o.violations, o.wrong_pixels),
+                    None if name == "auto" => format!(
+                        "{} / {} ({})",
+                        o.violations,
+                        o.wrong_pixels,
+                        o.plan.as_deref().unwrap_or("?")
+                    ),
                     None => format!(
                         "{} / {} / {} / {:.1}",
                         o.violations, o.wrong_pixels, o.fragments, o.ms
                     ),
                 })
         };
-        let exact = r
-            .outcomes
-            .iter()
-            .filter(|o| SorterKind::EXACT.iter().any(|k| k.name() == o.sorter));
+        let exact = r.outcomes.iter().filter(|o| is_exact(&o.sorter));
         let (nan, fb) = exact.fold((0, 0), |(n, f), o| (n + o.non_finite, f + o.fallbacks));
         let problems = r.problems();
         let status = if problems.is_empty() {
@@ -1054,9 +1120,10 @@ pub fn markdown(reports: &[CaseReport], size: u32) -> String {
         };
         let _ = writeln!(
             s,
-            "{head} {pixels} | {} | {} | {} | {nan}, {fb} | {status} |",
+            "{head} {pixels} | {} | {} | {} | {} | {nan}, {fb} | {status} |",
             cell("bsp"),
             cell("newell"),
+            cell("auto"),
             cell("centroid"),
         );
     }
