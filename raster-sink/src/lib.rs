@@ -9,9 +9,12 @@
 //!   nearest, in f64, with the mask of unambiguous pixels; [`pixel_error`] compares a
 //!   painter's ID image with it. An exact order gives exactly 0.
 //! - **Colour** ([`render_colour`], [`run_steps`]) on tiny-skia: anti-aliased, with solid,
-//!   textured ([`UvMap`]) and palette brushes ([`face_sort::colours::golden_angle_colour`]), flat Lambert
-//!   shading ([`Light`]), supersampling, override brushes, a small list of render [`Step`]s,
-//!   and a procedural [`GroundGrid`].
+//!   textured ([`UvMap`]) and palette brushes ([`face_sort::colours::golden_angle_colour`]),
+//!   flat Lambert shading ([`Light`]), supersampling, override brushes, a small list of
+//!   render [`Step`]s, and a procedural [`GroundGrid`].
+//! - **Materials** ([`FaceMaterials`], [`Style::from_materials`], [`Style::sprite_brushes`]):
+//!   the one path from a loaded model's materials to brushes, for this raster and, projected,
+//!   for sprite-compose's painter and its SVG and HTML writers.
 //!
 //! # Seams
 //! Anti-aliased neighbours conflate: a pixel half covered by each of two adjacent polygons
@@ -55,7 +58,10 @@
 //! ```
 //!
 //! # Feature flags
-//! None yet: tiny-skia (with its PNG support) and png are always on.
+//! - `obj-quads`: [`FaceMaterials`] for `obj_quads::Mesh`, so that
+//!   `Style::from_materials(&mesh, ..)` takes a loaded model directly.
+//!
+//! tiny-skia (with its PNG support), png and obj-quads' texture decoding are always on.
 
 mod colour;
 mod error;
