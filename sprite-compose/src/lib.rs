@@ -46,8 +46,8 @@
 //! ```
 //!
 //! # Feature flags
-//! None yet: the crate depends only on `face-sort` and `glam`. The writers
-//! produce text and need no extra dependency.
+//! None yet. Beside `face-sort` and `glam` the crate depends on `i_overlay` (hidden-part
+//! removal: 2D boolean operations) and `pdf-writer` (the PDF writer).
 
 mod bake;
 mod compositor;
