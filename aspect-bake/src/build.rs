@@ -207,18 +207,24 @@ pub fn bake(
     source.events(spin, start, end, options.max_events, &mut events)?;
     events.sort_by(|a, b| a.theta.total_cmp(&b.theta));
     // Breakpoint candidates: groups of roots within SAME_ROOT_RAD, the domain's ends apart.
+    // Chains of roots each within SAME_ROOT_RAD, or within the sum of the two roots'
+    // uncertainties, of the previous one are one candidate (the chain's first root).
     let mut candidates: Vec<Event> = Vec::new();
+    let mut previous: Option<(f64, f64)> = None;
+    let first_uncertainty = events
+        .first()
+        .map_or(0.0, |e| e.function.root_uncertainty());
     for e in &events {
-        let near_end =
-            !periodic && (e.theta - start < SAME_ROOT_RAD || end - e.theta < SAME_ROOT_RAD);
-        let near_last = candidates
-            .last()
-            .is_some_and(|c| e.theta - c.theta < SAME_ROOT_RAD);
+        let mine = e.function.root_uncertainty();
+        let near = |gap: f64, other: f64| gap < SAME_ROOT_RAD.max(mine + other);
+        let near_end = !periodic && (near(e.theta - start, 0.0) || near(end - e.theta, 0.0));
+        let near_previous = previous.is_some_and(|(t, u)| near(e.theta - t, u));
         let near_wrap = periodic
             && candidates
                 .first()
-                .is_some_and(|c| c.theta + TAU - e.theta < SAME_ROOT_RAD);
-        if !(near_end || near_last || near_wrap) {
+                .is_some_and(|c| near(c.theta + TAU - e.theta, first_uncertainty));
+        previous = Some((e.theta, mine));
+        if !(near_end || near_previous || near_wrap) {
             candidates.push(*e);
         }
     }

@@ -202,6 +202,7 @@ impl Bake {
     pub fn cell_at(&self, degrees: f64) -> Option<usize> {
         let first = self.cells.first()?;
         let angle = match self.domain.period {
+            Some(p) if degrees >= first.range.lo && degrees < first.range.lo + p => degrees,
             Some(p) => first.range.lo + (degrees - first.range.lo).rem_euclid(p),
             None => {
                 if degrees < self.domain.lo || degrees > self.domain.hi {

@@ -2,7 +2,7 @@
 
 use std::f64::consts::TAU;
 
-use crate::tolerance::{IDENTICALLY_ZERO, TANGENT};
+use crate::tolerance::{IDENTICALLY_ZERO, ROOT_NOISE, TANGENT};
 
 /// A quantity `a·cos θ + b·sin θ + c` whose sign decides part of a draw list (see the crate
 /// docs for why every such quantity has this form).
@@ -78,12 +78,23 @@ impl EventFn {
         } else if q.abs() >= 1.0 - TANGENT {
             Roots::Tangent(if q > 0.0 { phi } else { phi + TAU / 2.0 })
         } else {
-            let alpha = q.acos();
+            // α = acos(−c/r), through atan2 of the sine `sqrt((r − c)(r + c))`: well
+            // conditioned also near tangency, where acos loses half the digits.
+            let alpha = ((r - self.c) * (r + self.c)).sqrt().atan2(-self.c);
             Roots::Two {
                 down: phi + alpha,
                 up: phi - alpha,
             }
         }
+    }
+
+    /// How far a root may move for a rounding error of `ROOT_NOISE · scale` in the value:
+    /// `ROOT_NOISE · scale / |f′|`, with `|f′| = sqrt(r² − c²)` at either root.
+    #[must_use]
+    pub fn root_uncertainty(&self) -> f64 {
+        let r = self.a.hypot(self.b);
+        let slope = ((r - self.c).abs() * (r + self.c).abs()).sqrt();
+        ROOT_NOISE * self.scale / slope.max(f64::MIN_POSITIVE)
     }
 }
 

@@ -10,10 +10,17 @@ pub const IDENTICALLY_ZERO: f64 = 1e-12;
 /// function touches zero without changing sign. No event.
 pub const TANGENT: f64 = 1e-12;
 
-/// Roots (of different functions) closer than this, in radians, are one breakpoint. The draw
-/// list between them cannot be told apart by any f64 evaluation of the live sorter
-/// (5.7e-10 degrees; the unit-cube test asks for 1e-9 degrees).
-pub const SAME_ROOT_RAD: f64 = 1e-11;
+/// Roots (of different functions) closer than this, in radians, are one breakpoint
+/// (rounding of one root computation). Roots also merge when
+/// closer than the sum of their uncertainties ([`ROOT_NOISE`]).
+pub const SAME_ROOT_RAD: f64 = 1e-14;
+
+/// The rounding error, relative to an event function's scale, of evaluating it in f64 the
+/// way the live sorter does (a rotation built from `sin θ`, `cos θ`, then dot products):
+/// a root is known only to within this times `scale / |f′|`. Between two roots closer
+/// than their uncertainties no f64 evaluation can tell which side it is on, so they are one
+/// breakpoint.
+pub const ROOT_NOISE: f64 = 1e-13;
 
 /// How far, in radians, on each side of a breakpoint `verify` evaluates the event function
 /// and the live sorter (less when the neighbouring cells are narrower).

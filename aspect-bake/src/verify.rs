@@ -120,9 +120,11 @@ pub fn verify(
                 let Some(event) = b.event else {
                     return Ok(());
                 };
-                let Some(right) = bake.cell_at(b.degrees) else {
-                    return Err(fail("outside the domain".into()));
-                };
+                // Breakpoint i starts cell i over a full period, cell i + 1 on a range.
+                let right = index + usize::from(bake.domain.period.is_none());
+                if right >= n || bake.cells[right].range.lo != b.degrees {
+                    return Err(fail("it does not start a cell".into()));
+                }
                 let left = if right == 0 { n - 1 } else { right - 1 };
                 let width = |c: usize| {
                     let r = bake.cells[c].range;

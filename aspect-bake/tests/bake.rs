@@ -1,0 +1,328 @@
+//! Bakes checked against the live sorters: the unit cube's exact breakpoints, generated
+//! scenes and axes (proptest), real models orthographic and perspective, the sampling
+//! baseline's misses, budgets, the delta timeline and the serde round trip.
+
+use aspect_bake::{
+    Axis, Bake, BakeError, BakeOptions, BspSource, CentroidSource, Delta, EventSource, Spin, bake,
+    bake_sampled, verify,
+};
+use face_sort::glam::DVec3;
+use face_sort::{Geometry, PolygonMesh, View, strategies};
+use proptest::prelude::*;
+
+fn cube() -> Geometry {
+    let mesh = test_support::models::boxes(&[(DVec3::ZERO, DVec3::ONE)]);
+    Geometry::new(&mesh).unwrap()
+}
+
+fn yaw_spin(geometry: &Geometry, persp: Option<f64>) -> Spin {
+    let mut view = View::fit(&geometry.bounds(), 256, 256);
+    if let Some(d) = persp {
+        view = view.with_perspective(d);
+    }
+    Spin::new(
+        view,
+        Axis::Yaw {
+            pitch: 0.0,
+            roll: 0.0,
+        },
+    )
+    .unwrap()
+}
+
+fn degrees(bake: &Bake) -> Vec<f64> {
+    bake.breakpoints.iter().map(|b| b.degrees).collect()
+}
+
+/// Every breakpoint within 1e-9° of a multiple of `step` degrees.
+fn on_multiples(at: &[f64], step: f64) {
+    for &d in at {
+        let k = (d / step).round();
+        assert!(
+            (d - k * step).abs() < 1e-9,
+            "{d} is not a multiple of {step}"
+        );
+    }
+}
+
+#[test]
+fn unit_cube_yaw_bsp_breaks_at_quarter_turns() {
+    let g = cube();
+    for persp in [None, Some(256.0)] {
+        let spin = yaw_spin(&g, persp);
+        let source = BspSource::of(&g);
+        let b = bake(&source, &spin, &BakeOptions::DEFAULT).unwrap();
+        let at = degrees(&b);
+        if persp.is_none() {
+            assert_eq!(at.len(), 4, "{at:?}");
+            on_multiples(&at, 90.0);
+        }
+        assert_eq!(b.cells.len(), at.len());
+        verify(&b, &source, &spin, 8, 7).unwrap();
+    }
+}
+
+#[test]
+fn unit_cube_yaw_centroid_has_eight_cells_at_multiples_of_45() {
+    let g = cube();
+    let spin = yaw_spin(&g, None);
+    let source = CentroidSource::of(&g);
+    let b = bake(&source, &spin, &BakeOptions::DEFAULT).unwrap();
+    let at = degrees(&b);
+    assert_eq!(b.cells.len(), 8, "{at:?}");
+    assert_eq!(at.len(), 8);
+    on_multiples(&at, 45.0);
+    let report = verify(&b, &source, &spin, 8, 3).unwrap();
+    assert_eq!(report.breakpoint_checks, 8);
+}
+
+#[test]
+fn cell_at_finds_the_cell_and_the_delta_timeline_rebuilds_every_list() {
+    let g = cube();
+    let spin = yaw_spin(&g, None);
+    let b = bake(&CentroidSource::of(&g), &spin, &BakeOptions::DEFAULT).unwrap();
+    for (k, cell) in b.cells.iter().enumerate() {
+        for f in [0.0, 0.3, 0.999] {
+            let d = cell.range.lerp(f);
+            assert_eq!(b.cell_at(d), Some(k));
+            assert_eq!(b.cell_at(d + 720.0), Some(k));
+            assert_eq!(b.cell_at(d - 360.0), Some(k));
+        }
+    }
+    let mut list = b.cells[0].order.clone();
+    for (delta, cell) in b
+        .delta_timeline()
+        .iter()
+        .zip(b.cells.iter().cycle().skip(1))
+    {
+        delta.apply(&mut list);
+        assert_eq!(&list, &cell.order);
+    }
+    let sizes = b.sizes();
+    assert!(sizes.delta_bytes > 0 && sizes.full_bytes > 0);
+    assert_eq!(Delta::between(&[1, 2], &[2, 1]).bytes(), 16 + 8);
+}
+
+/// Two small squares facing almost the same way, their normals 0.1° apart: their facing
+/// events lie 0.1° apart, closer than the 0.5° step of 720 samples.
+fn close_pair() -> Geometry {
+    let square = |centre: DVec3, normal: DVec3| {
+        let (u, v) = normal.any_orthonormal_pair();
+        [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
+            .map(|(a, b)| centre + (u * a + v * b) * 0.2)
+            .to_vec()
+    };
+    let tilt = |deg: f64| {
+        let t = f64::to_radians(deg);
+        DVec3::new(t.sin(), 0.0, t.cos())
+    };
+    // Facing n·(−sin θ, 0, cos θ) = cos(θ + a) for n = (sin a, 0, cos a): zero at 90° − a.
+    let quads = [
+        square(DVec3::new(-1.0, 0.0, 0.0), tilt(-0.2)),
+        square(DVec3::new(1.0, 0.0, 0.0), tilt(-0.3)),
+    ];
+    let positions: Vec<DVec3> = quads.iter().flatten().copied().collect();
+    let faces = vec![vec![0, 1, 2, 3], vec![4, 5, 6, 7]];
+    Geometry::new(&PolygonMesh::new(positions, faces).unwrap()).unwrap()
+}
+
+#[test]
+fn close_events_the_baseline_misses_and_the_exact_bake_finds() {
+    let g = close_pair();
+    let spin = yaw_spin(&g, None);
+    for source in [
+        &BspSource::of(&g) as &dyn EventSource,
+        &CentroidSource::of(&g),
+    ] {
+        let exact = bake(source, &spin, &BakeOptions::DEFAULT).unwrap();
+        verify(&exact, source, &spin, 8, 11).unwrap();
+        let at = degrees(&exact);
+        // The squares turn edge-on at 90.2° and 90.3° (and 270.2°, 270.3°), both inside the
+        // baseline's step [90°, 90.5°).
+        let near = |x: f64| at.iter().any(|&d| (d - x).abs() < 1e-9);
+        for x in [90.2, 90.3, 270.2, 270.3] {
+            assert!(near(x), "{x} not in {at:?}");
+        }
+        let sampled = bake_sampled(source, &spin, 720, 1e-3, &BakeOptions::DEFAULT).unwrap();
+        let missed = sampled.missed(&exact, 2e-3);
+        assert!(
+            !missed.is_empty(),
+            "the baseline found {:?}",
+            degrees(&sampled)
+        );
+        assert!(exact.missed(&exact, 0.0).is_empty());
+        // The sampled bake is not what the live sorter draws everywhere.
+        assert!(verify(&sampled, source, &spin, 64, 5).is_err());
+    }
+}
+
+#[test]
+fn budgets_stop_with_the_size_it_would_have() {
+    let g = cube();
+    let spin = yaw_spin(&g, None);
+    let options = BakeOptions {
+        budget_bytes: 40,
+        ..BakeOptions::DEFAULT
+    };
+    match bake(&BspSource::of(&g), &spin, &options) {
+        Err(BakeError::SizeBudget {
+            estimated_bytes,
+            budget,
+            ..
+        }) => {
+            assert_eq!(budget, 40);
+            assert!(estimated_bytes > 40);
+        }
+        other => panic!("expected a size budget error, got {other:?}"),
+    }
+    let options = BakeOptions {
+        max_events: 3,
+        ..BakeOptions::DEFAULT
+    };
+    assert!(matches!(
+        bake(&CentroidSource::of(&g), &spin, &options),
+        Err(BakeError::EventBudget { budget: 3, .. })
+    ));
+    let margin = Spin::new(
+        View::fit(&g.bounds(), 64, 64).with_cull_margin(5.0),
+        Axis::Yaw {
+            pitch: 0.0,
+            roll: 0.0,
+        },
+    )
+    .unwrap();
+    assert!(matches!(
+        bake(&BspSource::of(&g), &margin, &BakeOptions::DEFAULT),
+        Err(BakeError::CullMargin { .. })
+    ));
+    let range = BakeOptions {
+        range_deg: Some((10.0, 5.0)),
+        ..BakeOptions::DEFAULT
+    };
+    assert!(matches!(
+        bake(&BspSource::of(&g), &spin, &range),
+        Err(BakeError::Range { .. })
+    ));
+}
+
+#[test]
+fn a_range_bakes_only_its_part() {
+    let g = cube();
+    let spin = yaw_spin(&g, None);
+    let source = CentroidSource::of(&g);
+    let options = BakeOptions {
+        range_deg: Some((10.0, 100.0)),
+        ..BakeOptions::DEFAULT
+    };
+    let b = bake(&source, &spin, &options).unwrap();
+    // 45 and 90 inside; the ends are not breakpoints.
+    let at = degrees(&b);
+    assert_eq!(at.len(), 2, "{at:?}");
+    on_multiples(&at, 45.0);
+    assert_eq!(b.cells.first().unwrap().range.lo, 10.0);
+    assert!((b.cells.last().unwrap().range.hi - 100.0).abs() < 1e-12);
+    assert_eq!(b.cell_at(5.0), None);
+    verify(&b, &source, &spin, 8, 2).unwrap();
+}
+
+fn real_model(path: &str, persp: bool, source_kind: &str) {
+    let mesh = test_support::load_polygon_mesh(path);
+    let g = Geometry::new(&mesh).unwrap();
+    let mut view = View::fit(&g.bounds(), 256, 256);
+    if persp {
+        view = view.with_perspective(256.0);
+    }
+    let spin = Spin::new(
+        view,
+        Axis::Yaw {
+            pitch: 20.0,
+            roll: 0.0,
+        },
+    )
+    .unwrap();
+    let bsp;
+    let centroid;
+    let source: &dyn EventSource = if source_kind == "bsp" {
+        bsp = BspSource::of(&g);
+        &bsp
+    } else {
+        centroid = CentroidSource::of(&g);
+        &centroid
+    };
+    let b = bake(source, &spin, &BakeOptions::DEFAULT).unwrap();
+    assert!(b.cells.len() > 1);
+    let report = verify(&b, source, &spin, 2, 99).unwrap();
+    assert_eq!(report.breakpoint_checks, b.breakpoints.len());
+}
+
+#[test]
+fn book_bakes_exactly_orthographic_and_perspective() {
+    for persp in [false, true] {
+        for kind in ["bsp", "centroid"] {
+            real_model("combobulate-samples/book.obj", persp, kind);
+        }
+    }
+}
+
+#[test]
+fn fandisk_bakes_exactly_under_bsp() {
+    for persp in [false, true] {
+        real_model("fandisk-quads/fandisk_quads.converted.obj", persp, "bsp");
+    }
+}
+
+fn axis_strategy() -> impl Strategy<Value = (u8, DVec3)> {
+    (
+        0u8..4,
+        (-1.0..1.0f64, -1.0..1.0f64, -1.0..1.0f64)
+            .prop_map(|(x, y, z)| DVec3::new(x, y, z))
+            .prop_filter("axis too short", |v| v.length() > 0.1),
+    )
+}
+
+fn cases() -> u32 {
+    std::env::var("PROPTEST_CASES")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(24)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: cases(), ..ProptestConfig::default() })]
+
+    #[test]
+    fn generated_scenes_and_axes_verify(
+        scene in strategies::any_scene(),
+        spec in strategies::view_spec(),
+        (kind, direction) in axis_strategy(),
+        centroid in any::<bool>(),
+    ) {
+        let g = Geometry::new(&scene).unwrap();
+        let base = spec.view(&g);
+        let axis = match kind {
+            0 => Axis::Yaw { pitch: spec.pitch, roll: spec.roll },
+            1 => Axis::Pitch { yaw: spec.yaw, roll: spec.roll },
+            2 => Axis::Roll { yaw: spec.yaw, pitch: spec.pitch },
+            _ => Axis::Direction {
+                axis: direction.to_array(),
+                base: base.rotation().to_cols_array_2d(),
+            },
+        };
+        let spin = Spin::new(base, axis).unwrap();
+        let bsp;
+        let cen;
+        let source: &dyn EventSource = if centroid {
+            cen = CentroidSource::of(&g);
+            &cen
+        } else {
+            bsp = BspSource::of(&g);
+            &bsp
+        };
+        let b = bake(source, &spin, &BakeOptions::DEFAULT).unwrap();
+        let report = verify(&b, source, &spin, 3, 17);
+        prop_assert!(report.is_ok(), "{:?}", report);
+        // Cells tile the period.
+        let total: f64 = b.cells.iter().map(|c| c.range.hi - c.range.lo).sum();
+        prop_assert!((total - 360.0).abs() < 1e-9);
+    }
+}
