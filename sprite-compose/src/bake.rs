@@ -1,96 +1,19 @@
 //! Baked realisation: precomputed painter orders over an animation angle, as data.
 //!
-//! `aspect-bake` (not written yet) computes cells `[lo, hi)` of an angle with a constant
-//! painter order; this module defines the shape it must deliver ([`Bake`]) and realises it as
-//! one container per cell, shown only while the angle lies in the cell ([`BakedGraph`]). A
+//! `aspect-bake` computes cells `[lo, hi)` of an angle with a constant painter order
+//! ([`Bake`]); this module realises a bake as one container per cell, shown only while the
+//! angle lies in the cell ([`BakedGraph`]). A
 //! backend turns each container's [`AngleRange`] into its own animation expression (e.g. a
 //! composition expression or CSS), so that the animation needs no per-frame CPU.
 
 use std::sync::{Arc, Mutex};
 
-use face_sort::{Geometry, PolygonSet, View};
+use face_sort::{Geometry, View};
 use glam::{DMat3, DVec2, DVec3};
 
+use aspect_bake::{AngleRange, Bake};
+
 use crate::{Brush, PieceMaps, SpriteSpace, SpriteTransform};
-
-/// A half-open angle interval `[lo, hi)` in degrees; on a periodic axis it wraps (then
-/// `lo > hi` after reduction means "from `lo` past the period to `hi`").
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct AngleRange {
-    /// Start, degrees (inclusive).
-    pub lo: f64,
-    /// End, degrees (exclusive).
-    pub hi: f64,
-    /// Period in degrees (e.g. 360) for a periodic axis, `None` otherwise.
-    pub period: Option<f64>,
-}
-
-impl AngleRange {
-    /// Whether `angle` (degrees) lies in the range.
-    #[must_use]
-    pub fn contains(&self, angle: f64) -> bool {
-        match self.period {
-            None => angle >= self.lo && angle < self.hi,
-            Some(p) => {
-                if self.hi - self.lo >= p {
-                    return true;
-                }
-                let (a, lo, hi) = (
-                    angle.rem_euclid(p),
-                    self.lo.rem_euclid(p),
-                    self.hi.rem_euclid(p),
-                );
-                if lo <= hi {
-                    a >= lo && a < hi
-                } else {
-                    a >= lo || a < hi
-                }
-            }
-        }
-    }
-
-    /// The predicate as an expression over a variable holding the angle in degrees, in the
-    /// C-like syntax most animation systems accept (`%`, `&&`, `||`, comparisons), e.g.
-    /// `((a % 360 + 360) % 360 >= 10 && (a % 360 + 360) % 360 < 20)`.
-    #[must_use]
-    pub fn to_expression(&self, variable: &str) -> String {
-        match self.period {
-            None => format!("({variable} >= {} && {variable} < {})", self.lo, self.hi),
-            Some(p) => {
-                if self.hi - self.lo >= p {
-                    return "true".to_owned();
-                }
-                let a = format!("({variable} % {p} + {p}) % {p}");
-                let (lo, hi) = (self.lo.rem_euclid(p), self.hi.rem_euclid(p));
-                if lo <= hi {
-                    format!("({a} >= {lo} && {a} < {hi})")
-                } else {
-                    format!("({a} >= {lo} || {a} < {hi})")
-                }
-            }
-        }
-    }
-}
-
-/// One cell of a bake: over `range` the painter order is `order` (indices into the bake's
-/// polygon set, back to front; culled polygons are absent).
-#[derive(Clone, Debug, PartialEq)]
-pub struct BakeCell {
-    /// Where the order holds.
-    pub range: AngleRange,
-    /// Polygon indices in paint order.
-    pub order: Vec<u32>,
-}
-
-/// What `aspect-bake` must deliver: the polygons (pieces and fragments, centred model
-/// space, each tagged with its source face and plane) and the cells covering the axis.
-#[derive(Clone, Debug)]
-pub struct Bake {
-    /// Polygons the orders refer to.
-    pub polygons: Arc<PolygonSet>,
-    /// Cells, in increasing angle.
-    pub cells: Vec<BakeCell>,
-}
 
 /// One sprite of a baked container.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

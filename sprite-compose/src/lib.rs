@@ -11,8 +11,8 @@
 //!
 //! Also here: picking and selection outlines ([`ProjectedFrame`]), the SVG writer
 //! ([`write_svg`]) and the HTML/CSS 3D writer ([`write_html`], flat or `preserve-3d`), both
-//! with a CONVENTIONS.md ID-colour mode, and the data shapes of a baked realisation
-//! ([`Bake`], [`BakedGraph`], [`FacingPredicate`]).
+//! with a CONVENTIONS.md ID-colour mode, and the realisation of an `aspect-bake` bake
+//! ([`Bake`]) as containers of sprites ([`BakedGraph`], [`FacingPredicate`]).
 //!
 //! ```
 //! use sprite_compose::face_sort::{Geometry, PolygonMesh, SorterKind, View};
@@ -47,7 +47,8 @@
 //!
 //! # Feature flags
 //! None yet. Beside `face-sort` and `glam` the crate depends on `i_overlay` (hidden-part
-//! removal: 2D boolean operations) and `pdf-writer` (the PDF writer).
+//! removal: 2D boolean operations), `pdf-writer` (the PDF writer) and `aspect-bake` (the
+//! bake it realises).
 
 mod bake;
 mod compositor;
@@ -63,9 +64,10 @@ mod svg;
 pub mod tolerance;
 mod transform;
 
+pub use aspect_bake;
+pub use aspect_bake::{AngleRange, Bake, BakeCell};
 pub use bake::{
-    AngleRange, Bake, BakeCell, BakeSlot, BakedContainer, BakedGraph, BakedSprite, FacingPredicate,
-    convex_facing_predicates,
+    BakeSlot, BakedContainer, BakedGraph, BakedSprite, FacingPredicate, convex_facing_predicates,
 };
 pub use compositor::{Brush, Compositor, OpCounts, SpriteId, TextureId};
 pub use hidden::{HiddenParts, Visibility, visible_parts};

@@ -1,62 +1,62 @@
 //! Baked realisation: containers per cell, brushes-only material swaps, one-step swap, convex
 //! facing predicates.
 
-use std::sync::Arc;
-
-use sprite_compose::face_sort::{DrawList, PolygonSet, SorterKind, View};
+use sprite_compose::aspect_bake::{Axis, BakeOptions, BspSource, Spin, bake};
+use sprite_compose::face_sort::{Geometry, View};
 use sprite_compose::{
-    AngleRange, Bake, BakeCell, BakeSlot, BakedGraph, Brush, convex_facing_predicates,
+    AngleRange, Bake, BakeSlot, BakedGraph, Brush, convex_facing_predicates,
     rotation_from_yaw_pitch_roll,
 };
 
 use crate::support;
 
-/// A sampled stand-in for aspect-bake: one cell per `step` degrees of yaw, ordered by the
-/// sorter at the cell's start.
-fn sampled_bake(step: f64) -> (sprite_compose::face_sort::Geometry, View, Bake) {
-    let g = support::geometry(&support::load_obj(
+/// The exact BSP bake of a model under a yaw spin at pitch 20°.
+fn exact_bake(geometry: Geometry) -> (Geometry, View, Bake) {
+    let base = View::fit(&geometry.bounds(), 256, 256);
+    let spin = Spin::new(
+        base,
+        Axis::Yaw {
+            pitch: 20.0,
+            roll: 0.0,
+        },
+    )
+    .expect("a named axis");
+    let bake = bake(&BspSource::of(&geometry), &spin, &BakeOptions::DEFAULT).expect("a bake");
+    (geometry, base, bake)
+}
+
+fn spot_bake() -> (Geometry, View, Bake) {
+    exact_bake(support::geometry(&support::load_obj(
         "keenan-crane/spot/spot_control_mesh.obj",
-    ));
-    let base = View::fit(&g.bounds(), 256, 256);
-    let mut sorter = SorterKind::Centroid.build(&g);
-    let mut list = DrawList::new();
-    let mut cells = Vec::new();
-    let mut polygons: Option<Arc<PolygonSet>> = None;
-    let mut lo = 0.0;
-    while lo < 360.0 {
-        sorter.sort(
-            &base.with_rotation(rotation_from_yaw_pitch_roll(lo, 20.0, 0.0)),
-            &mut list,
-        );
-        polygons = list.shared().cloned();
-        cells.push(BakeCell {
-            range: AngleRange {
-                lo,
-                hi: lo + step,
-                period: Some(360.0),
-            },
-            order: list.items().iter().map(|i| i.polygon).collect(),
-        });
-        lo += step;
-    }
-    let bake = Bake {
-        polygons: polygons.expect("a frame"),
-        cells,
-    };
-    (g, base, bake)
+    )))
+}
+
+fn cube_bake() -> (Geometry, View, Bake) {
+    exact_bake(support::geometry(&support::boxes(&[(
+        glam::DVec3::ZERO,
+        glam::DVec3::ONE,
+    )])))
 }
 
 #[test]
 fn one_container_per_cell_with_wrapping_predicates() {
-    let (g, view, bake) = sampled_bake(30.0);
+    let (g, view, bake) = spot_bake();
     let graph = BakedGraph::realise(&bake, &g, &view);
-    assert_eq!(graph.containers().len(), 12);
-    for angle in [0.0, 29.9, 30.0, 359.0, 365.0, -1.0, 719.0] {
-        let shown: Vec<usize> = (0..12)
+    let n = bake.cells.len();
+    assert!(n > 2);
+    assert_eq!(graph.containers().len(), n);
+    let mut angles = vec![0.0, 29.9, 30.0, 359.0, 365.0, -1.0, 719.0];
+    // Every cell boundary and a point inside every cell.
+    for cell in &bake.cells {
+        angles.extend([cell.range.lo, cell.range.lerp(0.5)]);
+    }
+    for angle in angles {
+        let shown: Vec<usize> = (0..n)
             .filter(|&k| graph.containers()[k].visible_while.contains(angle))
             .collect();
         assert_eq!(shown.len(), 1, "exactly one container at {angle}");
         assert_eq!(graph.container_at(angle), Some(shown[0]));
+        assert_eq!(bake.cell_at(angle), Some(shown[0]));
     }
     let wrap = AngleRange {
         lo: 350.0,
@@ -68,7 +68,7 @@ fn one_container_per_cell_with_wrapping_predicates() {
         wrap.to_expression("a"),
         "((a % 360 + 360) % 360 >= 350 || (a % 360 + 360) % 360 < 10)"
     );
-    // Every baked sprite has a transform; the first container shows the order at yaw 0.
+    // Every baked sprite has a transform; the first container shows the first cell's order.
     let c = &graph.containers()[0];
     assert_eq!(c.sprites.len(), bake.cells[0].order.len());
     assert!(
@@ -80,7 +80,7 @@ fn one_container_per_cell_with_wrapping_predicates() {
 
 #[test]
 fn materials_swap_brushes_only_and_bakes_swap_in_one_step() {
-    let (g, view, bake) = sampled_bake(45.0);
+    let (g, view, bake) = spot_bake();
     let mut graph = BakedGraph::realise(&bake, &g, &view);
     let before: Vec<_> = graph.containers().to_vec();
     let told = graph.set_brushes(|f| {
@@ -100,14 +100,16 @@ fn materials_swap_brushes_only_and_bakes_swap_in_one_step() {
     assert_eq!(graph.brush(3), Brush::Solid([1, 2, 3, 255]));
     let slot = BakeSlot::new(graph);
     let reader = slot.clone();
-    let (g2, view2, bake2) = sampled_bake(90.0);
+    let spot_cells = bake.cells.len();
+    let (g2, view2, bake2) = cube_bake();
     let worker = std::thread::spawn(move || BakedGraph::realise(&bake2, &g2, &view2));
     assert_eq!(
         reader.load().containers().len(),
-        8,
+        spot_cells,
         "old bake shown while the new one builds"
     );
     slot.store(worker.join().expect("bake thread"));
+    // A cube at pitch 20° turns a side face edge-on every quarter turn.
     assert_eq!(reader.load().containers().len(), 4);
 }
 
