@@ -41,6 +41,10 @@
 //! equal lists, and [`verify`] checks the result against the live sorter at random interior
 //! angles and on both sides of every breakpoint.
 //!
+//! # Feature flags
+//! - `serde`: [`Bake`] (and its parts) serialise and deserialise, so a bake saves and
+//!   reloads; the polygon set is written as polygons and rebuilt on load.
+//!
 //! # Example
 //! ```
 //! use aspect_bake::{Axis, BakeOptions, BspSource, Spin, bake, verify};
@@ -75,6 +79,8 @@ mod axis;
 mod build;
 mod cells;
 mod event;
+#[cfg(feature = "serde")]
+mod serde_impl;
 mod source;
 pub mod tolerance;
 mod verify;

@@ -326,3 +326,47 @@ proptest! {
         prop_assert!((total - 360.0).abs() < 1e-9);
     }
 }
+
+#[test]
+fn a_bake_saves_and_reloads() {
+    let g = test_support::load_polygon_mesh("combobulate-samples/book.obj");
+    let g = Geometry::new(&g).unwrap();
+    let spin = yaw_spin(&g, Some(300.0));
+    let b = bake(&BspSource::of(&g), &spin, &BakeOptions::DEFAULT).unwrap();
+    let text = serde_json::to_string(&b).unwrap();
+    let back: Bake = serde_json::from_str(&text).unwrap();
+    assert_eq!(back.cells, b.cells);
+    assert_eq!(back.breakpoints, b.breakpoints);
+    assert_eq!(back.domain, b.domain);
+    assert_eq!((back.axis, back.method), (b.axis, b.method));
+    assert_eq!(back.polygons.len(), b.polygons.len());
+    for i in 0..b.polygons.len() {
+        assert_eq!(back.polygons.corners(i), b.polygons.corners(i));
+        assert_eq!(back.polygons.face(i), b.polygons.face(i));
+        let (p, q) = (back.polygons.plane(i), b.polygons.plane(i));
+        // Normalised again on load: equal up to the last bits.
+        assert!((p.normal() - q.normal()).length() < 1e-15);
+        assert!((p.offset() - q.offset()).abs() <= 1e-15 * (1.0 + q.offset().abs()));
+    }
+    // A cell naming a polygon that is not there is refused.
+    let broken = text.replacen("\"order\":[", "\"order\":[999999,", 1);
+    assert!(serde_json::from_str::<Bake>(&broken).is_err());
+}
+
+#[test]
+fn progress_reports_every_list() {
+    use std::sync::Mutex;
+    let g = cube();
+    let spin = yaw_spin(&g, None);
+    let seen = Mutex::new(Vec::new());
+    let report = |p: aspect_bake::Progress| seen.lock().unwrap().push(p);
+    let options = BakeOptions {
+        progress: Some(&report),
+        ..BakeOptions::DEFAULT
+    };
+    bake(&CentroidSource::of(&g), &spin, &options).unwrap();
+    let seen = seen.into_inner().unwrap();
+    let last = seen.last().unwrap();
+    assert_eq!(last.done, last.total);
+    assert!(last.total >= 8);
+}
