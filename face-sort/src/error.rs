@@ -36,6 +36,17 @@ pub enum MeshError {
     /// The mesh has no face with positive area.
     #[error("the mesh has no face with positive area")]
     Empty,
+    /// The mesh's bounding-box diagonal is outside the range f64 orders exactly
+    /// ([`MIN_EXTENT_ABS`](crate::tolerance::MIN_EXTENT_ABS) to
+    /// [`MAX_EXTENT_ABS`](crate::tolerance::MAX_EXTENT_ABS)).
+    #[error(
+        "the mesh's bounding box is about 1e{exponent} across; face-sort orders meshes \
+         whose diagonal is 1e-60 to 1e60 (scale the positions)"
+    )]
+    ExtentOutOfRange {
+        /// Decimal exponent of the bounding box's largest side (`floor(log10 side)`).
+        exponent: i32,
+    },
 }
 
 /// Why a [`BspTree`](crate::BspTree) could not be built within its options.

@@ -6,7 +6,7 @@ use glam::DVec3;
 
 use crate::plane::{Plane, newell_normal};
 use crate::polygon_set::PolygonSet;
-use crate::tolerance::{DEGENERATE_AREA, PLANARITY};
+use crate::tolerance::{DEGENERATE_AREA, MAX_EXTENT_ABS, MIN_EXTENT_ABS, PLANARITY};
 use crate::{Bounds, MeshError, PolygonMesh};
 
 /// A mesh cut into **pieces**, the units every sorter, the oracle and the truth work on
@@ -26,9 +26,18 @@ pub struct Geometry {
 }
 
 impl Geometry {
-    /// Cuts `mesh` into pieces. Errors when no piece has area.
+    /// Cuts `mesh` into pieces. Errors when no piece has area, or when the mesh's size is
+    /// outside what f64 orders exactly ([`MeshError::ExtentOutOfRange`]).
     pub fn new(mesh: &PolygonMesh) -> Result<Self, MeshError> {
         let bounds = mesh.bounds().ok_or(MeshError::Empty)?;
+        let diagonal = bounds.diagonal();
+        if diagonal > 0.0 && !(MIN_EXTENT_ABS..=MAX_EXTENT_ABS).contains(&diagonal) {
+            // The largest side, not the diagonal: its square may have overflowed. `as`
+            // saturates should the side itself be infinite.
+            let side = (bounds.max - bounds.min).max_element();
+            let exponent = side.log10().floor() as i32;
+            return Err(MeshError::ExtentOutOfRange { exponent });
+        }
         let centre = bounds.centre();
         let mut pieces = PolygonSet::new();
         let mut corners: Vec<DVec3> = Vec::new();

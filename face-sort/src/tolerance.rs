@@ -44,6 +44,17 @@ pub const ORACLE_INTERIOR: f64 = 1e-9;
 /// so corners that a file shares move apart.
 pub const SAME_CORNER: f64 = 1e-5;
 
+/// Absolute: the smallest and largest bounding-box diagonal `L` a [`Geometry`](crate::Geometry)
+/// accepts (`MeshError::ExtentOutOfRange` outside). Newell normals grow with the fourth power
+/// of a face's size in their squared length, so faces much smaller than `1e-75` or larger
+/// than `1e75` under- or overflow f64; the margin leaves room for faces `1e-15 · L` small.
+/// `cargo xtask stress` orders models scaled by `1e-70` and `1e70` exactly; scaled by
+/// `1e±100` they were refused as "no face with positive area".
+pub const MIN_EXTENT_ABS: f64 = 1e-60;
+
+/// See [`MIN_EXTENT_ABS`].
+pub const MAX_EXTENT_ABS: f64 = 1e60;
+
 /// Absolute: lengths are clamped to at least this before dividing by them (a zero-size
 /// screen box or median radius), far below any length a model can have.
 pub const UNDERFLOW_ABS: f64 = 1e-300;

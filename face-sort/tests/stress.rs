@@ -69,3 +69,27 @@ fn the_sphere_at_the_origin_is_still_ordered_by_culling_alone() {
     let auto = Auto::new(&geometry, PlanHint::ANIMATION);
     assert_eq!(auto.name(), "cull-only", "{}", auto.plan().reason);
 }
+
+/// Models scaled far beyond f64's comfortable range are refused with a typed error naming
+/// their size (they were refused as "no face with positive area"); up to `1e±60` they are
+/// accepted.
+#[test]
+fn out_of_range_sizes_are_a_typed_error() {
+    let sphere = face_sort::generate::uv_sphere(16, 8);
+    let scaled = |s: f64| {
+        let positions = sphere.positions().iter().map(|&p| p * s).collect();
+        PolygonMesh::new(positions, sphere.faces()).unwrap()
+    };
+    for (scale, exponent) in [(1e100, 100), (1e-100, -100), (1e300, 300)] {
+        let error = Geometry::new(&scaled(scale)).unwrap_err();
+        assert_eq!(error, face_sort::MeshError::ExtentOutOfRange { exponent });
+        assert!(
+            error.to_string().contains(&format!("1e{exponent}")),
+            "{error}"
+        );
+    }
+    for scale in [1e-59, 1e59] {
+        let geometry = Geometry::new(&scaled(scale)).unwrap();
+        assert_eq!(geometry.pieces().len(), 128);
+    }
+}
