@@ -65,6 +65,8 @@ pub struct Case {
     /// Whether failures of exact sorters here fail the run (the truth is unambiguous up to
     /// the conventions' tolerances, which the metrics already exclude).
     pub judged: bool,
+    /// Whether the right outcome is a typed error (`MeshError`) rather than an order.
+    pub expect_error: bool,
 }
 
 /// A view of a case, independent of the model's size.
@@ -176,6 +178,8 @@ pub struct CaseReport {
     pub views: Vec<String>,
     /// Whether exact sorters' failures here fail the run.
     pub judged: bool,
+    /// Whether a typed error is the expected outcome.
+    pub expect_error: bool,
     /// A typed error instead of a geometry (e.g. a mesh with no area), if any.
     pub error: Option<String>,
     /// Panic in the case's setup or truth, or a time-out.
@@ -190,6 +194,13 @@ impl CaseReport {
         let mut out = Vec::new();
         if let Some(f) = &self.failure {
             out.push(format!("{}: {f}", self.name));
+        }
+        match (&self.error, self.expect_error) {
+            (Some(e), false) => out.push(format!("{}: unexpected error: {e}", self.name)),
+            (None, true) if self.failure.is_none() => {
+                out.push(format!("{}: a typed error was expected", self.name));
+            }
+            _ => {}
         }
         for o in &self.outcomes {
             if let Some(p) = &o.panic {
@@ -287,7 +298,12 @@ pub fn run(args: &StressArgs) -> Result<ExitCode> {
 /// Runs one case on its own thread under `catch_unwind`, waiting at most `limit`.
 /// A case that does not finish in time is reported as hung (its thread is left running).
 pub fn run_isolated(case: Case, size: u32, limit: Duration) -> CaseReport {
-    let (group, name, judged) = (case.group, case.name.clone(), case.judged);
+    let (group, name, judged, expect_error) = (
+        case.group,
+        case.name.clone(),
+        case.judged,
+        case.expect_error,
+    );
     let views: Vec<String> = case.shots.iter().map(Shot::label).collect();
     let (send, receive) = mpsc::channel();
     let spawned = std::thread::Builder::new()
@@ -304,6 +320,7 @@ pub fn run_isolated(case: Case, size: u32, limit: Duration) -> CaseReport {
         pieces: 0,
         views: views.clone(),
         judged,
+        expect_error,
         error: None,
         failure: Some(failure),
         outcomes: Vec::new(),
@@ -335,6 +352,7 @@ fn run_case(case: &Case, size: u32) -> CaseReport {
         pieces: 0,
         views: case.shots.iter().map(Shot::label).collect(),
         judged: case.judged,
+        expect_error: case.expect_error,
         error: None,
         failure: None,
         outcomes: Vec::new(),
@@ -511,6 +529,11 @@ fn base_models() -> Result<Vec<(String, PolygonMesh, CullMode)>> {
         face_sort::generate::uv_sphere(32, 16),
         CullMode::Back,
     ));
+    out.push((
+        "uv-sphere-8k".to_owned(),
+        face_sort::generate::uv_sphere(128, 64),
+        CullMode::Back,
+    ));
     let quads = scenes::random_quads(40, 11)?;
     out.push(("random-quads-40".to_owned(), quads.mesh, CullMode::None));
     out.push((
@@ -525,10 +548,11 @@ fn base_models() -> Result<Vec<(String, PolygonMesh, CullMode)>> {
 fn transform_cases(models: &[(String, PolygonMesh, CullMode)], quick: bool) -> Vec<Case> {
     let mut out = Vec::new();
     let translations: &[f64] = if quick { &[1e7] } else { &[1e3, 1e6, 1e7] };
+    // 1e±100 are outside what face-sort accepts: the typed error is the expected outcome.
     let scales: &[f64] = if quick {
-        &[1e-6, 1e6]
+        &[1e-6, 1e6, 1e100]
     } else {
-        &[1e-6, 1e-4, 1e-2, 1e2, 1e4, 1e6]
+        &[1e-6, 1e-4, 1e-2, 1e2, 1e4, 1e6, 1e-50, 1e50, 1e-100, 1e100]
     };
     let direction = DVec3::new(1.0, -0.6, 0.35);
     for (name, mesh, cull) in models {
@@ -544,6 +568,7 @@ fn transform_cases(models: &[(String, PolygonMesh, CullMode)], quick: bool) -> V
                 mesh: mapped(mesh, |p| p + direction * t),
                 shots: shots.clone(),
                 judged: true,
+                expect_error: false,
             });
         }
         for &s in scales {
@@ -553,6 +578,8 @@ fn transform_cases(models: &[(String, PolygonMesh, CullMode)], quick: bool) -> V
                 mesh: mapped(mesh, |p| p * s),
                 shots: shots.clone(),
                 judged: true,
+                // Outside face-sort's range (1e-60 to 1e60): refused.
+                expect_error: !(1e-60..=1e60).contains(&s),
             });
         }
         if !quick {
@@ -565,6 +592,7 @@ fn transform_cases(models: &[(String, PolygonMesh, CullMode)], quick: bool) -> V
                     mesh: mapped(mesh, |p| p * 1e-3 + direction * t),
                     shots: shots.clone(),
                     judged: true,
+                    expect_error: false,
                 });
             }
         }
@@ -688,6 +716,19 @@ fn degenerate() -> Result<PolygonMesh, String> {
         faces.push(vec![start + 2, start + 2, start + 2, start + 2]);
     }
     PolygonMesh::new(positions, &faces).map_err(|e| format!("MeshError: {e}"))
+}
+
+/// A NaN and an infinite position: the typed error `MeshError::NonFinitePosition` is the
+/// right outcome.
+fn non_finite_positions() -> Result<PolygonMesh, String> {
+    let mut positions = rect(DVec3::ZERO, DVec3::X, DVec3::Y);
+    positions.push(DVec3::new(f64::NAN, 0.0, 0.0));
+    positions.push(DVec3::new(0.0, f64::INFINITY, 0.0));
+    PolygonMesh::new(
+        positions,
+        [vec![0u32, 1, 2, 3], vec![0, 1, 4], vec![1, 2, 5]],
+    )
+    .map_err(|e| format!("MeshError: {e}"))
 }
 
 /// Only degenerate faces: the typed error `MeshError::Empty` is the right outcome.
@@ -901,6 +942,7 @@ fn generated_cases(models: &[(String, PolygonMesh, CullMode)], quick: bool) -> R
             mesh: Ok(scene.clone()),
             shots: shots.clone(),
             judged: true,
+            expect_error: false,
         });
         out.push(Case {
             group: "generated",
@@ -908,6 +950,7 @@ fn generated_cases(models: &[(String, PolygonMesh, CullMode)], quick: bool) -> R
             mesh: mapped(scene, |p| p + direction * 1e7),
             shots,
             judged: true,
+            expect_error: false,
         });
     }
     let general = general_shots(CullMode::None);
@@ -922,6 +965,7 @@ fn generated_cases(models: &[(String, PolygonMesh, CullMode)], quick: bool) -> R
             mesh: separated(gap),
             shots: two(&general),
             judged: true,
+            expect_error: false,
         });
     }
     for tilted in [false, true] {
@@ -934,6 +978,7 @@ fn generated_cases(models: &[(String, PolygonMesh, CullMode)], quick: bool) -> R
             mesh: coplanar(tilted),
             shots: two(&general),
             judged: true,
+            expect_error: false,
         });
     }
     let closed = &models[0];
@@ -949,6 +994,7 @@ fn generated_cases(models: &[(String, PolygonMesh, CullMode)], quick: bool) -> R
             mesh: doubled(&closed.1),
             shots: two(&general_shots(cull)),
             judged: true,
+            expect_error: false,
         });
     }
     let aspects: &[f64] = if quick { &[1e6] } else { &[1e3, 1e6] };
@@ -959,6 +1005,7 @@ fn generated_cases(models: &[(String, PolygonMesh, CullMode)], quick: bool) -> R
             mesh: slivers(a),
             shots: two(&general),
             judged: true,
+            expect_error: false,
         });
     }
     out.push(Case {
@@ -967,6 +1014,7 @@ fn generated_cases(models: &[(String, PolygonMesh, CullMode)], quick: bool) -> R
         mesh: near_degenerate(),
         shots: two(&general),
         judged: true,
+        expect_error: false,
     });
     out.push(Case {
         group: "degenerate",
@@ -974,6 +1022,7 @@ fn generated_cases(models: &[(String, PolygonMesh, CullMode)], quick: bool) -> R
         mesh: degenerate(),
         shots: two(&general),
         judged: true,
+        expect_error: false,
     });
     out.push(Case {
         group: "degenerate",
@@ -981,6 +1030,15 @@ fn generated_cases(models: &[(String, PolygonMesh, CullMode)], quick: bool) -> R
         mesh: all_degenerate(),
         shots: two(&general),
         judged: true,
+        expect_error: true,
+    });
+    out.push(Case {
+        group: "degenerate",
+        name: "NaN and infinite positions (typed error expected)".to_owned(),
+        mesh: non_finite_positions(),
+        shots: two(&general),
+        judged: true,
+        expect_error: true,
     });
     let angles: &[f64] = if quick {
         &[1e-6]
@@ -994,6 +1052,7 @@ fn generated_cases(models: &[(String, PolygonMesh, CullMode)], quick: bool) -> R
             mesh: twisted(a),
             shots: two(&general),
             judged: true,
+            expect_error: false,
         });
     }
     out.push(Case {
@@ -1002,6 +1061,7 @@ fn generated_cases(models: &[(String, PolygonMesh, CullMode)], quick: bool) -> R
         mesh: t_junctions(),
         shots: two(&general_shots(CullMode::Back)),
         judged: true,
+        expect_error: false,
     });
     for (name, mesh, cull) in models.iter().take(if quick { 1 } else { 2 }) {
         out.push(Case {
@@ -1010,6 +1070,7 @@ fn generated_cases(models: &[(String, PolygonMesh, CullMode)], quick: bool) -> R
             mesh: duplicate_vertices(mesh),
             shots: two(&general_shots(*cull)),
             judged: true,
+            expect_error: false,
         });
     }
     let view_models: Vec<(String, Result<PolygonMesh, String>, CullMode)> = if quick {
@@ -1043,6 +1104,7 @@ fn generated_cases(models: &[(String, PolygonMesh, CullMode)], quick: bool) -> R
             mesh,
             shots,
             judged: true,
+            expect_error: false,
         });
     }
     Ok(out)
@@ -1212,12 +1274,16 @@ mod tests {
                 mesh: Err("unused".to_owned()),
                 shots: vec![],
                 judged: true,
+                expect_error: true,
             },
             64,
             Duration::from_secs(60),
         );
-        // A mesh error is a typed outcome, not a failure.
+        // An expected mesh error is a typed outcome, not a failure; an unexpected one is.
         assert!(report.problems().is_empty());
+        let mut unexpected = report.clone();
+        unexpected.expect_error = false;
+        assert_eq!(unexpected.problems().len(), 1);
         let mut bad = CaseReport {
             group: "test".to_owned(),
             name: "x".to_owned(),
@@ -1225,6 +1291,7 @@ mod tests {
             pieces: 1,
             views: vec![],
             judged: true,
+            expect_error: false,
             error: None,
             failure: None,
             outcomes: vec![Outcome {
