@@ -224,7 +224,7 @@ fn option_sets() -> [LoadOptions; 3] {
 /// Runs one input through its loader under several option sets. `scratch` is a folder the
 /// check may write to (the MTL under test and its host OBJ, a glTF file and the Box
 /// sample's buffer). Returns the verdict, or a description of the bug: a panic, or a mesh
-/// that breaks an invariant.
+/// that breaks an invariant (a texture path outside the model's folder among them).
 ///
 /// # Errors
 /// The description of the bug found.
@@ -237,6 +237,11 @@ pub fn check_loader_input(
         return check_texture(bytes);
     }
     let file = prepare(format, bytes, scratch)?;
+    // Every texture a loaded mesh names must lie in the model's folder (the options never
+    // allow paths outside).
+    let folder = scratch
+        .canonicalize()
+        .map_err(|e| format!("{}: {e}", scratch.display()))?;
     let mut verdict = None;
     for options in option_sets() {
         let mut loaded = None;
@@ -244,7 +249,7 @@ pub fn check_loader_input(
         for (what, result) in load_all(format, bytes, file.as_deref(), &options)? {
             match result {
                 Ok((mesh, report)) => {
-                    validate(&mesh, &report).map_err(|e| format!("{what}: {e}"))?;
+                    validate(&mesh, &report, &folder).map_err(|e| format!("{what}: {e}"))?;
                     loaded.get_or_insert(mesh.face_count());
                 }
                 Err(e) => {
@@ -319,6 +324,10 @@ fn prepare(format: LoaderFormat, bytes: &[u8], scratch: &Path) -> Result<Option<
     match format {
         LoaderFormat::Obj | LoaderFormat::Png | LoaderFormat::Jpeg => Ok(None),
         LoaderFormat::Mtl => {
+            // The texture spot.mtl names, so that accepted texture paths occur too.
+            if !scratch.join("spot_texture.png").is_file() {
+                write("spot_texture.png", b"not decoded here")?;
+            }
             write("case.mtl", bytes)?;
             write("case.obj", MTL_HOST_OBJ.as_bytes()).map(Some)
         }
@@ -363,8 +372,21 @@ fn load_all(
     Ok(out)
 }
 
-/// The invariants of a loaded mesh and its report.
-fn validate(mesh: &Mesh, report: &LoadReport) -> Result<(), String> {
+/// The invariants of a loaded mesh and its report; `folder` is the model's canonical
+/// folder, which every texture path must lie in.
+fn validate(mesh: &Mesh, report: &LoadReport, folder: &Path) -> Result<(), String> {
+    for material in mesh.materials() {
+        if let Some(texture) = &material.texture
+            && !texture.starts_with(folder)
+        {
+            return Err(format!(
+                "material `{}` names texture {} outside the model's folder {}",
+                material.name,
+                texture.display(),
+                folder.display()
+            ));
+        }
+    }
     let faces = mesh.face_count();
     if faces == 0 {
         return Err("loaded a mesh with no faces".into());
