@@ -5,7 +5,7 @@ use std::fmt::Write as _;
 use glam::{DMat4, DVec2, DVec3, DVec4};
 
 use crate::svg::{hex, project_sprite};
-use crate::tolerance::UNDERFLOW_ABS;
+use crate::tolerance::{HOMOGRAPHY_W, SINGULAR_DET, UNDERFLOW_ABS};
 use crate::{Scene, id_colour, perspective_matrix};
 
 /// How the page orders faces.
@@ -19,6 +19,19 @@ pub enum HtmlMode {
     /// own transforms on its children, so the browser orders the faces itself (a peer to
     /// compare against).
     Preserve3d,
+}
+
+/// How [`write_html`] draws a clipped sprite (triangle, n-gon, fragment).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
+pub enum HtmlPieces {
+    /// Plain boxes under projective `matrix3d`s, each a convex quad of the clip polygon: every
+    /// edge is an element edge, composited without anti-aliasing (exact at pixel centres).
+    #[default]
+    Quads,
+    /// CSS border triangles (the earlier writer, kept for comparison): Chromium rasters their
+    /// diagonal with anti-aliasing, so where two fragments of one face meet along diagonals
+    /// the background shows through at single pixels.
+    BorderTriangles,
 }
 
 /// Options of [`write_html`].
@@ -42,6 +55,8 @@ pub struct HtmlOptions {
     /// Orthographic roots get this perspective distance (pixels) so that Chromium treats the
     /// elements as 3D layers rastered at their own size. Default: 1e8.
     pub orthographic_distance: f64,
+    /// How clipped sprites are drawn. Default: [`HtmlPieces::Quads`].
+    pub pieces: HtmlPieces,
 }
 
 impl HtmlOptions {
@@ -54,7 +69,15 @@ impl HtmlOptions {
         background: [0, 0, 0, 255],
         oversize: 4.0,
         orthographic_distance: 1e8,
+        pieces: HtmlPieces::Quads,
     };
+
+    /// How clipped sprites are drawn.
+    #[must_use]
+    pub fn with_pieces(mut self, pieces: HtmlPieces) -> Self {
+        self.pieces = pieces;
+        self
+    }
 
     /// Page size.
     #[must_use]
@@ -175,7 +198,7 @@ pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
                     css_matrix3d(&m)
                 );
             }
-            Some(clip) => {
+            Some(clip) if options.pieces == HtmlPieces::BorderTriangles => {
                 for k in 1..clip.len().saturating_sub(1) {
                     let (a, mut b, mut c) = (clip[0], clip[k], clip[k + 1]);
                     if (b - a).perp_dot(c - a) < 0.0 {
@@ -185,7 +208,17 @@ pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
                     let m = outer * sprite.transform.matrix * corner * unscale;
                     let _ = writeln!(
                         page,
-                        "<div class=\"t\" style=\"border-width:{size}px {size}px 0 0;border-color:{colour} transparent transparent transparent;transform:{}\"></div>",
+                        "<div style=\"width:0;height:0;border-style:solid;border-width:{size}px {size}px 0 0;border-color:{colour} transparent transparent transparent;transform:{}\"></div>",
+                        css_matrix3d(&m)
+                    );
+                }
+            }
+            Some(clip) => {
+                for quad in clip_quads(clip) {
+                    let m = outer * sprite.transform.matrix * quad * unscale;
+                    let _ = writeln!(
+                        page,
+                        "<div style=\"width:{size}px;height:{size}px;background:{colour};transform:{}\"></div>",
                         css_matrix3d(&m)
                     );
                 }
@@ -196,6 +229,89 @@ pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
     page
 }
 
+/// Convex quads (as maps of the unit square, in the sprite's unit-square coordinates) whose
+/// union is the convex polygon `clip`, each a plain box under a projective `matrix3d`.
+///
+/// Every edge is an element edge, which Chromium composites without anti-aliasing under
+/// `--disable-composited-antialiasing`: a border triangle's diagonal is rastered with
+/// anti-aliasing instead, and where two fragments of one face meet along such diagonals the
+/// background showed through at single pixels (docs/html-border-seam.png). Consecutive fan
+/// triangles pair into quads `(c0, ck, ck+1, ck+2)` (overlapping the previous one when the
+/// count is odd); a lone triangle is cut into three quads at its centroid and edge midpoints.
+/// Quads whose homography is ill-conditioned fall back to their two triangles' cuts.
+fn clip_quads(clip: &[DVec2]) -> Vec<DMat4> {
+    let mut out = Vec::new();
+    let n = clip.len();
+    if n < 3 {
+        return out;
+    }
+    let triangles = n - 2;
+    if triangles == 1 {
+        triangle_quads(clip[0], clip[1], clip[2], &mut out);
+        return out;
+    }
+    let mut k = 1;
+    while k < n - 1 {
+        // The quad starting at fan triangle k; the last one steps back by one when the count
+        // of fan triangles is odd (it then overlaps its predecessor, same face and colour).
+        let start = if k + 2 < n { k } else { n - 3 };
+        let corners = [clip[0], clip[start], clip[start + 1], clip[start + 2]];
+        if let Some(m) = quad_matrix(corners) {
+            out.push(m);
+        } else {
+            triangle_quads(corners[0], corners[1], corners[2], &mut out);
+            triangle_quads(corners[0], corners[2], corners[3], &mut out);
+        }
+        k += 2;
+    }
+    out
+}
+
+/// The triangle `(a, b, c)` as three quads meeting at its centroid (corner, edge midpoint,
+/// centroid, edge midpoint): convex, well-shaped whenever the triangle has area.
+fn triangle_quads(a: DVec2, b: DVec2, c: DVec2, out: &mut Vec<DMat4>) {
+    let g = (a + b + c) / 3.0;
+    let (ab, bc, ca) = ((a + b) * 0.5, (b + c) * 0.5, (c + a) * 0.5);
+    for corners in [[a, ab, g, ca], [b, bc, g, ab], [c, ca, g, bc]] {
+        if let Some(m) = quad_matrix(corners) {
+            out.push(m);
+        }
+    }
+}
+
+/// The projective map of the unit square taking `(0,0), (1,0), (1,1), (0,1)` to the corners
+/// of a convex quad (unit-square coordinates), or `None` when the quad is degenerate or its
+/// projective weight drops below [`HOMOGRAPHY_W`] at a corner.
+fn quad_matrix(p: [DVec2; 4]) -> Option<DMat4> {
+    let d1 = p[1] - p[2];
+    let d2 = p[3] - p[2];
+    let s = p[0] - p[1] + p[2] - p[3];
+    let det = d1.perp_dot(d2);
+    let scale = (p[2] - p[0])
+        .length_squared()
+        .max((p[3] - p[1]).length_squared());
+    if det.abs() <= SINGULAR_DET.sqrt() * scale || !det.is_finite() {
+        return None;
+    }
+    let g = s.perp_dot(d2) / det;
+    let h = d1.perp_dot(s) / det;
+    // Weights at the four corners: 1, 1 + g, 1 + g + h, 1 + h (positive for a convex quad).
+    if [1.0 + g, 1.0 + g + h, 1.0 + h]
+        .iter()
+        .any(|w| *w <= HOMOGRAPHY_W || !w.is_finite())
+    {
+        return None;
+    }
+    let u = p[1] - p[0] + p[1] * g;
+    let v = p[3] - p[0] + p[3] * h;
+    Some(DMat4::from_cols(
+        DVec4::new(u.x, u.y, 0.0, g),
+        DVec4::new(v.x, v.y, 0.0, h),
+        DVec4::Z,
+        DVec4::new(p[0].x, p[0].y, 0.0, 1.0),
+    ))
+}
+
 /// The unit-square map taking `(0,0) → a`, `(1,0) → b`, `(0,1) → c` (unit-square coordinates).
 fn triangle_matrix(a: DVec2, b: DVec2, c: DVec2) -> DMat4 {
     DMat4::from_cols(
@@ -204,4 +320,101 @@ fn triangle_matrix(a: DVec2, b: DVec2, c: DVec2) -> DMat4 {
         DVec4::Z,
         DVec4::new(a.x, a.y, 0.0, 1.0),
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Whether `p` is inside the image of the unit square under `m` (2D part), by inverting
+    /// the homography; `None` when `p` is within `margin` of that image's boundary.
+    fn in_quad(m: &DMat4, p: DVec2, margin: f64) -> Option<bool> {
+        let corners = [DVec2::ZERO, DVec2::X, DVec2::ONE, DVec2::Y].map(|c| {
+            let h = *m * DVec4::new(c.x, c.y, 0.0, 1.0);
+            DVec2::new(h.x / h.w, h.y / h.w)
+        });
+        let sides: Vec<f64> = (0..4)
+            .map(|k| {
+                let (a, b) = (corners[k], corners[(k + 1) % 4]);
+                (b - a).perp_dot(p - a) / (b - a).length()
+            })
+            .collect();
+        if sides.iter().any(|s| s.abs() <= margin) {
+            return None;
+        }
+        Some(sides.iter().all(|s| *s > 0.0) || sides.iter().all(|s| *s < 0.0))
+    }
+
+    fn in_polygon(poly: &[DVec2], p: DVec2, margin: f64) -> Option<bool> {
+        let n = poly.len();
+        let sides: Vec<f64> = (0..n)
+            .map(|k| {
+                let (a, b) = (poly[k], poly[(k + 1) % n]);
+                (b - a).perp_dot(p - a) / (b - a).length()
+            })
+            .collect();
+        if sides.iter().any(|s| s.abs() <= margin) {
+            return None;
+        }
+        Some(sides.iter().all(|s| *s > 0.0))
+    }
+
+    #[test]
+    fn clip_quads_cover_exactly_the_polygon() {
+        // Counter-clockwise convex polygons of 3 to 8 corners (regular, squashed, rotated),
+        // one with a near-collinear corner.
+        let mut polygons: Vec<Vec<DVec2>> = (3..=8)
+            .map(|n| {
+                (0..n)
+                    .map(|k| {
+                        let a = 0.3 + std::f64::consts::TAU * f64::from(k) / f64::from(n);
+                        DVec2::new(0.5 + 0.45 * a.cos(), 0.5 + 0.2 * a.sin())
+                    })
+                    .collect()
+            })
+            .collect();
+        polygons.push(vec![
+            DVec2::new(0.0, 0.0),
+            DVec2::new(0.5, 1e-13),
+            DVec2::new(1.0, 0.0),
+            DVec2::new(0.2, 0.7),
+        ]);
+        for poly in &polygons {
+            let quads = clip_quads(poly);
+            assert!(!quads.is_empty());
+            let steps = 97;
+            for i in 0..=steps {
+                for j in 0..=steps {
+                    let p = DVec2::new(f64::from(i), f64::from(j)) / f64::from(steps);
+                    let Some(inside) = in_polygon(poly, p, 1e-9) else {
+                        continue;
+                    };
+                    let hits: Vec<Option<bool>> =
+                        quads.iter().map(|m| in_quad(m, p, 1e-9)).collect();
+                    if hits.contains(&None) {
+                        continue; // on an inner edge
+                    }
+                    let covered = hits.contains(&Some(true));
+                    assert_eq!(covered, inside, "{} corners, at {p}", poly.len());
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn quad_matrix_maps_the_corners() {
+        let p = [
+            DVec2::new(0.1, 0.2),
+            DVec2::new(0.9, 0.1),
+            DVec2::new(0.7, 0.8),
+            DVec2::new(0.2, 0.6),
+        ];
+        let m = quad_matrix(p).expect("convex quad");
+        for (c, want) in [DVec2::ZERO, DVec2::X, DVec2::ONE, DVec2::Y].iter().zip(p) {
+            let h = m * DVec4::new(c.x, c.y, 0.0, 1.0);
+            let got = DVec2::new(h.x / h.w, h.y / h.w);
+            assert!((got - want).length() < 1e-12, "{got} vs {want}");
+        }
+        assert!(quad_matrix([DVec2::ZERO, DVec2::X, DVec2::X * 2.0, DVec2::Y * 0.0]).is_none());
+    }
 }

@@ -71,7 +71,7 @@ pub use bake::{
 };
 pub use compositor::{Brush, Compositor, OpCounts, SpriteId, TextureId};
 pub use hidden::{HiddenParts, Visibility, visible_parts};
-pub use html::{HtmlMode, HtmlOptions, css_matrix3d, write_html};
+pub use html::{HtmlMode, HtmlOptions, HtmlPieces, css_matrix3d, write_html};
 pub use painter::{FrameStats, RotationHandle, RotationSource, SpritePainter};
 pub use pdf::{PdfOptions, write_pdf};
 pub use pick::{ProjectedFrame, contains, outline_svg_path};
