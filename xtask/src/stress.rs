@@ -305,33 +305,44 @@ pub fn run_isolated(case: Case, size: u32, limit: Duration) -> CaseReport {
         case.expect_error,
     );
     let views: Vec<String> = case.shots.iter().map(Shot::label).collect();
-    let (send, receive) = mpsc::channel();
-    let spawned = std::thread::Builder::new()
-        .name(format!("stress {name}"))
-        .spawn(move || {
-            let report = catch_unwind(AssertUnwindSafe(|| run_case(&case, size)));
-            // The receiver may have given up (time-out): nothing to do then.
-            let _ = send.send(report);
-        });
-    let failed = |failure: String| CaseReport {
+    isolated(&name, limit, move || run_case(&case, size)).unwrap_or_else(|failure| CaseReport {
         group: group.to_owned(),
         name: name.clone(),
         faces: 0,
         pieces: 0,
-        views: views.clone(),
+        views,
         judged,
         expect_error,
         error: None,
         failure: Some(failure),
         outcomes: Vec::new(),
-    };
-    if let Err(e) = spawned {
-        return failed(format!("could not start a thread: {e}"));
-    }
+    })
+}
+
+/// Runs `work` on its own thread under `catch_unwind`, waiting at most `limit`: its result,
+/// or why there is none (a panic and its message, or the time-out; a hung thread is left
+/// running, the caller goes on).
+fn isolated<T: Send + 'static>(
+    name: &str,
+    limit: Duration,
+    work: impl FnOnce() -> T + Send + 'static,
+) -> Result<T, String> {
+    let (send, receive) = mpsc::channel();
+    std::thread::Builder::new()
+        .name(format!("stress {name}"))
+        .spawn(move || {
+            let result = catch_unwind(AssertUnwindSafe(work));
+            // The receiver may have given up (time-out): nothing to do then.
+            let _ = send.send(result);
+        })
+        .map_err(|e| format!("could not start a thread: {e}"))?;
     match receive.recv_timeout(limit) {
-        Ok(Ok(report)) => report,
-        Ok(Err(payload)) => failed(format!("panic: {}", panic_message(payload.as_ref()))),
-        Err(_) => failed(format!("no result within {} s (hung?)", limit.as_secs())),
+        Ok(Ok(value)) => Ok(value),
+        Ok(Err(payload)) => Err(format!("panic: {}", panic_message(payload.as_ref()))),
+        Err(_) => Err(format!(
+            "no result within {:.1} s (hung?)",
+            limit.as_secs_f64()
+        )),
     }
 }
 
@@ -1318,8 +1329,20 @@ mod tests {
     }
 
     #[test]
-    fn panics_are_caught() {
-        let result = catch_unwind(|| panic!("boom"));
-        assert_eq!(panic_message(result.unwrap_err().as_ref()), "boom");
+    fn panics_and_hangs_are_reported_not_hidden() {
+        assert_eq!(isolated("ok", Duration::from_secs(60), || 7), Ok(7));
+        assert_eq!(
+            isolated("panics", Duration::from_secs(60), || -> u32 {
+                panic!("boom {}", 1)
+            }),
+            Err("panic: boom 1".to_owned())
+        );
+        // Never returns: the time-out is the only way out, whatever the machine's load.
+        let hung = isolated("hangs", Duration::from_millis(100), || {
+            loop {
+                std::thread::park();
+            }
+        });
+        assert_eq!(hung, Err("no result within 0.1 s (hung?)".to_owned()));
     }
 }
