@@ -558,7 +558,7 @@ fn base_models() -> Result<Vec<(String, PolygonMesh, CullMode)>> {
 /// Position and scale: every base model translated and scaled.
 fn transform_cases(models: &[(String, PolygonMesh, CullMode)], quick: bool) -> Vec<Case> {
     let mut out = Vec::new();
-    let translations: &[f64] = if quick { &[1e7] } else { &[1e3, 1e6, 1e7] };
+    let translations: &[f64] = if quick { &[1e7] } else { &[1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9] };
     // 1e±100 are outside what face-sort accepts: the typed error is the expected outcome.
     let scales: &[f64] = if quick {
         &[1e-6, 1e6, 1e100]
@@ -1100,6 +1100,12 @@ fn generated_cases(models: &[(String, PolygonMesh, CullMode)], quick: bool) -> R
         ));
         let nested = scenes::nested_boxes()?;
         v.push(("nested-boxes".to_owned(), Ok(nested.mesh), CullMode::None));
+        // Exactly edge-on views of faces whose stored positions are rounded far from the
+        // origin.
+        let far = DVec3::new(1.0, -0.6, 0.35) * 1e7;
+        for (name, mesh, cull) in models.iter().take(3) {
+            v.push((format!("{name} moved 1e7"), mapped(mesh, |p| p + far), *cull));
+        }
         v
     };
     for (name, mesh, cull) in view_models {
