@@ -558,7 +558,11 @@ fn base_models() -> Result<Vec<(String, PolygonMesh, CullMode)>> {
 /// Position and scale: every base model translated and scaled.
 fn transform_cases(models: &[(String, PolygonMesh, CullMode)], quick: bool) -> Vec<Case> {
     let mut out = Vec::new();
-    let translations: &[f64] = if quick { &[1e7] } else { &[1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9] };
+    let translations: &[f64] = if quick {
+        &[1e7]
+    } else {
+        &[1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9]
+    };
     // 1e±100 are outside what face-sort accepts: the typed error is the expected outcome.
     let scales: &[f64] = if quick {
         &[1e-6, 1e6, 1e100]
@@ -1104,7 +1108,11 @@ fn generated_cases(models: &[(String, PolygonMesh, CullMode)], quick: bool) -> R
         // origin.
         let far = DVec3::new(1.0, -0.6, 0.35) * 1e7;
         for (name, mesh, cull) in models.iter().take(3) {
-            v.push((format!("{name} moved 1e7"), mapped(mesh, |p| p + far), *cull));
+            v.push((
+                format!("{name} moved 1e7"),
+                mapped(mesh, |p| p + far),
+                *cull,
+            ));
         }
         v
     };
