@@ -2,11 +2,11 @@
 
 use std::fmt::Write as _;
 
-use glam::{DMat4, DVec2, DVec3, DVec4};
+use glam::{DAffine2, DMat4, DVec2, DVec3, DVec4};
 
 use crate::svg::{hex, project_sprite};
 use crate::tolerance::{HOMOGRAPHY_W, SINGULAR_DET, UNDERFLOW_ABS};
-use crate::{Scene, id_colour, perspective_matrix};
+use crate::{Brush, Scene, id_colour, perspective_matrix};
 
 /// How the page orders faces.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
@@ -57,6 +57,10 @@ pub struct HtmlOptions {
     pub orthographic_distance: f64,
     /// How clipped sprites are drawn. Default: [`HtmlPieces::Quads`].
     pub pieces: HtmlPieces,
+    /// `src` of each texture, indexed by [`TextureId`](crate::TextureId) (a data URI or a
+    /// path relative to the page). Textured sprites whose texture has no entry, and every
+    /// sprite in ID mode, use their fallback colour. Default: none.
+    pub textures: Vec<String>,
 }
 
 impl HtmlOptions {
@@ -70,7 +74,15 @@ impl HtmlOptions {
         oversize: 4.0,
         orthographic_distance: 1e8,
         pieces: HtmlPieces::Quads,
+        textures: Vec::new(),
     };
+
+    /// Texture `src`s by texture index.
+    #[must_use]
+    pub fn with_textures(mut self, textures: Vec<String>) -> Self {
+        self.textures = textures;
+        self
+    }
 
     /// How clipped sprites are drawn.
     #[must_use]
@@ -130,11 +142,18 @@ pub fn css_matrix3d(m: &DMat4) -> String {
     s
 }
 
-/// The scene as a self-contained HTML page (no scripts, no external resources).
+/// The scene as a self-contained HTML page (no scripts; no external resources other than the
+/// texture `src`s given).
 ///
 /// A sprite without clip is one `div` (its unit square, scaled); a clipped sprite (triangle,
-/// n-gon, fragment) is a fan of CSS border triangles, since `clip-path` under perspective is
-/// pathologically slow in Chromium. Textured sprites use their fallback colour.
+/// n-gon, fragment) is a few `div`s, convex quads of its clip polygon
+/// ([`HtmlPieces::Quads`]), since `clip-path` under perspective is pathologically slow in
+/// Chromium. A textured sprite (colour mode, its texture given in
+/// [`HtmlOptions::textures`]) is one `div` of its whole unit square under the exact
+/// (projective) `matrix3d`, holding an `<img>` placed by the brush's affine uv map in the
+/// square's own plane, so the texture follows the homography exactly; its clip polygon, if
+/// any, is a `clip-path` on an untransformed inner `div` (rastered into the element's layer,
+/// anti-aliased, not the slow case).
 #[must_use]
 pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
     let (w, h) = (options.width, options.height);
@@ -156,6 +175,9 @@ pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
          html,body{{margin:0;padding:0;overflow:hidden;width:{w}px;height:{h}px;background:{bg}}}\n\
          #scene{{position:absolute;left:0;top:0;width:{w}px;height:{h}px;{scene_style}}}\n\
          #scene>div{{position:absolute;left:0;top:0;transform-origin:0 0}}\n\
+         .x{{overflow:hidden}}\n\
+         .x>div{{position:absolute;left:0;top:0;width:100%;height:100%;overflow:hidden}}\n\
+         .x img{{position:absolute;left:0;top:0;width:100%;height:100%;transform-origin:0 0}}\n\
          .t{{width:0;height:0;border-style:solid}}\n\
          </style></head><body><div id=\"scene\">\n",
         bg = hex(options.background),
@@ -189,6 +211,38 @@ pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
             HtmlMode::Flat => root,
             HtmlMode::Preserve3d => DMat4::IDENTITY,
         };
+        let texture = match sprite.brush {
+            Brush::Texture { texture, uv, .. } if !options.ids => options
+                .textures
+                .get(texture.0 as usize)
+                .map(|src| (src, uv)),
+            _ => None,
+        };
+        if let Some((src, uv)) = texture
+            && let Some(place) = image_placement(uv, size)
+        {
+            let m = outer * sprite.transform.matrix * unscale;
+            let clip = sprite.clip.as_ref().map_or_else(String::new, |clip| {
+                let mut c = String::from(" style=\"clip-path:polygon(");
+                for (k, p) in clip.iter().enumerate() {
+                    let _ = write!(
+                        c,
+                        "{}{}% {}%",
+                        if k > 0 { "," } else { "" },
+                        p.x * 100.0,
+                        p.y * 100.0
+                    );
+                }
+                c.push_str(")\"");
+                c
+            });
+            let _ = writeln!(
+                page,
+                "<div class=\"x\" style=\"width:{size}px;height:{size}px;transform:{}\"><div{clip}><img src=\"{src}\" alt=\"\" style=\"transform:{place}\"></div></div>",
+                css_matrix3d(&m)
+            );
+            continue;
+        }
         match &sprite.clip {
             None => {
                 let m = outer * sprite.transform.matrix * unscale;
@@ -227,6 +281,30 @@ pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
     }
     page.push_str("</div></body></html>\n");
     page
+}
+
+/// CSS `matrix(…)` placing an `<img>` that fills a `size`-pixel box (texture space `[0,1]²`
+/// scaled by `size`) where the uv map `uv` (unit square → texture) puts it: `size · uv⁻¹ /
+/// size`. `None` when the uv map is singular.
+fn image_placement(uv: DAffine2, size: f64) -> Option<String> {
+    let l = uv.matrix2;
+    if l.determinant().powi(2)
+        <= SINGULAR_DET * l.x_axis.length_squared() * l.y_axis.length_squared()
+    {
+        return None;
+    }
+    let inverse = uv.inverse();
+    let (a, b) = (inverse.matrix2.x_axis, inverse.matrix2.y_axis);
+    let t = inverse.translation * size;
+    let values = [a.x, a.y, b.x, b.y, t.x, t.y];
+    values.iter().all(|v| v.is_finite()).then(|| {
+        let mut s = String::from("matrix(");
+        for (k, v) in values.iter().enumerate() {
+            let _ = write!(s, "{}{v:e}", if k > 0 { "," } else { "" });
+        }
+        s.push(')');
+        s
+    })
 }
 
 /// Convex quads (as maps of the unit square, in the sprite's unit-square coordinates) whose

@@ -6,6 +6,7 @@ use face_sort::tolerance::NEAR_W;
 use glam::{DAffine2, DMat4, DVec2, DVec4};
 
 use crate::hidden::{VectorShape, vector_shapes};
+use crate::tolerance::{SVG_CELL_OVERLAP_PX, SVG_TEXTURE_MAX_CELLS, SVG_TEXTURE_PX};
 use crate::{Brush, HiddenParts, Scene, SceneSprite, Visibility, id_colour};
 
 /// Options of [`write_svg`].
@@ -39,6 +40,10 @@ pub struct SvgOptions {
     /// is) or left out ([`HiddenParts::Remove`]: every polygon, or part of one, that opaque
     /// polygons in front cover; partly hidden polygons become even-odd paths). Default: keep.
     pub hidden: HiddenParts,
+    /// Largest miss (pixels) of a textured cell's affine map against the exact projective
+    /// one before the cell is cut finer; `f64::INFINITY` draws each texture with one affine
+    /// map. Default: [`SVG_TEXTURE_PX`].
+    pub texture_tolerance: f64,
 }
 
 impl SvgOptions {
@@ -52,7 +57,15 @@ impl SvgOptions {
         overlay: String::new(),
         seam_stroke: 0.0,
         hidden: HiddenParts::Keep,
+        texture_tolerance: SVG_TEXTURE_PX,
     };
+
+    /// Largest miss (pixels) of a textured cell's affine map.
+    #[must_use]
+    pub fn with_texture_tolerance(mut self, pixels: f64) -> Self {
+        self.texture_tolerance = pixels;
+        self
+    }
 
     /// Seam stroke width in pixels (0: off).
     #[must_use]
@@ -166,8 +179,14 @@ pub fn project_sprite(root: &DMat4, sprite: &SceneSprite) -> Vec<DVec2> {
 /// (textured sprites: an `<image>` under a `clip-path`), exactly the projected polygons.
 ///
 /// Textures are placed with the affine map through three projected corners of the sprite's
-/// square: exact for affine sprites under an orthographic root, an approximation under
-/// perspective or for projective sprites (SVG has no projective image transform).
+/// square where that is exact (affine sprites under an orthographic root). Under a
+/// projective map (perspective, projective quads; SVG has no projective image transform) the
+/// square is cut into a grid of cells, each an `<image>` with the affine map nearest to the
+/// exact one at its four projected corners (least squares) under a clip slightly larger than
+/// the cell, fine enough that the map is off by at most [`SvgOptions::texture_tolerance`]
+/// pixels (default [`SVG_TEXTURE_PX`](crate::tolerance::SVG_TEXTURE_PX)) at the cells'
+/// corners (grid capped at
+/// [`SVG_TEXTURE_MAX_CELLS`](crate::tolerance::SVG_TEXTURE_MAX_CELLS) per side).
 #[must_use]
 pub fn write_svg(scene: &Scene, options: &SvgOptions) -> String {
     let (w, h) = (options.width, options.height);
@@ -208,21 +227,32 @@ pub fn write_svg(scene: &Scene, options: &SvgOptions) -> String {
             _ => None,
         };
         if let Some((href, uv)) = texture
-            && let Some(place) = texture_placement(scene.root(), sprite, uv)
+            && let Some(cells) = texture_cells(scene.root(), sprite, uv, options.texture_tolerance)
         {
             clip_count += 1;
-            let m = place.to_cols_array();
-            let _ = writeln!(
+            let _ = write!(
                 svg,
-                "<clipPath id=\"c{clip_count}\">{}</clipPath><g clip-path=\"url(#c{clip_count})\"><image href=\"{href}\" xlink:href=\"{href}\" width=\"1\" height=\"1\" preserveAspectRatio=\"none\" transform=\"matrix({} {} {} {} {} {})\"/></g>",
-                shape.element(""),
-                m[0],
-                m[1],
-                m[2],
-                m[3],
-                m[4],
-                m[5]
+                "<clipPath id=\"c{clip_count}\">{}</clipPath><g clip-path=\"url(#c{clip_count})\">",
+                shape.element("")
             );
+            let single = cells.len() == 1;
+            for (k, (cell, place)) in cells.iter().enumerate() {
+                let m = place.to_cols_array();
+                let image = format!(
+                    "<image href=\"{href}\" xlink:href=\"{href}\" width=\"1\" height=\"1\" preserveAspectRatio=\"none\" transform=\"matrix({} {} {} {} {} {})\"/>",
+                    m[0], m[1], m[2], m[3], m[4], m[5]
+                );
+                if single {
+                    svg.push_str(&image);
+                } else {
+                    let _ = write!(
+                        svg,
+                        "<clipPath id=\"c{clip_count}-{k}\"><polygon points=\"{}\"/></clipPath><g clip-path=\"url(#c{clip_count}-{k})\">{image}</g>",
+                        points_attribute(cell)
+                    );
+                }
+            }
+            svg.push_str("</g>\n");
             continue;
         }
         let colour = if options.ids {
@@ -316,17 +346,83 @@ fn fmt(v: f64) -> String {
     }
 }
 
-/// Texture space `[0,1]²` → pixels, through the sprite's unit square (affine through the
-/// projections of `(0,0)`, `(1,0)`, `(0,1)`).
-fn texture_placement(root: &DMat4, sprite: &SceneSprite, uv: DAffine2) -> Option<DAffine2> {
+/// The texture of a sprite as cells: each a clip polygon in pixels and the affine map
+/// texture space `[0,1]²` → pixels nearest the exact one at the cell's four projected
+/// corners, the grid as fine as `tolerance` (pixels) asks. One cell (the whole square, no clip
+/// of its own) when the projected map is affine. `None` when a corner of the square is not in
+/// front of the eye or a map is singular.
+fn texture_cells(
+    root: &DMat4,
+    sprite: &SceneSprite,
+    uv: DAffine2,
+    tolerance: f64,
+) -> Option<Vec<(Vec<DVec2>, DAffine2)>> {
     let full = *root * sprite.transform.matrix;
     let at = |u: f64, v: f64| {
         let h = full * DVec4::new(u, v, 0.0, 1.0);
         (h.w > 0.0).then(|| DVec2::new(h.x / h.w, h.y / h.w))
     };
-    let (o, x, y) = (at(0.0, 0.0)?, at(1.0, 0.0)?, at(0.0, 1.0)?);
-    let square_to_pixels = DAffine2::from_cols(x - o, y - o, o);
     let inverse_uv = uv.inverse();
-    let place = square_to_pixels * inverse_uv;
-    place.is_finite().then_some(place)
+    if !inverse_uv.is_finite() {
+        return None;
+    }
+    // The cell [u0, u1] × [v0, v1]: its affine placement and the miss at its fourth corner.
+    let cell = |u0: f64, v0: f64, u1: f64, v1: f64| {
+        let (o, x, y, xy) = (at(u0, v0)?, at(u1, v0)?, at(u0, v1)?, at(u1, v1)?);
+        // The affine map nearest (least squares) to the corners' images: it misses each of
+        // them by a quarter of |o + xy − x − y|, the quad's departure from a parallelogram.
+        let a = ((x - o) + (xy - y)) * 0.5;
+        let b = ((y - o) + (xy - x)) * 0.5;
+        let c = (o + x + y + xy) * 0.25 - (a + b) * 0.5;
+        let square_to_pixels = DAffine2::from_cols(a, b, c)
+            * DAffine2::from_cols(
+                DVec2::new(1.0 / (u1 - u0), 0.0),
+                DVec2::new(0.0, 1.0 / (v1 - v0)),
+                DVec2::new(-u0 / (u1 - u0), -v0 / (v1 - v0)),
+            );
+        let place = square_to_pixels * inverse_uv;
+        let miss = (o + xy - x - y).length() * 0.25;
+        place
+            .is_finite()
+            .then_some((vec![o, x, xy, y], place, miss))
+    };
+    // The sprite's polygon (unit-square coordinates) bounds the cells worth writing.
+    let polygon = sprite_polygon(sprite);
+    let (mut lo, mut hi) = (polygon[0], polygon[0]);
+    for p in &polygon {
+        lo = lo.min(*p);
+        hi = hi.max(*p);
+    }
+    let mut n = 1u32;
+    loop {
+        let step = 1.0 / f64::from(n);
+        let range = |a: f64, b: f64| {
+            let first = (((a / step).floor().max(0.0)) as u32).min(n - 1);
+            let last = ((b / step).ceil() as u32).clamp(first + 1, n);
+            first..last
+        };
+        let mut cells = Vec::new();
+        let mut worst = 0.0f64;
+        for j in range(lo.y, hi.y) {
+            for i in range(lo.x, hi.x) {
+                let (u0, v0) = (f64::from(i) * step, f64::from(j) * step);
+                let (corners, place, miss) = cell(u0, v0, u0 + step, v0 + step)?;
+                worst = worst.max(miss);
+                cells.push((corners, place));
+            }
+        }
+        if worst <= tolerance || n >= SVG_TEXTURE_MAX_CELLS {
+            if n > 1 {
+                for (corners, _) in &mut cells {
+                    let centre = corners.iter().copied().sum::<DVec2>() / 4.0;
+                    for p in corners.iter_mut() {
+                        let away = (*p - centre).normalize_or_zero();
+                        *p += away * SVG_CELL_OVERLAP_PX;
+                    }
+                }
+            }
+            return Some(cells);
+        }
+        n = (n * 2).min(SVG_TEXTURE_MAX_CELLS);
+    }
 }

@@ -48,3 +48,18 @@ pub const MIN_PART_AREA_PX2: f64 = 1e-8;
 /// an f64's mantissa, so that rounding onto it moves no corner by more than the coordinate's
 /// own precision.
 pub const HIDDEN_GRID_BITS: i32 = 52;
+
+/// The SVG writer draws a texture under a projective map (perspective, projective quads) as
+/// a grid of cells, each with the affine map nearest the exact (projective) one at its four
+/// projected corners, fine enough that every corner lands within `SVG_TEXTURE_PX` pixels of
+/// where the exact map puts it (a tenth of a pixel: far below what a texel placement shows).
+pub const SVG_TEXTURE_PX: f64 = 0.1;
+
+/// At most this many cells along each side of a sprite's unit square in that grid (a cap on
+/// the output size; the miss can then exceed [`SVG_TEXTURE_PX`]).
+pub const SVG_TEXTURE_MAX_CELLS: u32 = 64;
+
+/// Each cell's clip polygon reaches this many pixels past the cell (each corner moved away
+/// from the cell's centre), so that neighbouring cells overlap and anti-aliased cell edges
+/// let no background through; the sprite's own clip keeps the exact outline.
+pub const SVG_CELL_OVERLAP_PX: f64 = 0.5;

@@ -12,6 +12,7 @@ use sprite_compose::face_sort::SorterKind;
 use sprite_compose::face_sort::colours::golden_angle_colour;
 use sprite_compose::{HtmlMode, HtmlOptions, HtmlPieces, write_html};
 
+use crate::textures::{colour_error, textured_box, textured_html};
 use crate::writers::{SIZE, differing, ids_of_rgba, spot_painter};
 
 const CHROMIUM: &str = "/usr/bin/chromium";
@@ -205,4 +206,28 @@ fn html_pages_in_chromium_match_raster_sink() {
             (HtmlMode::Preserve3d, _) => assert!(e.error <= 0.05, "preserve-3d page: {e:?}"),
         }
     }
+}
+
+#[test]
+fn textured_html_in_chromium_follows_the_exact_map() {
+    let Some(browser) = chromium() else {
+        return;
+    };
+    // The textured box of the SVG test (a strong perspective) as an HTML page: one element
+    // per face under its exact projective matrix3d, the texture placed in the face's plane.
+    let b = textured_box(35.0, f64::from(SIZE) * 0.75);
+    let html = textured_html(&b);
+    let started = Instant::now();
+    let rgba = screenshot(browser, &html, "textured");
+    let seconds = started.elapsed().as_secs_f64();
+    let (mean, far, n) = colour_error(&rgba, &b.reference, &b.truth);
+    println!(
+        "chromium textured box: {} images, {} bytes; vs raster-sink over {n} pixels: mean {mean:.2}/255, {:.3} % off by > 48 ({seconds:.1} s)",
+        html.matches("<img").count(),
+        html.len(),
+        far * 100.0
+    );
+    assert!(n > 5_000, "the comparison covers pixels: {n}");
+    assert_eq!(html.matches("<img").count(), b.painter.draw_list().len());
+    assert!(far <= 0.005, "textured page: mean {mean}, far {far}");
 }

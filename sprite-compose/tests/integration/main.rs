@@ -8,4 +8,5 @@ mod browser;
 mod hidden;
 mod painter;
 mod pdf;
+mod textures;
 mod writers;

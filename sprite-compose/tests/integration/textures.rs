@@ -1,0 +1,213 @@
+//! Textured SVG (through resvg) and HTML (through headless Chromium) against raster-sink's
+//! textured colour raster of the same draw list, under perspective.
+//!
+//! The scene is a box whose faces are parallelograms (squares), so the brush's affine uv map
+//! on each sprite's unit square and raster-sink's affine uv map on the face's plane are the
+//! same map; perspective makes the map from texture to screen projective. raster-sink cuts
+//! each face into 64 × 64 pieces per fan triangle (its finest), anti-aliasing off, so its
+//! image is the exact map to well under a pixel.
+
+use std::sync::Arc;
+
+use raster_sink::tiny_skia::Pixmap;
+use raster_sink::{
+    MAX_TEXTURE_SUBDIVISION, RasterOptions, Style, TextureBrush, Truth, UvMap, render_colour, truth,
+};
+use sprite_compose::face_sort::{Geometry, SorterKind, View};
+use sprite_compose::glam::{DAffine2, DVec2, DVec3};
+use sprite_compose::{
+    Brush, HtmlOptions, RecordingCompositor, SpritePainter, SvgOptions, TextureId, write_html,
+    write_svg,
+};
+
+use crate::support;
+use crate::writers::SIZE;
+
+/// A 64 × 64 texture: 8-pixel checks in two hues over a colour gradient (edges everywhere,
+/// so a misplaced map shows).
+fn texture() -> Pixmap {
+    let n = 64u32;
+    let mut pixmap = Pixmap::new(n, n).expect("texture");
+    for y in 0..n {
+        for x in 0..n {
+            let check = ((x / 8) + (y / 8)) % 2 == 0;
+            let (r, g) = ((x * 4) as u8, (y * 4) as u8);
+            let c = if check {
+                [r, g, 220, 255]
+            } else {
+                [255 - r, 40, g, 255]
+            };
+            let o = 4 * (y * n + x) as usize;
+            pixmap.data_mut()[o..o + 4].copy_from_slice(&c);
+        }
+    }
+    pixmap
+}
+
+fn base64(bytes: &[u8]) -> String {
+    const A: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut s = String::new();
+    for chunk in bytes.chunks(3) {
+        let b = [
+            chunk[0],
+            *chunk.get(1).unwrap_or(&0),
+            *chunk.get(2).unwrap_or(&0),
+        ];
+        let v = (u32::from(b[0]) << 16) | (u32::from(b[1]) << 8) | u32::from(b[2]);
+        for k in 0..4 {
+            if k <= chunk.len() {
+                s.push(char::from(A[((v >> (18 - 6 * k)) & 63) as usize]));
+            } else {
+                s.push('=');
+            }
+        }
+    }
+    s
+}
+
+/// The textured box at a perspective view: its painter (every face textured with the whole
+/// texture on its unit square), raster-sink's image of it and the truth.
+pub struct TexturedBox {
+    pub geometry: Geometry,
+    pub painter: SpritePainter<RecordingCompositor>,
+    pub reference: Pixmap,
+    pub truth: Truth,
+    pub data_uri: String,
+}
+
+pub fn textured_box(yaw: f64, distance: f64) -> TexturedBox {
+    let mesh =
+        test_support::models::boxes(&[(DVec3::new(-1.0, -0.7, -0.8), DVec3::new(1.0, 0.7, 0.8))]);
+    let geometry = support::geometry(&mesh);
+    let view = View::fit(&geometry.bounds(), SIZE, SIZE)
+        .with_yaw_pitch_roll(yaw, 25.0, 0.0)
+        .with_perspective(distance);
+    let mut painter = SpritePainter::new(
+        &geometry,
+        SorterKind::Newell.build(&geometry),
+        view,
+        RecordingCompositor::new(),
+    );
+    painter.set_brushes(|_| Brush::Texture {
+        texture: TextureId(0),
+        uv: DAffine2::IDENTITY,
+        fallback: [128, 128, 128, 255],
+    });
+    painter.frame();
+    // A quad sprite's unit square has corners 0, 1, 2, 3 of its face at (0,0), (0,1), (1,1),
+    // (1,0): the identity uv map puts those texture coordinates on the corners.
+    let image = Arc::new(texture());
+    let centre = geometry.bounds().centre();
+    let mut style = Style::solid([255, 0, 255, 255]);
+    for face in 0..mesh.face_count() {
+        let corners: Vec<DVec3> = mesh
+            .face(face)
+            .iter()
+            .map(|&i| mesh.positions()[i as usize] - centre)
+            .collect();
+        let uvs = [DVec2::ZERO, DVec2::Y, DVec2::ONE, DVec2::X];
+        let map = UvMap::fit(&corners, &uvs).expect("a box face has a uv map");
+        style.set_face(
+            face as u32,
+            raster_sink::Brush::Texture(TextureBrush {
+                image: Arc::clone(&image),
+                map,
+            }),
+        );
+    }
+    let reference = render_colour(
+        painter.view(),
+        painter.draw_list(),
+        &style,
+        &RasterOptions::DEFAULT
+            .with_anti_alias(false)
+            .with_background([0, 0, 0, 255])
+            .with_texture_subdivision(MAX_TEXTURE_SUBDIVISION),
+    )
+    .expect("raster");
+    let truth = truth(painter.view(), &geometry);
+    let png = image.encode_png().expect("png");
+    TexturedBox {
+        geometry,
+        painter,
+        reference,
+        truth,
+        data_uri: format!("data:image/png;base64,{}", base64(&png)),
+    }
+}
+
+/// Over the truth's unambiguous pixels: the mean absolute channel difference (of 255) and
+/// the share of pixels off by more than 48 in some channel (a texel or more misplaced: the
+/// checks' colours differ by far more).
+pub fn colour_error(rgba: &[u8], reference: &Pixmap, t: &Truth) -> (f64, f64, usize) {
+    let (mut sum, mut far, mut n) = (0u64, 0usize, 0usize);
+    for k in 0..t.ids.len() {
+        if !t.unambiguous[k] {
+            continue;
+        }
+        n += 1;
+        let (a, b) = (&rgba[4 * k..4 * k + 3], &reference.data()[4 * k..4 * k + 3]);
+        let d: Vec<u8> = a.iter().zip(b).map(|(x, y)| x.abs_diff(*y)).collect();
+        sum += d.iter().map(|&v| u64::from(v)).sum::<u64>();
+        far += usize::from(d.iter().any(|&v| v > 48));
+    }
+    let mean = sum as f64 / (3 * n.max(1)) as f64;
+    (mean, far as f64 / n.max(1) as f64, n)
+}
+
+fn rasterise_svg(svg: &str) -> Pixmap {
+    let tree =
+        resvg::usvg::Tree::from_str(svg, &resvg::usvg::Options::default()).expect("valid SVG");
+    let mut pixmap = Pixmap::new(SIZE, SIZE).expect("pixmap");
+    resvg::render(
+        &tree,
+        resvg::tiny_skia::Transform::default(),
+        &mut pixmap.as_mut(),
+    );
+    pixmap
+}
+
+#[test]
+fn textured_svg_under_perspective_is_subdivided_to_the_exact_map() {
+    // A strong perspective (eye at three quarters of the image width) makes one affine map per face miss.
+    let b = textured_box(35.0, f64::from(SIZE) * 0.75);
+    let scene = b.painter.compositor().scene();
+    let mut results = Vec::new();
+    for tolerance in [f64::INFINITY, 1.0, 0.1] {
+        let svg = write_svg(
+            scene,
+            &SvgOptions::DEFAULT
+                .with_background(Some([0, 0, 0, 255]))
+                .with_textures(vec![b.data_uri.clone()])
+                .with_texture_tolerance(tolerance),
+        );
+        let pixmap = rasterise_svg(&svg);
+        let (mean, far, n) = colour_error(pixmap.data(), &b.reference, &b.truth);
+        println!(
+            "svg textured, tolerance {tolerance} px: {} images, {} bytes; vs raster-sink over {n} pixels: mean {mean:.2}/255, {:.3} % off by > 48",
+            svg.matches("<image").count(),
+            svg.len(),
+            far * 100.0
+        );
+        assert!(n > 5_000, "the comparison covers pixels: {n}");
+        results.push((mean, far));
+    }
+    let _ = &b.geometry;
+    // One affine map per face is visibly off; the subdivided map is near the reference.
+    assert!(
+        results[0].1 > 0.02,
+        "the test must see the affine map's error: {results:?}"
+    );
+    assert!(results[1].1 <= 0.005, "subdivided: {results:?}");
+    assert!(results[1].0 < results[0].0 / 3.0, "{results:?}");
+}
+
+/// The HTML page of the textured box (exact projective map per sprite), for the browser test.
+pub fn textured_html(b: &TexturedBox) -> String {
+    write_html(
+        b.painter.compositor().scene(),
+        &HtmlOptions::DEFAULT
+            .with_size(SIZE, SIZE)
+            .with_textures(vec![b.data_uri.clone()]),
+    )
+}
