@@ -209,6 +209,15 @@ impl CaseReport {
             if !is_exact(&o.sorter) || !self.judged {
                 continue;
             }
+            // The BSP tree stays within the budget its fallible constructors enforce.
+            let budget = face_sort::BspOptions::DEFAULT.fragment_budget(self.pieces);
+            if o.sorter == "bsp" && self.pieces + o.fragments > budget {
+                out.push(format!(
+                    "{} / bsp: {} fragments exceed the default budget of {budget}",
+                    self.name,
+                    self.pieces + o.fragments
+                ));
+            }
             if o.violations > 0 || o.wrong_pixels > 0 || o.non_finite > 0 || o.fallbacks > 0 {
                 out.push(format!(
                     "{} / {}: {} violations, {} wrong pixels, {} non-finite, {} fallbacks",
@@ -1328,6 +1337,15 @@ mod tests {
         assert_eq!(bad.problems().len(), 1);
         bad.outcomes[0].sorter = "centroid".to_owned();
         assert!(bad.problems().is_empty(), "the reference is not judged");
+        // A BSP tree beyond the default fragment budget (max(16 · pieces, 4096)) is a problem.
+        bad.outcomes[0] = Outcome {
+            sorter: "bsp".to_owned(),
+            fragments: 4096,
+            ..Outcome::default()
+        };
+        assert_eq!(bad.problems().len(), 1, "{:?}", bad.problems());
+        bad.outcomes[0].fragments = 4095;
+        assert!(bad.problems().is_empty());
         // The oracle and the truth see a reversed order on overlapping squares.
         let mesh = separated(1e-3).unwrap();
         let geometry = Geometry::new(&mesh).unwrap();
