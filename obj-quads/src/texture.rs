@@ -8,10 +8,12 @@
 //! [`LoadOptions::max_texture_file_bytes`](crate::LoadOptions::max_texture_file_bytes)
 //! before it is read, so a small file that declares a huge image costs a few
 //! bytes of reading, not gigabytes of memory. Decoding then allocates at most
-//! the RGBA8 image (4 bytes per accepted pixel) plus the decoders' bounded
-//! working buffers.
+//! 8 bytes per accepted pixel (a PNG's decoded frame of up to 4 bytes a pixel
+//! and its RGBA8 copy; JPEG decodes straight to RGBA8) plus the decoders'
+//! bounded working buffers.
 
 use std::io::Cursor;
+use std::panic::catch_unwind;
 use std::path::Path;
 
 use crate::{LoadError, LoadOptions};
@@ -222,10 +224,18 @@ pub fn decode_texture(
     }
     let header = texture_header(bytes, file)?;
     check_limits(&header, file, options)?;
-    let texture = match header.format {
+    // The decoders are dependencies: a panic they still have on some input
+    // becomes a typed error here (found by `cargo xtask fuzz --loaders`).
+    let decoded = catch_unwind(|| match header.format {
         TextureFormat::Png => decode_png(bytes, file),
         TextureFormat::Jpeg => decode_jpeg(bytes, file, options),
-    }?;
+    });
+    let texture = decoded.unwrap_or_else(|_| {
+        Err(LoadError::Texture {
+            file: file.to_owned(),
+            detail: format!("the {:?} decoder panicked on this input", header.format),
+        })
+    })?;
     if (texture.width, texture.height) != (header.width, header.height) {
         return Err(LoadError::Texture {
             file: file.to_owned(),
@@ -238,11 +248,53 @@ pub fn decode_texture(
     Ok(texture)
 }
 
+/// Finds palette chunks that png 0.18's palette expansion indexes out of
+/// bounds (it panics on them): a `PLTE` whose length is not a multiple of 3 or
+/// exceeds 256 entries, or a `tRNS` with more entries than the `PLTE`. Walks
+/// the chunks up to the first `IDAT`, bounded by the input's length.
+fn png_palette_problem(bytes: &[u8]) -> Option<String> {
+    let mut at = PNG_SIGNATURE.len();
+    let mut palette_entries = None;
+    while let Some(header) = bytes.get(at..at + 8) {
+        let len = u32::from_be_bytes([header[0], header[1], header[2], header[3]]) as usize;
+        let kind = &header[4..8];
+        match kind {
+            b"PLTE" => {
+                if !len.is_multiple_of(3) || len > 3 * 256 {
+                    return Some(format!(
+                        "PLTE chunk of {len} bytes (3 per entry, at most 256 entries)"
+                    ));
+                }
+                palette_entries = Some(len / 3);
+            }
+            b"tRNS" => {
+                if let Some(entries) = palette_entries
+                    && len > entries
+                {
+                    return Some(format!(
+                        "tRNS chunk of {len} entries for a palette of {entries}"
+                    ));
+                }
+            }
+            b"IDAT" => return None,
+            _ => {}
+        }
+        at = at.checked_add(12)?.checked_add(len)?;
+    }
+    None
+}
+
 fn decode_png(bytes: &[u8], file: &str) -> Result<Texture, LoadError> {
     let err = |e: png::DecodingError| LoadError::Texture {
         file: file.to_owned(),
         detail: format!("PNG: {e}"),
     };
+    if let Some(problem) = png_palette_problem(bytes) {
+        return Err(LoadError::Texture {
+            file: file.to_owned(),
+            detail: format!("PNG: {problem}"),
+        });
+    }
     // The header was checked: the decoder may allocate the 16-bit RGBA frame
     // (8 bytes per pixel) and its row buffers, no more.
     let mut decoder = png::Decoder::new(Cursor::new(bytes));

@@ -641,3 +641,61 @@ fn jpeg_within_limits_decodes() {
         other => panic!("{other:?}"),
     }
 }
+
+/// An 8-bit palette PNG of 2 × 1 pixels (indices 0, 1) with the given PLTE and
+/// optional tRNS payloads.
+fn palette_png(plte: &[u8], trns: Option<&[u8]>) -> Vec<u8> {
+    let mut ihdr = 2u32.to_be_bytes().to_vec();
+    ihdr.extend(1u32.to_be_bytes());
+    ihdr.extend([8, 3, 0, 0, 0]);
+    let mut out = b"\x89PNG\r\n\x1a\n".to_vec();
+    out.extend(chunk(b"IHDR", &ihdr));
+    out.extend(chunk(b"PLTE", plte));
+    if let Some(trns) = trns {
+        out.extend(chunk(b"tRNS", trns));
+    }
+    // One row: filter 0, indices 0 and 1, in a stored zlib block.
+    let row = [0u8, 0, 1];
+    let mut idat = vec![0x78, 0x01, 0x01, 3, 0, !3u8, 0xFF];
+    idat.extend(row);
+    let (mut a, mut b) = (1u32, 0u32);
+    for &x in &row {
+        a = (a + u32::from(x)) % 65_521;
+        b = (b + a) % 65_521;
+    }
+    idat.extend(((b << 16) | a).to_be_bytes());
+    out.extend(chunk(b"IDAT", &idat));
+    out.extend(chunk(b"IEND", &[]));
+    out
+}
+
+#[test]
+fn malformed_png_palettes_are_refused_not_panicked_on() {
+    // Found by `cargo xtask fuzz --loaders` (tests/data/loaders/fuzz-ccf2ef2c3e0747d3.png):
+    // png 0.18 panics expanding a PLTE whose length is not a multiple of 3.
+    let two_entries = [255, 0, 0, 0, 0, 255];
+    let ok = decode_texture(
+        &palette_png(&two_entries, Some(&[128])),
+        "ok.png",
+        &LoadOptions::DEFAULT,
+    )
+    .unwrap();
+    assert_eq!(ok.rgba, vec![255, 0, 0, 128, 0, 0, 255, 255]);
+    for (plte, trns, expected) in [
+        (&two_entries[..5], None, "PLTE chunk of 5 bytes"),
+        (&[7u8; 3 * 257][..], None, "PLTE chunk of 771 bytes"),
+        (
+            &two_entries[..],
+            Some(&[1u8, 2, 3][..]),
+            "tRNS chunk of 3 entries",
+        ),
+    ] {
+        match decode_texture(&palette_png(plte, trns), "bad.png", &LoadOptions::DEFAULT) {
+            Err(LoadError::Texture { file, detail }) => {
+                assert_eq!(file, "bad.png");
+                assert!(detail.contains(expected), "{detail}");
+            }
+            other => panic!("{expected}: {other:?}"),
+        }
+    }
+}
