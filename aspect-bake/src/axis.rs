@@ -84,6 +84,7 @@ fn outer(k: DVec3) -> DMat3 {
 pub struct Spin {
     axis: Axis,
     template: View,
+    factors: (DMat3, DVec3, DMat3),
     c: [DMat3; 3],
 }
 
@@ -107,13 +108,25 @@ impl Spin {
             a * (DMat3::IDENTITY - kk) * b,
             a * cross_matrix(k) * b,
         ];
-        Some(Spin { axis, template, c })
+        Some(Spin {
+            axis,
+            template,
+            factors: (a, k, b),
+            c,
+        })
     }
 
     /// The axis.
     #[must_use]
     pub fn axis(&self) -> Axis {
         self.axis
+    }
+
+    /// `(A, k, B)` of `R(θ) = A·Rot(k, θ)·B` (`k` a unit vector in view space): what a
+    /// realisation needs to animate the rotation itself (e.g. CSS `rotate3d`).
+    #[must_use]
+    pub fn factors(&self) -> (DMat3, DVec3, DMat3) {
+        self.factors
     }
 
     /// The template view (its rotation is not used).

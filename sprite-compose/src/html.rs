@@ -5,7 +5,7 @@ use std::fmt::Write as _;
 use glam::{DAffine2, DMat4, DVec2, DVec3, DVec4};
 
 use crate::svg::{hex, project_sprite};
-use crate::tolerance::{HOMOGRAPHY_W, SINGULAR_DET, UNDERFLOW_ABS};
+use crate::tolerance::{HTML_QUAD_WEIGHT_RATIO, SINGULAR_DET, UNDERFLOW_ABS};
 use crate::{Brush, Scene, id_colour, perspective_matrix};
 
 /// How the page orders faces.
@@ -316,8 +316,9 @@ fn image_placement(uv: DAffine2, size: f64) -> Option<String> {
 /// background showed through at single pixels (docs/html-border-seam.png). Consecutive fan
 /// triangles pair into quads `(c0, ck, ck+1, ck+2)` (overlapping the previous one when the
 /// count is odd); a lone triangle is cut into three quads at its centroid and edge midpoints.
-/// Quads whose homography is ill-conditioned fall back to their two triangles' cuts.
-fn clip_quads(clip: &[DVec2]) -> Vec<DMat4> {
+/// Quads whose homography is ill-conditioned fall back to their two triangles' cuts (whose
+/// corner weights always differ by exactly 3×: each is an affine image of one fixed quad).
+pub(crate) fn clip_quads(clip: &[DVec2]) -> Vec<DMat4> {
     let mut out = Vec::new();
     let n = clip.len();
     if n < 3 {
@@ -359,7 +360,8 @@ fn triangle_quads(a: DVec2, b: DVec2, c: DVec2, out: &mut Vec<DMat4>) {
 
 /// The projective map of the unit square taking `(0,0), (1,0), (1,1), (0,1)` to the corners
 /// of a convex quad (unit-square coordinates), or `None` when the quad is degenerate or its
-/// projective weight drops below [`HOMOGRAPHY_W`] at a corner.
+/// projective weights at the corners differ by more than [`HTML_QUAD_WEIGHT_RATIO`] (a quad
+/// with a vanishing edge: Chromium dropped such layers whole).
 fn quad_matrix(p: [DVec2; 4]) -> Option<DMat4> {
     let d1 = p[1] - p[2];
     let d2 = p[3] - p[2];
@@ -374,10 +376,11 @@ fn quad_matrix(p: [DVec2; 4]) -> Option<DMat4> {
     let g = s.perp_dot(d2) / det;
     let h = d1.perp_dot(s) / det;
     // Weights at the four corners: 1, 1 + g, 1 + g + h, 1 + h (positive for a convex quad).
-    if [1.0 + g, 1.0 + g + h, 1.0 + h]
-        .iter()
-        .any(|w| *w <= HOMOGRAPHY_W || !w.is_finite())
-    {
+    let weights = [1.0, 1.0 + g, 1.0 + g + h, 1.0 + h];
+    let (lo, hi) = weights.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), w| {
+        (lo.min(*w), hi.max(*w))
+    });
+    if !(lo > 0.0 && hi <= HTML_QUAD_WEIGHT_RATIO * lo) {
         return None;
     }
     let u = p[1] - p[0] + p[1] * g;

@@ -60,6 +60,7 @@ mod pdf;
 mod pick;
 mod recording;
 mod root;
+mod spin;
 mod svg;
 pub mod tolerance;
 mod transform;
@@ -77,6 +78,7 @@ pub use pdf::{PdfOptions, write_pdf};
 pub use pick::{ProjectedFrame, contains, outline_svg_path};
 pub use recording::{RecordingCompositor, Scene, SceneSprite};
 pub use root::{perspective_matrix, root_transform, rotation_from_yaw_pitch_roll};
+pub use spin::{SpinOptions, write_spin_html};
 pub use svg::{SvgOptions, project_sprite, write_svg};
 pub use transform::{MapKind, PieceMap, PieceMaps, SpriteSpace, SpriteTransform, piece_map};
 

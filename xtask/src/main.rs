@@ -12,6 +12,7 @@
 //!
 //! See `xtask/README.md` for examples.
 
+mod bake;
 mod bench;
 mod ci;
 mod fuzz;
@@ -41,6 +42,9 @@ struct Cli {
 enum Command {
     /// Render a model (or the built-in demo scene) to a PNG or an ID image.
     Render(render::RenderArgs),
+    /// Bake every painter order along an animation axis (exact breakpoints); write JSON
+    /// and a spinning HTML page.
+    Bake(bake::BakeArgs),
     /// Measure every sorter (and plane-split) for time against error; write
     /// target/bench/report.{md,json} and a chart.
     Bench(bench::BenchArgs),
@@ -72,6 +76,7 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = std::panic::catch_unwind(|| match cli.command {
         Command::Render(args) => render::run(&args),
+        Command::Bake(args) => bake::run(&args),
         Command::Bench(args) => bench::run(&args),
         Command::Fuzz(args) => fuzz::run(&args),
         Command::Ci(args) => ci::run(&args),

@@ -155,7 +155,7 @@ pub enum PolicyChoice {
     Merge,
 }
 
-fn parse_size(s: &str) -> Result<(u32, u32), String> {
+pub fn parse_size(s: &str) -> Result<(u32, u32), String> {
     let (w, h) = s
         .split_once(['x', 'X'])
         .ok_or_else(|| format!("expected WxH, e.g. 512x512, got {s:?}"))?;
@@ -231,22 +231,8 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
         .model
         .clone()
         .unwrap_or_else(|| scenes::asset(DEMO_MODEL));
-    let policy = match args.policy {
-        PolicyChoice::Quads => obj_quads::FacePolicy::QuadsOnly,
-        PolicyChoice::Polygons => obj_quads::FacePolicy::Polygons,
-        PolicyChoice::Merge => obj_quads::FacePolicy::MergeTriangles,
-    };
-
     let start = Instant::now();
-    let load_options = obj_quads::LoadOptions::DEFAULT
-        .with_face_policy(policy)
-        .with_allow_outside_paths(args.allow_outside);
-    let (mesh, report) =
-        obj_quads::load(&model_path, &load_options).map_err(|e| anyhow::anyhow!("{e}"))?;
-    for warning in &report.warnings {
-        eprintln!("warning: {}: {warning}", model_path.display());
-    }
-    let model_only = scenes::to_polygon_mesh(&mesh)?;
+    let (mesh, model_only) = load_mesh(&model_path, args.policy, args.allow_outside)?;
     let model_bounds = model_only
         .bounds()
         .ok_or_else(|| anyhow::anyhow!("{}: no faces", model_path.display()))?;
@@ -277,36 +263,30 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
     let (width, height) = args.size;
     let yaw = args.yaw.unwrap_or(if demo { DEMO_YAW } else { 0.0 });
     let pitch = args.pitch.unwrap_or(if demo { DEMO_PITCH } else { 0.0 });
-    let mut view = View::fit(&geometry.bounds(), width, height)
-        .with_yaw_pitch_roll(yaw, pitch, args.roll)
-        .with_cull(match args.cull {
-            CullChoice::Back => CullMode::Back,
-            CullChoice::Front => CullMode::Front,
-            CullChoice::None => CullMode::None,
-        })
-        .with_cull_margin(args.margin);
-    if args.cw {
-        view = view.with_front_face(FrontFace::Clockwise);
-    }
-    if let Some(scale) = args.scale {
-        if !(scale.is_finite() && scale > 0.0) {
-            bail!("--scale must be a positive number, got {scale}");
-        }
-        view = view.with_scale(scale);
-    } else if grid.is_some() {
-        // Fit the model, not the (larger) grid: the grid leaves the frame and fades out.
-        view = view.with_scale(0.9 * f64::from(width.min(height)) / model_bounds.diagonal());
-    }
-    match (args.persp, demo && !args.ortho) {
-        (Some(d), _) => {
-            if !(d.is_finite() && d > 0.0) {
-                bail!("--persp must be a positive distance in pixels, got {d}");
-            }
-            view = view.with_perspective(d);
-        }
-        (None, true) => view = view.with_perspective(f64::from(width)),
-        (None, false) => {}
-    }
+    // Fit the model, not the (larger) grid: the grid leaves the frame and fades out.
+    let scale = args.scale.or_else(|| {
+        grid.is_some()
+            .then(|| 0.9 * f64::from(width.min(height)) / model_bounds.diagonal())
+    });
+    let persp = match (args.persp, demo && !args.ortho) {
+        (Some(d), _) => Some(d),
+        (None, true) => Some(f64::from(width)),
+        (None, false) => None,
+    };
+    let view = base_view(
+        &geometry,
+        &BaseView {
+            size: args.size,
+            yaw,
+            pitch,
+            roll: args.roll,
+            cull: args.cull,
+            cw: args.cw,
+            margin: args.margin,
+            scale,
+            persp,
+        },
+    )?;
 
     let start = Instant::now();
     let (mut sorter, plan) = plan(args.sorter, &geometry);
@@ -473,6 +453,83 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
         println!("{}", line(&summary));
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// The base view of `render` (and of `bake`): CONVENTIONS.md's camera from the flags.
+#[derive(Clone, Copy, Debug)]
+pub struct BaseView {
+    /// Image size.
+    pub size: (u32, u32),
+    /// Yaw, degrees.
+    pub yaw: f64,
+    /// Pitch, degrees.
+    pub pitch: f64,
+    /// Roll, degrees.
+    pub roll: f64,
+    /// Cull mode.
+    pub cull: CullChoice,
+    /// Clockwise fronts.
+    pub cw: bool,
+    /// Cull margin, degrees.
+    pub margin: f64,
+    /// Scale in pixels per model unit; `None`: fit.
+    pub scale: Option<f64>,
+    /// Perspective eye distance in pixels; `None`: orthographic.
+    pub persp: Option<f64>,
+}
+
+/// The view of `geometry` for these flags; errors on a scale or distance that is not a
+/// positive number.
+pub fn base_view(geometry: &Geometry, flags: &BaseView) -> Result<View> {
+    let (width, height) = flags.size;
+    let mut view = View::fit(&geometry.bounds(), width, height)
+        .with_yaw_pitch_roll(flags.yaw, flags.pitch, flags.roll)
+        .with_cull(match flags.cull {
+            CullChoice::Back => CullMode::Back,
+            CullChoice::Front => CullMode::Front,
+            CullChoice::None => CullMode::None,
+        })
+        .with_cull_margin(flags.margin);
+    if flags.cw {
+        view = view.with_front_face(FrontFace::Clockwise);
+    }
+    if let Some(scale) = flags.scale {
+        if !(scale.is_finite() && scale > 0.0) {
+            bail!("--scale must be a positive number, got {scale}");
+        }
+        view = view.with_scale(scale);
+    }
+    if let Some(d) = flags.persp {
+        if !(d.is_finite() && d > 0.0) {
+            bail!("--persp must be a positive distance in pixels, got {d}");
+        }
+        view = view.with_perspective(d);
+    }
+    Ok(view)
+}
+
+/// Loads a model as `render` does (face policy, paths outside the model's folder only when
+/// allowed, warnings to stderr): the loader's mesh and the sorters' input.
+pub fn load_mesh(
+    path: &std::path::Path,
+    policy: PolicyChoice,
+    allow_outside: bool,
+) -> Result<(obj_quads::Mesh, PolygonMesh)> {
+    let policy = match policy {
+        PolicyChoice::Quads => obj_quads::FacePolicy::QuadsOnly,
+        PolicyChoice::Polygons => obj_quads::FacePolicy::Polygons,
+        PolicyChoice::Merge => obj_quads::FacePolicy::MergeTriangles,
+    };
+    let load_options = obj_quads::LoadOptions::DEFAULT
+        .with_face_policy(policy)
+        .with_allow_outside_paths(allow_outside);
+    let (mesh, report) =
+        obj_quads::load(path, &load_options).map_err(|e| anyhow::anyhow!("{e}"))?;
+    for warning in &report.warnings {
+        eprintln!("warning: {}: {warning}", path.display());
+    }
+    let polygons = scenes::to_polygon_mesh(&mesh)?;
+    Ok((mesh, polygons))
 }
 
 fn line(s: &Summary) -> String {

@@ -8,5 +8,6 @@ mod browser;
 mod hidden;
 mod painter;
 mod pdf;
+mod spin;
 mod textures;
 mod writers;

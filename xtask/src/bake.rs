@@ -1,0 +1,348 @@
+//! `cargo xtask bake`: every painter order of a model along an animation axis (aspect-bake),
+//! as JSON and as a spinning HTML page.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use anyhow::{Context, Result, bail};
+use clap::{Args, ValueEnum};
+use face_sort::{Geometry, PolygonMesh};
+use serde_json::{Value, json};
+use sprite_compose::aspect_bake::{
+    self, Axis, Bake, BakeOptions, BspSource, CentroidSource, EventSource, Method, Progress, Spin,
+};
+
+use crate::progress;
+use crate::render::{self, BaseView, CullChoice, PolicyChoice};
+
+/// Options of `bake`.
+#[derive(Debug, Args)]
+pub struct BakeArgs {
+    /// Model to bake (.obj, .gltf, .glb).
+    model: PathBuf,
+    /// The parameter that turns; the other two stay at their flags' values.
+    #[arg(long, value_enum)]
+    axis: AxisChoice,
+    /// Base yaw in degrees (as in `render`).
+    #[arg(
+        long,
+        value_name = "DEG",
+        allow_hyphen_values = true,
+        default_value_t = 0.0
+    )]
+    yaw: f64,
+    /// Base pitch in degrees.
+    #[arg(
+        long,
+        value_name = "DEG",
+        allow_hyphen_values = true,
+        default_value_t = 0.0
+    )]
+    pitch: f64,
+    /// Base roll in degrees.
+    #[arg(
+        long,
+        value_name = "DEG",
+        allow_hyphen_values = true,
+        default_value_t = 0.0
+    )]
+    roll: f64,
+    /// Perspective with the eye D pixels from the centre (the eye orbits with the model's
+    /// rotation). Absent: orthographic.
+    #[arg(long, value_name = "D")]
+    persp: Option<f64>,
+    /// Image size (scale "fit" and the HTML page's size).
+    #[arg(long, value_name = "WxH", default_value = "512x512", value_parser = render::parse_size)]
+    size: (u32, u32),
+    /// Which faces culling removes.
+    #[arg(long, value_enum, default_value_t = CullChoice::Back)]
+    cull: CullChoice,
+    /// Clockwise faces are the front.
+    #[arg(long)]
+    cw: bool,
+    /// Which faces the loader accepts.
+    #[arg(long, value_enum, default_value_t = PolicyChoice::Polygons)]
+    policy: PolicyChoice,
+    /// The sorter whose draw lists are baked.
+    #[arg(long, value_enum, default_value_t = SorterChoice::Bsp)]
+    sorter: SorterChoice,
+    /// Exact events, or the seed's sampling baseline.
+    #[arg(long, value_enum, default_value_t = MethodChoice::Exact)]
+    method: MethodChoice,
+    /// Samples over the period for --method sampled.
+    #[arg(long, value_name = "N", default_value_t = 720)]
+    samples: usize,
+    /// Bisection tolerance of --method sampled, degrees.
+    #[arg(long, value_name = "DEG", default_value_t = 1e-3)]
+    tolerance: f64,
+    /// Check the bake against the live sorter (random angles in every cell, both sides of
+    /// every breakpoint); exit 1 when it disagrees.
+    #[arg(long)]
+    verify: bool,
+    /// Write the bake as JSON.
+    #[arg(long, value_name = "FILE")]
+    json: Option<PathBuf>,
+    /// Write a self-contained spinning HTML page.
+    #[arg(long, value_name = "FILE")]
+    html: Option<PathBuf>,
+    /// Seconds per turn of the HTML page.
+    #[arg(long, value_name = "S", default_value_t = 8.0)]
+    period: f64,
+    /// Stop when the per-cell lists would exceed this many MiB.
+    #[arg(long, value_name = "MIB", default_value_t = 1024)]
+    budget_mib: usize,
+}
+
+/// `--axis`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum AxisChoice {
+    /// Yaw turns.
+    Yaw,
+    /// Pitch turns.
+    Pitch,
+    /// Roll turns.
+    Roll,
+}
+
+/// `--sorter`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum SorterChoice {
+    /// BSP (exact).
+    Bsp,
+    /// Centroid depth (the seed's, not exact).
+    Centroid,
+}
+
+/// `--method`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum MethodChoice {
+    /// Closed-form events.
+    Exact,
+    /// Samples and bisection.
+    Sampled,
+}
+
+/// A loaded model ready to bake.
+pub struct Prepared {
+    /// The sorters' input.
+    pub mesh: PolygonMesh,
+    /// Its pieces.
+    pub geometry: Geometry,
+    /// The spin.
+    pub spin: Spin,
+}
+
+/// Loads the model and builds the spin from the flags.
+pub fn prepare(args: &BakeArgs) -> Result<Prepared> {
+    let (_, mesh) = render::load_mesh(&args.model, args.policy, false)?;
+    let geometry =
+        Geometry::new(&mesh).map_err(|e| anyhow::anyhow!("{}: {e}", args.model.display()))?;
+    let view = render::base_view(
+        &geometry,
+        &BaseView {
+            size: args.size,
+            yaw: args.yaw,
+            pitch: args.pitch,
+            roll: args.roll,
+            cull: args.cull,
+            cw: args.cw,
+            margin: 0.0,
+            scale: None,
+            persp: args.persp,
+        },
+    )?;
+    let axis = match args.axis {
+        AxisChoice::Yaw => Axis::Yaw {
+            pitch: args.pitch,
+            roll: args.roll,
+        },
+        AxisChoice::Pitch => Axis::Pitch {
+            yaw: args.yaw,
+            roll: args.roll,
+        },
+        AxisChoice::Roll => Axis::Roll {
+            yaw: args.yaw,
+            pitch: args.pitch,
+        },
+    };
+    let spin = Spin::new(view, axis).context("axis")?;
+    Ok(Prepared {
+        mesh,
+        geometry,
+        spin,
+    })
+}
+
+/// Runs `bake`.
+pub fn run(args: &BakeArgs) -> Result<ExitCode> {
+    if !(args.period.is_finite() && args.period > 0.0) {
+        bail!(
+            "--period must be a positive number of seconds, got {}",
+            args.period
+        );
+    }
+    let prepared = prepare(args)?;
+    let (geometry, spin) = (&prepared.geometry, &prepared.spin);
+    let bsp;
+    let centroid;
+    let source: &dyn EventSource = match args.sorter {
+        SorterChoice::Bsp => {
+            bsp = BspSource::of(geometry);
+            &bsp
+        }
+        SorterChoice::Centroid => {
+            centroid = CentroidSource::of(geometry);
+            &centroid
+        }
+    };
+    let bar = progress::bar(0, "bake");
+    let report = |p: Progress| {
+        bar.set_length(p.total as u64);
+        bar.set_position(p.done as u64);
+    };
+    let options = BakeOptions {
+        budget_bytes: args.budget_mib.saturating_mul(1 << 20),
+        progress: Some(&report),
+        ..BakeOptions::DEFAULT
+    };
+    let exact = aspect_bake::bake(source, spin, &options)?;
+    let (baked, missed) = match args.method {
+        MethodChoice::Exact => (exact, None),
+        MethodChoice::Sampled => {
+            let sampled =
+                aspect_bake::bake_sampled(source, spin, args.samples, args.tolerance, &options)?;
+            let missed = sampled.missed(&exact, 2.0 * args.tolerance).len();
+            (sampled, Some(missed))
+        }
+    };
+    bar.finish_and_clear();
+    let sizes = baked.sizes();
+    let mut line = format!(
+        "{} {} {}: {:.1} ms, {} breakpoints, {} cells, {} events, {} B full lists, {} B delta timeline",
+        args.axis_name(),
+        baked.sorter,
+        method_name(&baked),
+        baked.bake_ms,
+        baked.breakpoints.len(),
+        baked.cells.len(),
+        baked.events,
+        sizes.full_bytes,
+        sizes.delta_bytes,
+    );
+    if let Some(m) = missed {
+        line.push_str(&format!(", {m} exact breakpoints missed"));
+    }
+    let mut code = ExitCode::SUCCESS;
+    if args.verify {
+        match aspect_bake::verify(&baked, source, spin, 4, 0x5EED) {
+            Ok(r) => line.push_str(&format!(
+                ", verified ({} interior angles, {} breakpoints)",
+                r.interior_checks, r.breakpoint_checks
+            )),
+            Err(e) => {
+                line.push_str(&format!(", VERIFY FAILED: {e}"));
+                code = ExitCode::FAILURE;
+            }
+        }
+    }
+    if let Some(path) = &args.json {
+        let value = bake_json(&baked, &prepared, missed);
+        write(path, &serde_json::to_string(&value)?)?;
+    }
+    if let Some(path) = &args.html {
+        let page = sprite_compose::write_spin_html(
+            &baked,
+            spin,
+            geometry,
+            &sprite_compose::SpinOptions::DEFAULT.with_period(args.period),
+        );
+        write(path, &page)?;
+        let model_bytes = std::fs::metadata(&args.model).map_or(0, |m| m.len());
+        line.push_str(&format!(
+            ", page {} B (model file {model_bytes} B)",
+            page.len()
+        ));
+    }
+    println!("{line}");
+    Ok(code)
+}
+
+impl BakeArgs {
+    fn axis_name(&self) -> &'static str {
+        match self.axis {
+            AxisChoice::Yaw => "yaw",
+            AxisChoice::Pitch => "pitch",
+            AxisChoice::Roll => "roll",
+        }
+    }
+}
+
+fn method_name(bake: &Bake) -> &'static str {
+    match bake.method {
+        Method::Exact => "exact",
+        Method::Sampled { .. } => "sampled",
+    }
+}
+
+fn write(path: &std::path::Path, text: &str) -> Result<()> {
+    if let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
+        std::fs::create_dir_all(parent)
+            .with_context(|| format!("creating {}", parent.display()))?;
+    }
+    std::fs::write(path, text).with_context(|| format!("writing {}", path.display()))
+}
+
+/// The JSON of the issue: angles in degrees of the animated parameter; each draw list back
+/// to front; an item is the face index when the polygon is the whole face, else the face and
+/// the polygon's corners in model space.
+pub fn bake_json(bake: &Bake, prepared: &Prepared, missed: Option<usize>) -> Value {
+    let pieces = prepared.geometry.pieces();
+    let faces = prepared.mesh.face_count();
+    // A face is whole when it is one piece with all its corners (planar, not cut).
+    let mut piece_of: Vec<Option<usize>> = vec![None; faces];
+    let mut count = vec![0usize; faces];
+    for p in 0..pieces.len() {
+        let f = pieces.face(p) as usize;
+        count[f] += 1;
+        piece_of[f] = Some(p);
+    }
+    let face_len: Vec<usize> = prepared.mesh.faces().map(<[u32]>::len).collect();
+    let centre = prepared.spin.template().centre();
+    let set = &bake.polygons;
+    let items: Vec<Value> = (0..set.len())
+        .map(|i| {
+            let f = set.face(i) as usize;
+            let whole = count[f] == 1
+                && piece_of[f].is_some_and(|p| {
+                    pieces.corners(p) == set.corners(i) && set.corners(i).len() == face_len[f]
+                });
+            if whole {
+                json!(f)
+            } else {
+                let polygon: Vec<[f64; 3]> = set
+                    .corners(i)
+                    .iter()
+                    .map(|&c| (c + centre).to_array())
+                    .collect();
+                json!({"face": f, "polygon": polygon})
+            }
+        })
+        .collect();
+    let cells: Vec<Value> = bake
+        .cells
+        .iter()
+        .map(|c| {
+            let list: Vec<&Value> = c.order.iter().map(|&p| &items[p as usize]).collect();
+            json!({"lo": c.range.lo, "hi": c.range.hi, "draw_list": list})
+        })
+        .collect();
+    json!({
+        "axis": bake.axis.name(),
+        "sorter": bake.sorter,
+        "method": method_name(bake),
+        "bake_ms": bake.bake_ms,
+        "breakpoints": bake.breakpoints.iter().map(|b| b.degrees).collect::<Vec<_>>(),
+        "cells": cells,
+        "missed": missed,
+    })
+}
