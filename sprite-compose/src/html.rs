@@ -2,11 +2,15 @@
 
 use std::fmt::Write as _;
 
-use glam::{DAffine2, DMat4, DVec2, DVec3, DVec4};
+use std::collections::HashMap;
+
+use glam::{DAffine2, DMat3, DMat4, DVec2, DVec3, DVec4};
 
 use crate::svg::{hex, project_sprite};
-use crate::tolerance::{HTML_QUAD_WEIGHT_RATIO, SINGULAR_DET, UNDERFLOW_ABS};
-use crate::{Brush, Scene, id_colour, perspective_matrix};
+use crate::tolerance::{
+    HTML_QUAD_WEIGHT_RATIO, HTML_SEAM_PX, HTML_SHARED_EDGE_PX, SINGULAR_DET, UNDERFLOW_ABS,
+};
+use crate::{Brush, Scene, SceneSprite, id_colour, perspective_matrix};
 
 /// How the page orders faces.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
@@ -189,13 +193,22 @@ pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
             ),
         },
     );
-    for (_, sprite) in scene.visible() {
-        let projected = project_sprite(scene.root(), sprite);
+    let sprites: Vec<&SceneSprite> = scene.visible().map(|(_, s)| s).collect();
+    let projections: Vec<Vec<DVec2>> = sprites
+        .iter()
+        .map(|s| project_sprite(scene.root(), s))
+        .collect();
+    let mut by_face: HashMap<u32, Vec<usize>> = HashMap::new();
+    for (k, s) in sprites.iter().enumerate() {
+        by_face.entry(s.face).or_default().push(k);
+    }
+    for (index, sprite) in sprites.iter().copied().enumerate() {
+        let projected = &projections[index];
         if projected.len() < 3 {
             continue;
         }
         let (mut lo, mut hi) = (projected[0], projected[0]);
-        for p in &projected {
+        for p in projected {
             lo = lo.min(*p);
             hi = hi.max(*p);
         }
@@ -268,7 +281,12 @@ pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
                 }
             }
             Some(clip) => {
-                for quad in clip_quads(clip) {
+                let later = by_face[&sprite.face]
+                    .iter()
+                    .filter(|&&k| k > index)
+                    .map(|&k| projections[k].as_slice());
+                let seams = seam_strips(scene.root(), sprite, projected, later);
+                for quad in clip_quads(clip).into_iter().chain(seams) {
                     let m = outer * sprite.transform.matrix * quad * unscale;
                     let _ = writeln!(
                         page,
@@ -281,6 +299,90 @@ pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
     }
     page.push_str("</div></body></html>\n");
     page
+}
+
+/// Thin quads (maps of the unit square, unit-square coordinates) reaching
+/// [`HTML_SEAM_PX`] pixels to both sides of each edge of a clipped sprite that a later-drawn sprite of the
+/// same face shares (a split line between fragments), over the shared stretch.
+///
+/// Chromium rasters layer edges in fixed point after float transforms, so two layers that
+/// share an edge can leave a crack between them: a pixel centre 0.0016 px inside a fragment
+/// showed the background (docs/html-fragment-crack.png). The strip is drawn with the earlier
+/// fragment, under the later one, so it shows only where the later fragment leaves a crack;
+/// whatever should cover the strip is drawn after it (it covers the earlier fragment's side
+/// of the split line too).
+fn seam_strips<'a>(
+    root: &DMat4,
+    sprite: &SceneSprite,
+    projected: &[DVec2],
+    later: impl Iterator<Item = &'a [DVec2]>,
+) -> Vec<DMat4> {
+    let later: Vec<&[DVec2]> = later.collect();
+    if later.is_empty() {
+        return Vec::new();
+    }
+    // The sprite's plane → pixels, as a 3×3 homography (unit-square coordinates).
+    let full = *root * sprite.transform.matrix;
+    let plane = DMat3::from_cols(
+        DVec3::new(full.x_axis.x, full.x_axis.y, full.x_axis.w),
+        DVec3::new(full.y_axis.x, full.y_axis.y, full.y_axis.w),
+        DVec3::new(full.w_axis.x, full.w_axis.y, full.w_axis.w),
+    );
+    if plane.determinant().abs() <= UNDERFLOW_ABS {
+        return Vec::new();
+    }
+    let to_square = plane.inverse();
+    let back = |p: DVec2| {
+        let h = to_square * DVec3::new(p.x, p.y, 1.0);
+        (h.z.abs() > UNDERFLOW_ABS).then(|| DVec2::new(h.x / h.z, h.y / h.z))
+    };
+    let n = projected.len();
+    let area: f64 = (0..n)
+        .map(|k| projected[k].perp_dot(projected[(k + 1) % n]))
+        .sum();
+    let mut out = Vec::new();
+    for k in 0..n {
+        let (p, q) = (projected[k], projected[(k + 1) % n]);
+        let length = (q - p).length();
+        if length <= HTML_SHARED_EDGE_PX {
+            continue;
+        }
+        let along = (q - p) / length;
+        // Outward normal: the polygon lies to the left of its edges when its area is positive
+        // (in y-down pixels), to the right otherwise.
+        let outward = if area > 0.0 {
+            -along.perp()
+        } else {
+            along.perp()
+        };
+        for other in &later {
+            let m = other.len();
+            for j in 0..m {
+                let (r, s) = (other[j], other[(j + 1) % m]);
+                let off = |x: DVec2| along.perp_dot(x - p).abs();
+                if off(r) > HTML_SHARED_EDGE_PX || off(s) > HTML_SHARED_EDGE_PX {
+                    continue;
+                }
+                let (tr, ts) = (along.dot(r - p), along.dot(s - p));
+                let (t0, t1) = (tr.min(ts).max(0.0), tr.max(ts).min(length));
+                if t1 - t0 <= HTML_SHARED_EDGE_PX {
+                    continue;
+                }
+                let (a, b) = (p + along * t0, p + along * t1);
+                // Straddling the edge (its inner half over the sprite itself): an inner side
+                // on the edge line would be rounded like the edge.
+                let w = outward * HTML_SEAM_PX;
+                let corners = [a - w, b - w, b + w, a + w];
+                let square: Option<Vec<DVec2>> = corners.iter().map(|&c| back(c)).collect();
+                if let Some(square) = square
+                    && let Some(quad) = quad_matrix([square[0], square[1], square[2], square[3]])
+                {
+                    out.push(quad);
+                }
+            }
+        }
+    }
+    out
 }
 
 /// CSS `matrix(…)` placing an `<img>` that fills a `size`-pixel box (texture space `[0,1]²`

@@ -63,3 +63,21 @@ pub const SVG_TEXTURE_MAX_CELLS: u32 = 64;
 /// from the cell's centre), so that neighbouring cells overlap and anti-aliased cell edges
 /// let no background through; the sprite's own clip keeps the exact outline.
 pub const SVG_CELL_OVERLAP_PX: f64 = 0.5;
+
+/// The HTML writer draws a piece of a clip polygon as a quad under a projective `matrix3d`
+/// only when its projective weights at the four corners differ by at most this factor (1 for
+/// a parallelogram); else it cuts the piece's triangles into three quads each (factor 3).
+/// Chromium dropped whole layers whose quad had an edge 1e-5 of its size (weights about
+/// 1e5 apart).
+pub const HTML_QUAD_WEIGHT_RATIO: f64 = 4.0;
+
+/// The HTML writer draws a strip reaching this many pixels to both sides of each edge a
+/// clipped sprite shares with a later-drawn sprite of its face, under the later one, to fill
+/// the cracks Chromium leaves between layers that share an edge (float transforms, then
+/// edges on Skia's 1/64 px fixed-point grid): a crack showed the background at a pixel
+/// centre 0.0016 px inside a fragment (docs/html-fragment-crack.png). Four grid steps.
+pub const HTML_SEAM_PX: f64 = 1.0 / 16.0;
+
+/// Two projected sprite edges are one shared edge (a split line) when the ends of one lie
+/// within this many pixels of the other's line and they overlap by more than it.
+pub const HTML_SHARED_EDGE_PX: f64 = 1e-6;

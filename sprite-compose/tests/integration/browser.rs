@@ -10,7 +10,10 @@ use std::time::Instant;
 use raster_sink::{IdImage, Truth, pixel_error, render_ids, truth};
 use sprite_compose::face_sort::SorterKind;
 use sprite_compose::face_sort::colours::golden_angle_colour;
-use sprite_compose::{HtmlMode, HtmlOptions, HtmlPieces, write_html};
+use sprite_compose::face_sort::{CullMode, View};
+use sprite_compose::{
+    HtmlMode, HtmlOptions, HtmlPieces, RecordingCompositor, SpritePainter, write_html,
+};
 
 use crate::textures::{colour_error, textured_box, textured_html};
 use crate::writers::{SIZE, differing, ids_of_rgba, spot_painter};
@@ -222,7 +225,7 @@ fn textured_html_in_chromium_follows_the_exact_map() {
     let seconds = started.elapsed().as_secs_f64();
     let (mean, far, n) = colour_error(&rgba, &b.reference, &b.truth);
     println!(
-        "chromium textured box: {} images, {} bytes; vs raster-sink over {n} pixels: mean {mean:.2}/255, {:.3} % off by > 48 ({seconds:.1} s)",
+        "chromium textured boxes: {} images, {} bytes; vs raster-sink over {n} pixels: mean {mean:.2}/255, {:.3} % off by > 48 ({seconds:.1} s)",
         html.matches("<img").count(),
         html.len(),
         far * 100.0
@@ -230,4 +233,68 @@ fn textured_html_in_chromium_follows_the_exact_map() {
     assert!(n > 5_000, "the comparison covers pixels: {n}");
     assert_eq!(html.matches("<img").count(), b.painter.draw_list().len());
     assert!(far <= 0.005, "textured page: mean {mean}, far {far}");
+}
+
+#[test]
+fn flat_html_pages_in_chromium_are_exact_on_the_models() {
+    let Some(browser) = chromium() else {
+        return;
+    };
+    // The models of the PDF test, BSP order (split fragments: clipped sprites of up to many
+    // corners), orthographic and perspective.
+    let mut total = (0, 0);
+    for model in [
+        "suzanne/suzanne.obj",
+        "cornell-box/cornell_box.obj",
+        "fandisk-quads/fandisk_quads.converted.obj",
+    ] {
+        let g = crate::support::geometry(&crate::support::load_obj(model));
+        let base = View::fit(&g.bounds(), SIZE, SIZE);
+        let cull = if model.starts_with("cornell") {
+            CullMode::None
+        } else {
+            CullMode::Back
+        };
+        let name = model.rsplit('/').next().unwrap_or(model);
+        for (k, view) in [
+            base.with_yaw_pitch_roll(35.0, 20.0, 0.0).with_cull(cull),
+            base.with_yaw_pitch_roll(200.0, -30.0, 10.0)
+                .with_perspective(f64::from(SIZE))
+                .with_cull(cull),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            let mut p = SpritePainter::new(
+                &g,
+                SorterKind::Bsp.build(&g),
+                view,
+                RecordingCompositor::new(),
+            );
+            p.frame();
+            let html = write_html(
+                p.compositor().scene(),
+                &HtmlOptions::DEFAULT.with_size(SIZE, SIZE).with_ids(true),
+            );
+            let rgba = screenshot(browser, &html, &format!("{name}-{k}"));
+            let shot = ids_of_rgba(SIZE, SIZE, &rgba);
+            let t = truth(&view, &g);
+            let e = pixel_error(&shot, &t);
+            println!(
+                "chromium flat {name} view {k} bsp: {} sprites, {} elements; vs truth {}/{}",
+                p.draw_list().len(),
+                html.matches("<div style").count(),
+                e.wrong,
+                e.pixels
+            );
+            let misses = wrong_pixels(&shot, &t);
+            if let Some(&first) = misses.first() {
+                save_crop(&rgba, &t, first, &format!("{name}-{k}"));
+            }
+            assert!(e.pixels > 1_000, "{name}: nothing judged");
+            total = (total.0 + e.wrong, total.1 + e.pixels);
+        }
+    }
+    println!("chromium flat, all models: {}/{} wrong", total.0, total.1);
+    assert_eq!(total.0, 0, "flat pages on the models");
 }

@@ -1,9 +1,10 @@
 //! Textured SVG (through resvg) and HTML (through headless Chromium) against raster-sink's
 //! textured colour raster of the same draw list, under perspective.
 //!
-//! The scene is a box whose faces are parallelograms (squares), so the brush's affine uv map
-//! on each sprite's unit square and raster-sink's affine uv map on the face's plane are the
-//! same map; perspective makes the map from texture to screen projective. raster-sink cuts
+//! The scene is two interpenetrating boxes, ordered by BSP (so faces are cut into fragments:
+//! clipped sprites), whose faces are rectangles, so the brush's affine uv map on each
+//! sprite's unit square and raster-sink's affine uv map on the face's plane are the same map;
+//! perspective makes the map from texture to screen projective. raster-sink cuts
 //! each face into 64 × 64 pieces per fan triangle (its finest), anti-aliasing off, so its
 //! image is the exact map to well under a pixel.
 
@@ -13,7 +14,7 @@ use raster_sink::tiny_skia::Pixmap;
 use raster_sink::{
     MAX_TEXTURE_SUBDIVISION, RasterOptions, Style, TextureBrush, Truth, UvMap, render_colour, truth,
 };
-use sprite_compose::face_sort::{Geometry, SorterKind, View};
+use sprite_compose::face_sort::{SorterKind, View};
 use sprite_compose::glam::{DAffine2, DVec2, DVec3};
 use sprite_compose::{
     Brush, HtmlOptions, RecordingCompositor, SpritePainter, SvgOptions, TextureId, write_html,
@@ -65,10 +66,9 @@ fn base64(bytes: &[u8]) -> String {
     s
 }
 
-/// The textured box at a perspective view: its painter (every face textured with the whole
+/// The textured boxes at a perspective view: their painter (every face textured with the whole
 /// texture on its unit square), raster-sink's image of it and the truth.
 pub struct TexturedBox {
-    pub geometry: Geometry,
     pub painter: SpritePainter<RecordingCompositor>,
     pub reference: Pixmap,
     pub truth: Truth,
@@ -76,15 +76,17 @@ pub struct TexturedBox {
 }
 
 pub fn textured_box(yaw: f64, distance: f64) -> TexturedBox {
-    let mesh =
-        test_support::models::boxes(&[(DVec3::new(-1.0, -0.7, -0.8), DVec3::new(1.0, 0.7, 0.8))]);
+    let mesh = test_support::models::boxes(&[
+        (DVec3::new(-1.0, -0.7, -0.8), DVec3::new(1.0, 0.7, 0.8)),
+        (DVec3::new(-0.4, -1.0, -0.3), DVec3::new(0.5, 0.4, 1.2)),
+    ]);
     let geometry = support::geometry(&mesh);
     let view = View::fit(&geometry.bounds(), SIZE, SIZE)
         .with_yaw_pitch_roll(yaw, 25.0, 0.0)
         .with_perspective(distance);
     let mut painter = SpritePainter::new(
         &geometry,
-        SorterKind::Newell.build(&geometry),
+        SorterKind::Bsp.build(&geometry),
         view,
         RecordingCompositor::new(),
     );
@@ -128,7 +130,6 @@ pub fn textured_box(yaw: f64, distance: f64) -> TexturedBox {
     let truth = truth(painter.view(), &geometry);
     let png = image.encode_png().expect("png");
     TexturedBox {
-        geometry,
         painter,
         reference,
         truth,
@@ -192,14 +193,19 @@ fn textured_svg_under_perspective_is_subdivided_to_the_exact_map() {
         assert!(n > 5_000, "the comparison covers pixels: {n}");
         results.push((mean, far));
     }
-    let _ = &b.geometry;
+    let clipped = scene.visible().filter(|(_, s)| s.clip.is_some()).count();
+    println!(
+        "{clipped} of {} sprites are clipped fragments",
+        b.painter.draw_list().len()
+    );
+    assert!(clipped > 0, "the scene must have fragments");
     // One affine map per face is visibly off; the subdivided map is near the reference.
     assert!(
         results[0].1 > 0.02,
         "the test must see the affine map's error: {results:?}"
     );
-    assert!(results[1].1 <= 0.005, "subdivided: {results:?}");
-    assert!(results[1].0 < results[0].0 / 3.0, "{results:?}");
+    assert!(results[2].1 <= 0.005, "subdivided: {results:?}");
+    assert!(results[2].0 < results[0].0 / 3.0, "{results:?}");
 }
 
 /// The HTML page of the textured box (exact projective map per sprite), for the browser test.
