@@ -29,7 +29,9 @@ pub enum HtmlMode {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
 pub enum HtmlPieces {
     /// Plain boxes under projective `matrix3d`s, each a convex quad of the clip polygon: every
-    /// edge is an element edge, composited without anti-aliasing (exact at pixel centres).
+    /// edge is an element edge, composited without anti-aliasing (exact at pixel centres);
+    /// plus thin strips over the edges a sprite shares with later fragments of its face,
+    /// which fill the cracks Chromium leaves between layers.
     #[default]
     Quads,
     /// CSS border triangles (the earlier writer, kept for comparison): Chromium rasters their
