@@ -184,7 +184,6 @@ pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
          .x{{overflow:hidden}}\n\
          .x>div{{position:absolute;left:0;top:0;width:100%;height:100%;overflow:hidden}}\n\
          .x img{{position:absolute;left:0;top:0;width:100%;height:100%;transform-origin:0 0}}\n\
-         .t{{width:0;height:0;border-style:solid}}\n\
          </style></head><body><div id=\"scene\">\n",
         bg = hex(options.background),
         scene_style = match options.mode {
@@ -233,9 +232,33 @@ pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
                 .map(|src| (src, uv)),
             _ => None,
         };
+        // A textured element is the sprite's whole unit square: its size follows the square's
+        // projection (a fragment's can be far smaller), so the texture is rastered finely.
+        let square_size = texture.and_then(|_| {
+            let full = *scene.root() * sprite.transform.matrix;
+            let corners: Option<Vec<DVec2>> = [DVec2::ZERO, DVec2::X, DVec2::ONE, DVec2::Y]
+                .iter()
+                .map(|c| {
+                    let h = full * DVec4::new(c.x, c.y, 0.0, 1.0);
+                    (h.w > 0.0).then(|| DVec2::new(h.x / h.w, h.y / h.w))
+                })
+                .collect();
+            let corners = corners?;
+            let (lo, hi) = corners
+                .iter()
+                .fold((corners[0], corners[0]), |(lo, hi), p| {
+                    (lo.min(*p), hi.max(*p))
+                });
+            let extent = (hi - lo).max_element();
+            extent
+                .is_finite()
+                .then(|| (extent.max(1.0) * options.oversize).ceil().max(size))
+        });
         if let Some((src, uv)) = texture
+            && let Some(size) = square_size
             && let Some(place) = image_placement(uv, size)
         {
+            let unscale = DMat4::from_scale(DVec3::new(1.0 / size, 1.0 / size, 1.0));
             let m = outer * sprite.transform.matrix * unscale;
             let clip = sprite.clip.as_ref().map_or_else(String::new, |clip| {
                 let mut c = String::from(" style=\"clip-path:polygon(");
@@ -283,7 +306,9 @@ pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
                 }
             }
             Some(clip) => {
-                let later = by_face[&sprite.face]
+                let later = by_face
+                    .get(&sprite.face)
+                    .map_or(&[][..], Vec::as_slice)
                     .iter()
                     .filter(|&&k| k > index)
                     .map(|&k| projections[k].as_slice());
