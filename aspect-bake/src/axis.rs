@@ -90,7 +90,8 @@ pub struct Spin {
 
 impl Spin {
     /// The spin of `axis` with the other parameters of `template` (its rotation is ignored).
-    /// `None` when a [`Axis::Direction`] axis has no length or is not finite.
+    /// `None` when an angle, the base matrix or the template's scale or eye distance is not
+    /// finite, or a [`Axis::Direction`] axis has no length.
     #[must_use]
     pub fn new(template: View, axis: Axis) -> Option<Self> {
         let (a, k, b) = match axis {
@@ -108,6 +109,17 @@ impl Spin {
             a * (DMat3::IDENTITY - kk) * b,
             a * cross_matrix(k) * b,
         ];
+        let distance = match template.projection() {
+            Projection::Orthographic => 1.0,
+            Projection::Perspective { distance } => distance,
+        };
+        if !(c.iter().all(|m| m.is_finite())
+            && template.scale().is_finite()
+            && template.scale() > 0.0
+            && distance.is_finite())
+        {
+            return None;
+        }
         Some(Spin {
             axis,
             template,
@@ -209,6 +221,36 @@ mod tests {
             max: DVec3::splat(1.0),
         };
         View::fit(&b, 64, 64)
+    }
+
+    #[test]
+    fn non_finite_input_is_refused() {
+        assert!(
+            Spin::new(
+                template(),
+                Axis::Yaw {
+                    pitch: f64::NAN,
+                    roll: 0.0
+                }
+            )
+            .is_none()
+        );
+        let zero = Axis::Direction {
+            axis: [0.0; 3],
+            base: DMat3::IDENTITY.to_cols_array_2d(),
+        };
+        assert!(Spin::new(template(), zero).is_none());
+        let far = template().with_perspective(f64::INFINITY);
+        assert!(
+            Spin::new(
+                far,
+                Axis::Roll {
+                    yaw: 0.0,
+                    pitch: 0.0
+                }
+            )
+            .is_none()
+        );
     }
 
     #[test]

@@ -138,7 +138,8 @@ pub struct Bake {
     pub cells: Vec<BakeCell>,
     /// Where the list changes, increasing.
     pub breakpoints: Vec<Breakpoint>,
-    /// Sign changes found before merging (events of every function in the domain).
+    /// Exact bakes: sign changes of every event function in the domain, before merging.
+    /// Sampled bakes: sample steps whose two lists differ (each bisected once).
     pub events: usize,
     /// Wall time of the bake, milliseconds.
     pub bake_ms: f64,
