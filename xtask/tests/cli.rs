@@ -262,3 +262,68 @@ fn pdf_is_written_beside_the_png() {
     assert_eq!(value["pdf"]["bytes"], bytes.len(), "{value}");
     assert_eq!(value["pdf"]["keep_hidden"], false, "{value}");
 }
+
+#[test]
+fn render_refuses_files_outside_the_model_folder_unless_allowed() {
+    let dir = temp_dir("outside");
+    std::fs::create_dir_all(dir.join("model")).unwrap();
+    std::fs::write(dir.join("secret.mtl"), "newmtl m\nKd 1 0 0\n").unwrap();
+    let model = dir.join("model/m.obj");
+    std::fs::write(
+        &model,
+        "mtllib ../secret.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nusemtl m\nf 1 2 3 4\n",
+    )
+    .unwrap();
+    let out = dir.join("m.png");
+    let args = [
+        "render",
+        model.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ];
+    let result = xtask(&args);
+    assert!(!result.status.success());
+    let stderr = text(&result.stderr);
+    assert!(
+        stderr.contains("../secret.mtl") && stderr.contains("outside the model's folder"),
+        "{stderr}"
+    );
+    assert!(!out.exists());
+    let result = xtask(&[&args[..], &["--allow-outside"]].concat());
+    assert!(result.status.success(), "{}", text(&result.stderr));
+    assert!(out.exists());
+}
+
+#[test]
+fn render_survives_a_texture_declaring_30000_squared_pixels() {
+    let dir = temp_dir("bomb");
+    // PNG signature and an IHDR declaring 30000 × 30000 RGBA (CRC left zero: the size is
+    // refused before the chunk is checked), then nothing.
+    let mut png = b"\x89PNG\r\n\x1a\n\0\0\0\x0dIHDR".to_vec();
+    png.extend(30_000u32.to_be_bytes());
+    png.extend(30_000u32.to_be_bytes());
+    png.extend([8, 6, 0, 0, 0, 0, 0, 0, 0]);
+    std::fs::write(dir.join("bomb.png"), png).unwrap();
+    std::fs::write(dir.join("m.mtl"), "newmtl m\nKd 1 0 0\nmap_Kd bomb.png\n").unwrap();
+    let model = dir.join("m.obj");
+    std::fs::write(
+        &model,
+        "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n\
+         vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl m\nf 1/1 2/2 3/3 4/4\n",
+    )
+    .unwrap();
+    let out = dir.join("m.png");
+    let result = xtask(&[
+        "render",
+        model.to_str().unwrap(),
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(result.status.success(), "{}", text(&result.stderr));
+    let stderr = text(&result.stderr);
+    assert!(
+        stderr.contains("bomb.png") && stderr.contains("texture width in pixels is 30000"),
+        "{stderr}"
+    );
+    assert!(out.exists());
+}
