@@ -32,7 +32,7 @@ fn views(geometry: &Geometry) -> Vec<View> {
 /// corners exactly. With the plane tolerance at `1e-11 · L`, the BSP left 3 violations of
 /// about `3e-9 · L` at 1e7 (faces seen at grazing angles turn a within-tolerance
 /// misclassification into a depth error `1 / sin θ` times larger), and the planner's
-/// convexity proof passed at 1e6, so culling alone left 2. With `PLANE_SIDE = 1e-13` there
+/// convexity proof passed at 1e6, so culling alone left 2. With `PLANE_SIDE = 1e-12` there
 /// are none, and the proof no longer accepts the rounded sphere.
 #[test]
 fn a_sphere_far_from_the_origin_is_ordered_exactly() {
