@@ -40,6 +40,10 @@ impl fmt::Display for LineSuffix {
 ///
 /// Every message names the file (`<memory>` for in-memory input) and, where it
 /// applies, the object, the face index in file order and the line.
+///
+/// `file` is the input's **display name**, not a path: loaders also read strings, readers,
+/// data URIs and GLB chunks, which have none (raster-sink's `RasterError { path }` names a
+/// file it opened). Where a real path matters it has its own field (`PathOutsideModel`).
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum LoadError {

@@ -2,7 +2,7 @@
 
 use glam::{DVec2, DVec3};
 
-use crate::tolerance::{CONVEXITY_REL, DEGENERATE_AREA_REL, MERGE_CONVEXITY_REL, PLANARITY_REL};
+use crate::tolerance::{CONVEXITY, DEGENERATE_AREA, MERGE_CONVEXITY, PLANARITY};
 
 /// Newell's vector of a polygon (twice its vector area).
 pub(crate) fn newell(pts: &[DVec3]) -> DVec3 {
@@ -53,7 +53,7 @@ pub(crate) struct Shape {
     pub degenerate: bool,
     /// Largest distance of a corner from the plane.
     pub off_plane: f64,
-    /// `off_plane <= PLANARITY_REL * D`.
+    /// `off_plane <= PLANARITY * D`.
     pub planar: bool,
 }
 
@@ -65,7 +65,7 @@ impl Shape {
         let len = nv.length();
         let area = 0.5 * len;
         let degenerate = !(diameter > 0.0
-            && area > DEGENERATE_AREA_REL * diameter * diameter
+            && area > DEGENERATE_AREA * diameter * diameter
             && len.is_finite());
         let centroid = mean(pts);
         let normal = if degenerate { DVec3::ZERO } else { nv / len };
@@ -79,13 +79,13 @@ impl Shape {
             centroid,
             degenerate,
             off_plane,
-            planar: off_plane <= PLANARITY_REL * diameter,
+            planar: off_plane <= PLANARITY * diameter,
         }
     }
 
     /// The planarity limit `1e-6 · D`.
     pub(crate) fn planar_limit(&self) -> f64 {
-        PLANARITY_REL * self.diameter
+        PLANARITY * self.diameter
     }
 
     /// Projects the corners into the face plane, so that the face winds
@@ -113,7 +113,7 @@ pub(crate) fn is_convex(q: &[DVec2], diameter: f64) -> bool {
     if n < 4 {
         return true;
     }
-    let eps = CONVEXITY_REL * diameter * diameter;
+    let eps = CONVEXITY * diameter * diameter;
     let mut turning = 0.0;
     for i in 0..n {
         let p = q[(i + n - 1) % n];
@@ -137,7 +137,7 @@ pub(crate) fn is_good_quad(pts: &[DVec3; 4]) -> bool {
         return false;
     }
     let q = shape.project(pts);
-    let eps = MERGE_CONVEXITY_REL * shape.diameter * shape.diameter;
+    let eps = MERGE_CONVEXITY * shape.diameter * shape.diameter;
     let mut turning = 0.0;
     for i in 0..4 {
         let e1 = q[i] - q[(i + 3) % 4];
@@ -166,7 +166,7 @@ const EAR_TEST_BUDGET: usize = 20_000_000;
 pub(crate) fn ear_clip(q: &[DVec2], diameter: f64) -> Vec<[usize; 3]> {
     let mut poly: Vec<usize> = (0..q.len()).collect();
     let mut out = Vec::with_capacity(q.len().saturating_sub(2));
-    let eps = CONVEXITY_REL * diameter * diameter;
+    let eps = CONVEXITY * diameter * diameter;
     let mut budget = EAR_TEST_BUDGET;
     let mut start = 0;
     while poly.len() > 3 {
