@@ -541,6 +541,12 @@ fn base_models() -> Result<Vec<(String, PolygonMesh, CullMode)>> {
         "assets/models/keenan-crane/spot/spot_quadrangulated.obj",
     )?;
     out.push(("spot".to_owned(), spot.mesh, spot.cull));
+    // fandisk: a CAD model, flat regions split into many coplanar quads.
+    let fandisk = scenes::model_scene(
+        "fandisk",
+        "assets/models/fandisk-quads/fandisk_quads.converted.obj",
+    )?;
+    out.push(("fandisk".to_owned(), fandisk.mesh, fandisk.cull));
     // Meshes in convex position, where the planner orders by culling alone.
     let cube = scenes::model_scene("box", "assets/models/assimp-obj/box.obj")?;
     out.push(("box".to_owned(), cube.mesh, CullMode::Back));
