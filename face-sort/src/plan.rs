@@ -25,7 +25,10 @@ use std::sync::Arc;
 use glam::DVec3;
 
 use crate::tolerance::PLANE_SIDE;
-use crate::{Bsp, DrawItem, DrawList, FaceSorter, Geometry, Newell, PolygonSet, SorterStats, View};
+use crate::{
+    Bsp, BspFallback, BspOptions, DrawItem, DrawList, FaceSorter, Geometry, Newell, PolygonSet,
+    SorterStats, View,
+};
 
 /// What the caller will do with the sorter, for the planner's cost model.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -182,7 +185,12 @@ impl Plan {
                 exits_face_away: self.exits_face_away,
             }),
             Strategy::Newell => Box::new(Newell::new(geometry)),
-            Strategy::Bsp => Box::new(Bsp::new(geometry)),
+            // A tree over its fragment budget (BspOptions) would cost more than it saves:
+            // Newell is exact too and needs no tree.
+            Strategy::Bsp => {
+                Bsp::new_or_fallback(geometry, &BspOptions::DEFAULT, BspFallback::Newell)
+                    .unwrap_or_else(|_| Box::new(Newell::new(geometry)))
+            }
         }
     }
 }
