@@ -64,9 +64,8 @@ impl Shape {
         let nv = newell(pts);
         let len = nv.length();
         let area = 0.5 * len;
-        let degenerate = !(diameter > 0.0
-            && area > DEGENERATE_AREA * diameter * diameter
-            && len.is_finite());
+        let degenerate =
+            !(diameter > 0.0 && area > DEGENERATE_AREA * diameter * diameter && len.is_finite());
         let centroid = mean(pts);
         let normal = if degenerate { DVec3::ZERO } else { nv / len };
         let off_plane = pts
