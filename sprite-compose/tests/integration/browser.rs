@@ -15,7 +15,7 @@ use sprite_compose::{
     HtmlMode, HtmlOptions, HtmlPieces, RecordingCompositor, SpritePainter, write_html,
 };
 
-use crate::textures::{colour_error, textured_box, textured_html};
+use crate::textures::{SPOT_SIZE, colour_error, textured_box, textured_html, textured_spot};
 use crate::writers::{SIZE, differing, ids_of_rgba, spot_painter};
 
 const CHROMIUM: &str = "/usr/bin/chromium";
@@ -46,6 +46,11 @@ fn temp_dir(name: &str) -> PathBuf {
 
 /// Screenshots `html` at `SIZE × SIZE` with the flags of docs/CHROMIUM.md; returns RGBA bytes.
 pub(crate) fn screenshot(browser: &Path, html: &str, name: &str) -> Vec<u8> {
+    screenshot_at(browser, html, name, SIZE)
+}
+
+/// Screenshots `html` at `size × size`.
+fn screenshot_at(browser: &Path, html: &str, name: &str, size: u32) -> Vec<u8> {
     let dir = temp_dir(name);
     let page = dir.join("page.html");
     let shot = dir.join("shot.png");
@@ -67,7 +72,7 @@ pub(crate) fn screenshot(browser: &Path, html: &str, name: &str) -> Vec<u8> {
             "--disable-composited-antialiasing",
             "--force-color-profile=srgb",
             &format!("--screenshot={}", shot.display()),
-            &format!("--window-size={SIZE},{SIZE}"),
+            &format!("--window-size={size},{size}"),
             &format!("file://{}", page.display()),
         ])
         .output()
@@ -78,7 +83,7 @@ pub(crate) fn screenshot(browser: &Path, html: &str, name: &str) -> Vec<u8> {
             String::from_utf8_lossy(&output.stderr)
         )
     });
-    assert_eq!((pixmap.width(), pixmap.height()), (SIZE, SIZE));
+    assert_eq!((pixmap.width(), pixmap.height()), (size, size));
     let _ = std::fs::remove_dir_all(&dir);
     pixmap.data().to_vec()
 }
@@ -297,4 +302,35 @@ fn flat_html_pages_in_chromium_are_exact_on_the_models() {
     }
     println!("chromium flat, all models: {}/{} wrong", total.0, total.1);
     assert_eq!(total.0, 0, "flat pages on the models");
+}
+
+/// The demo's textured spot as an HTML page in headless Chromium against raster-sink's
+/// textured raster. Slow to set up in a debug build: `cargo test --release -p sprite-compose
+/// --test integration textured_spot -- --ignored --nocapture`.
+#[test]
+#[ignore = "minutes in a debug build; run with --release --ignored"]
+fn textured_spot_html_in_chromium_matches_raster_sink() {
+    let Some(browser) = chromium() else {
+        return;
+    };
+    let spot = textured_spot();
+    let html = write_html(
+        &spot.scene,
+        &HtmlOptions::DEFAULT
+            .with_size(SPOT_SIZE, SPOT_SIZE)
+            .with_textures(vec![format!("file://{}", spot.path)]),
+    );
+    let started = Instant::now();
+    let rgba = screenshot_at(browser, &html, "textured-spot", SPOT_SIZE);
+    let seconds = started.elapsed().as_secs_f64();
+    let (mean, far, n) = colour_error(&rgba, &spot.reference, &spot.truth);
+    println!(
+        "chromium textured spot: {} textured sprites, {} images, {} bytes; vs raster-sink over {n} pixels: mean {mean:.2}/255, {:.3} % off by > 48 ({seconds:.1} s)",
+        spot.textured,
+        html.matches("<img").count(),
+        html.len(),
+        far * 100.0
+    );
+    assert!(n > 5_000, "the comparison covers pixels: {n}");
+    assert!(far <= 0.03, "textured spot page: mean {mean}, far {far}");
 }
