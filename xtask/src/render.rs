@@ -316,7 +316,7 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
     let style = if args.ids && !vector {
         raster_sink::Style::palette()
     } else {
-        raster::face_style(&geometry, &mesh, texture, grid.as_ref())?
+        raster::face_style(&geometry, &mesh, texture.clone(), grid.as_ref())?
     };
     let (mut svg_summary, mut pdf_summary) = (None, None);
     let hidden = if args.keep_hidden {
@@ -343,6 +343,27 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
         });
         painter.frame();
         let scene = painter.compositor().scene();
+        // Textured faces in --svg/--html: one exact brush per sprite from the style's plane uv
+        // maps (the brushes above carry a texture's mean colour), when there is one texture.
+        let textured_scene;
+        let (scene, texture_file) = match (&texture, args.ids) {
+            (Some(file), false) => {
+                let mut textured = scene.clone();
+                let space = sprite_compose::SpriteSpace::of_view(painter.view());
+                sprite_compose::set_plane_textures(&mut textured, &space, |face, p| {
+                    match style.brush(face) {
+                        Some(raster_sink::Brush::Texture(t)) => {
+                            Some((sprite_compose::TextureId(0), t.map.uv(p)))
+                        }
+                        _ => None,
+                    }
+                });
+                textured_scene = textured;
+                let file = std::fs::canonicalize(file).unwrap_or_else(|_| file.clone());
+                (&textured_scene, Some(file.display().to_string()))
+            }
+            _ => (scene, None),
+        };
         if let Some(path) = &args.svg {
             let start = Instant::now();
             let svg = sprite_compose::write_svg(
@@ -351,7 +372,8 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
                     .with_size(width, height)
                     .with_ids(args.ids)
                     .with_seam_stroke(1.0)
-                    .with_hidden(hidden),
+                    .with_hidden(hidden)
+                    .with_textures(texture_file.iter().cloned().collect()),
             );
             svg_summary = Some(VectorSummary {
                 shapes: Some(svg.matches("<polygon").count() + svg.matches("<path").count()),
@@ -385,7 +407,8 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
                 scene,
                 &sprite_compose::HtmlOptions::DEFAULT
                     .with_size(width, height)
-                    .with_ids(args.ids),
+                    .with_ids(args.ids)
+                    .with_textures(texture_file.iter().map(|f| format!("file://{f}")).collect()),
             );
             std::fs::write(path, html).with_context(|| format!("writing {}", path.display()))?;
         }
