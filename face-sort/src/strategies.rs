@@ -57,6 +57,77 @@ impl ViewSpec {
     }
 }
 
+/// The text form of a [`ViewSpec`], one line: `yaw=30 pitch=-20 roll=0 eye=ortho cull=back`
+/// (`eye=2.5` for perspective, in diagonals). `Display` writes it (`{:?}` precision, so it
+/// reads back to the same bits) and `FromStr` reads it back: a failing case saved by a fuzzer
+/// (e.g. `cargo xtask fuzz`, beside its OBJ) replays exactly.
+impl std::fmt::Display for ViewSpec {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "yaw={:?} pitch={:?} roll={:?} eye=",
+            self.yaw, self.pitch, self.roll
+        )?;
+        match self.eye_distance {
+            Some(k) => write!(f, "{k:?}")?,
+            None => f.write_str("ortho")?,
+        }
+        let cull = match self.cull {
+            CullMode::Back => "back",
+            CullMode::Front => "front",
+            CullMode::None => "none",
+        };
+        write!(f, " cull={cull}")
+    }
+}
+
+/// Why a [`ViewSpec`]'s text form did not parse: the offending `key=value` word.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("bad view spec word `{0}` (expected yaw=, pitch=, roll=, eye=, cull=)")]
+pub struct ViewSpecError(pub String);
+
+impl std::str::FromStr for ViewSpec {
+    type Err = ViewSpecError;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        let mut spec = ViewSpec {
+            yaw: 0.0,
+            pitch: 0.0,
+            roll: 0.0,
+            eye_distance: None,
+            cull: CullMode::Back,
+        };
+        for word in s.split_whitespace() {
+            let bad = || ViewSpecError(word.to_owned());
+            let (key, value) = word.split_once('=').ok_or_else(bad)?;
+            let number = || {
+                value
+                    .parse::<f64>()
+                    .ok()
+                    .filter(|v| v.is_finite())
+                    .ok_or_else(bad)
+            };
+            match key {
+                "yaw" => spec.yaw = number()?,
+                "pitch" => spec.pitch = number()?,
+                "roll" => spec.roll = number()?,
+                "eye" if value == "ortho" => spec.eye_distance = None,
+                "eye" => spec.eye_distance = Some(number()?),
+                "cull" => {
+                    spec.cull = match value {
+                        "back" => CullMode::Back,
+                        "front" => CullMode::Front,
+                        "none" => CullMode::None,
+                        _ => return Err(bad()),
+                    }
+                }
+                _ => return Err(bad()),
+            }
+        }
+        Ok(spec)
+    }
+}
+
 /// Random views: any rotation, orthographic or perspective with the eye 0.6 to 6 diagonals
 /// from the centre (so sometimes inside the model: the near plane clips), any cull mode.
 pub fn view_spec() -> impl Strategy<Value = ViewSpec> {

@@ -3,13 +3,25 @@
 
 use obj_quads::{FacePolicy, LoadOptions, NonPlanarPolicy, load_gltf_slice, load_obj_str};
 use proptest::prelude::*;
+use std::sync::LazyLock;
 
-const CORNELL: &str = include_str!("../../assets/models/cornell-box/cornell_box.obj");
-const CONTROL: &str = include_str!("../../assets/models/keenan-crane/spot/spot_control_mesh.obj");
-const SIMPLE_GLTF: &[u8] =
-    include_bytes!("../../assets/models/gltf/SimpleMeshes/glTF-Embedded/SimpleMeshes.gltf");
-const SCENES_GLTF: &[u8] =
-    include_bytes!("../../assets/models/gltf/MultipleScenes/glTF-Embedded/MultipleScenes.gltf");
+/// A model of the repository (`assets/models/`, through the workspace's test scaffolding),
+/// read once.
+fn asset(relative: &str) -> &'static [u8] {
+    let bytes = std::fs::read(test_support::model_path(relative))
+        .unwrap_or_else(|e| panic!("{relative}: {e}"));
+    Box::leak(bytes.into_boxed_slice())
+}
+
+static CORNELL: LazyLock<&str> =
+    LazyLock::new(|| std::str::from_utf8(asset("cornell-box/cornell_box.obj")).expect("UTF-8"));
+static CONTROL: LazyLock<&str> = LazyLock::new(|| {
+    std::str::from_utf8(asset("keenan-crane/spot/spot_control_mesh.obj")).expect("UTF-8")
+});
+static SIMPLE_GLTF: LazyLock<&[u8]> =
+    LazyLock::new(|| asset("gltf/SimpleMeshes/glTF-Embedded/SimpleMeshes.gltf"));
+static SCENES_GLTF: LazyLock<&[u8]> =
+    LazyLock::new(|| asset("gltf/MultipleScenes/glTF-Embedded/MultipleScenes.gltf"));
 
 fn config() -> ProptestConfig {
     let cases = std::env::var("PROPTEST_CASES")
@@ -111,7 +123,7 @@ proptest! {
         inserts in prop::collection::vec((any::<usize>(), obj_line()), 0..8),
         pick in any::<bool>(),
     ) {
-        let base = if pick { CORNELL } else { CONTROL };
+        let base = if pick { *CORNELL } else { *CONTROL };
         let mut lines: Vec<String> = base.lines().map(str::to_owned).collect();
         for d in drops {
             if !lines.is_empty() {
@@ -150,7 +162,7 @@ proptest! {
         edits in prop::collection::vec((any::<usize>(), any::<u8>(), any::<u8>()), 1..6),
         pick in any::<bool>(),
     ) {
-        let base = if pick { SIMPLE_GLTF } else { SCENES_GLTF };
+        let base = if pick { *SIMPLE_GLTF } else { *SCENES_GLTF };
         let bytes = mutate(base, &edits);
         for o in all_options() {
             let _ = load_gltf_slice(&bytes, &o);
@@ -165,7 +177,7 @@ proptest! {
         ]), 1..4),
     ) {
         // Replace whole numbers in the JSON: counts, offsets, indices, types.
-        let text = String::from_utf8_lossy(SIMPLE_GLTF).into_owned();
+        let text = String::from_utf8_lossy(*SIMPLE_GLTF).into_owned();
         let mut spans = Vec::new();
         let b = text.as_bytes();
         let mut i = 0;

@@ -567,11 +567,8 @@ fn png_within_limits_decodes_and_short_data_is_an_error() {
         "{e}"
     );
     // A real texture.
-    let spot = concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../assets/models/keenan-crane/spot/spot_texture.png"
-    );
-    let texture = load_texture(spot, &LoadOptions::DEFAULT).unwrap();
+    let spot = test_support::model_path("keenan-crane/spot/spot_texture.png");
+    let texture = load_texture(&spot, &LoadOptions::DEFAULT).unwrap();
     assert_eq!(
         texture.rgba.len(),
         texture.width as usize * texture.height as usize * 4

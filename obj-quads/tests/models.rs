@@ -4,18 +4,19 @@ use std::collections::BTreeMap;
 
 use obj_quads::{FacePolicy, LoadOptions, LoadReport, Mesh, NonConvexPolicy, load};
 
-macro_rules! asset {
-    ($p:literal) => {
-        concat!(env!("CARGO_MANIFEST_DIR"), "/../assets/models/", $p)
-    };
+/// A model's path under `assets/models/` (the workspace's test scaffolding knows where).
+fn asset(relative: &str) -> String {
+    test_support::model_path(relative).display().to_string()
 }
 
 fn opts(face_policy: FacePolicy) -> LoadOptions {
     LoadOptions::DEFAULT.with_face_policy(face_policy)
 }
 
-fn load_with(path: &str, policy: FacePolicy) -> (Mesh, LoadReport) {
-    match load(path, &opts(policy)) {
+/// Loads a model of `assets/models/` (path relative to it).
+fn load_with(relative: &str, policy: FacePolicy) -> (Mesh, LoadReport) {
+    let path = asset(relative);
+    match load(&path, &opts(policy)) {
         Ok(v) => v,
         Err(e) => panic!("{path}: {e}"),
     }
@@ -31,54 +32,54 @@ type ObjCase = (&'static str, usize, &'static [(usize, usize)]);
 
 const OBJ_MODELS: &[ObjCase] = &[
     (
-        asset!("keenan-crane/spot/spot_quadrangulated.obj"),
+        "keenan-crane/spot/spot_quadrangulated.obj",
         2928,
         &[(4, 2928)],
     ),
     (
-        asset!("keenan-crane/spot/spot_triangulated.obj"),
+        "keenan-crane/spot/spot_triangulated.obj",
         5856,
         &[(3, 5856)],
     ),
     (
-        asset!("keenan-crane/spot/spot_control_mesh.obj"),
+        "keenan-crane/spot/spot_control_mesh.obj",
         180,
         &[(3, 4), (4, 160), (5, 16)],
     ),
     (
-        asset!("keenan-crane/spot/spot_control_mesh_texture.obj"),
+        "keenan-crane/spot/spot_control_mesh_texture.obj",
         180,
         &[(3, 4), (4, 160), (5, 16)],
     ),
     (
-        asset!("keenan-crane/blub/blub_quadrangulated.obj"),
+        "keenan-crane/blub/blub_quadrangulated.obj",
         7104,
         &[(4, 7104)],
     ),
     (
-        asset!("keenan-crane/blub/blub_control_mesh.obj"),
+        "keenan-crane/blub/blub_control_mesh.obj",
         112,
         &[(3, 8), (4, 100), (5, 4)],
     ),
-    (asset!("suzanne/suzanne.obj"), 500, &[(3, 32), (4, 468)]),
+    ("suzanne/suzanne.obj", 500, &[(3, 32), (4, 468)]),
     (
-        asset!("fandisk-quads/fandisk_quads.converted.obj"),
+        "fandisk-quads/fandisk_quads.converted.obj",
         764,
         &[(4, 764)],
     ),
-    (asset!("compas/tubemesh.obj"), 171, &[(4, 171)]),
-    (asset!("compas/hypar.obj"), 64, &[(4, 64)]),
-    (asset!("compas/quadmesh.obj"), 81, &[(4, 81)]),
-    (asset!("compas/faces.obj"), 25, &[(4, 25)]),
-    (asset!("compas/boxes.obj"), 48, &[(4, 48)]),
-    (asset!("cornell-box/cornell_box.obj"), 18, &[(4, 18)]),
+    ("compas/tubemesh.obj", 171, &[(4, 171)]),
+    ("compas/hypar.obj", 64, &[(4, 64)]),
+    ("compas/quadmesh.obj", 81, &[(4, 81)]),
+    ("compas/faces.obj", 25, &[(4, 25)]),
+    ("compas/boxes.obj", 48, &[(4, 48)]),
+    ("cornell-box/cornell_box.obj", 18, &[(4, 18)]),
     (
-        asset!("opensubdiv-torus/catmark_torus_creases0.obj"),
+        "opensubdiv-torus/catmark_torus_creases0.obj",
         32,
         &[(4, 32)],
     ),
-    (asset!("assimp-obj/box.obj"), 6, &[(4, 6)]),
-    (asset!("combobulate-samples/book.obj"), 9, &[(4, 9)]),
+    ("assimp-obj/box.obj", 6, &[(4, 6)]),
+    ("combobulate-samples/book.obj", 9, &[(4, 9)]),
 ];
 
 #[test]
@@ -108,7 +109,7 @@ fn pure_quad_models_load_under_quads_only() {
 
 #[test]
 fn quads_only_rejects_suzanne_triangles_naming_the_face() {
-    let err = load(asset!("suzanne/suzanne.obj"), &opts(FacePolicy::QuadsOnly)).unwrap_err();
+    let err = load(asset("suzanne/suzanne.obj"), &opts(FacePolicy::QuadsOnly)).unwrap_err();
     let msg = err.to_string();
     assert!(
         msg.contains("suzanne.obj") && msg.contains("line") && msg.contains("3 corners"),
@@ -119,8 +120,8 @@ fn quads_only_rejects_suzanne_triangles_naming_the_face() {
 #[test]
 fn tetrahedron_and_octahedron_are_triangles() {
     for (path, faces) in [
-        (asset!("combobulate-samples/tetrahedron.obj"), 4),
-        (asset!("combobulate-samples/octahedron.obj"), 8),
+        ("combobulate-samples/tetrahedron.obj", 4),
+        ("combobulate-samples/octahedron.obj", 8),
     ] {
         let (mesh, _) = load_with(path, FacePolicy::Polygons);
         assert_eq!(mesh.arity_histogram(), hist(&[(3, faces)]), "{path}");
@@ -130,7 +131,7 @@ fn tetrahedron_and_octahedron_are_triangles() {
 #[test]
 fn spot_has_uvs_and_textured_material() {
     let (mesh, report) = load_with(
-        asset!("keenan-crane/spot/spot_control_mesh_texture.obj"),
+        "keenan-crane/spot/spot_control_mesh_texture.obj",
         FacePolicy::Polygons,
     );
     assert!(report.warnings.is_empty(), "{report:?}");
@@ -145,7 +146,7 @@ fn spot_has_uvs_and_textured_material() {
     let uvs = mesh.face_uvs(0).expect("uvs");
     assert_eq!(uvs.len(), mesh.face(0).unwrap().len());
     let (quad, _) = load_with(
-        asset!("keenan-crane/spot/spot_quadrangulated.obj"),
+        "keenan-crane/spot/spot_quadrangulated.obj",
         FacePolicy::QuadsOnly,
     );
     assert_eq!(quad.uvs().map(<[_]>::len), Some(2928 * 4));
@@ -153,7 +154,7 @@ fn spot_has_uvs_and_textured_material() {
 
 #[test]
 fn book_materials_resolve_textures() {
-    let (mesh, report) = load_with(asset!("combobulate-samples/book.obj"), FacePolicy::Polygons);
+    let (mesh, report) = load_with("combobulate-samples/book.obj", FacePolicy::Polygons);
     assert!(report.warnings.is_empty(), "{report:?}");
     assert!(!mesh.materials().is_empty());
     for m in mesh.materials() {
@@ -165,7 +166,7 @@ fn book_materials_resolve_textures() {
 
 #[test]
 fn cornell_box_keeps_file_order_and_five_materials() {
-    let (mesh, report) = load_with(asset!("cornell-box/cornell_box.obj"), FacePolicy::QuadsOnly);
+    let (mesh, report) = load_with("cornell-box/cornell_box.obj", FacePolicy::QuadsOnly);
     assert!(report.warnings.is_empty(), "{report:?}");
     assert_eq!(mesh.materials().len(), 5);
     let names: Vec<_> = mesh.materials().iter().map(|m| m.name.as_str()).collect();
@@ -175,7 +176,7 @@ fn cornell_box_keeps_file_order_and_five_materials() {
     );
     // Face order follows the `f` lines: collect the first corner's position from
     // the file itself and compare.
-    let text = std::fs::read_to_string(asset!("cornell-box/cornell_box.obj")).unwrap();
+    let text = std::fs::read_to_string(asset("cornell-box/cornell_box.obj")).unwrap();
     let mut verts = Vec::new();
     let mut first_corners = Vec::new();
     for line in text.lines() {
@@ -201,7 +202,7 @@ fn cornell_box_keeps_file_order_and_five_materials() {
 
 #[test]
 fn suzanne_missing_mtl_is_a_warning() {
-    let (mesh, report) = load_with(asset!("suzanne/suzanne.obj"), FacePolicy::Polygons);
+    let (mesh, report) = load_with("suzanne/suzanne.obj", FacePolicy::Polygons);
     assert!(
         report.warnings.iter().any(|w| w.contains("affe.mtl")),
         "{report:?}"
@@ -211,7 +212,7 @@ fn suzanne_missing_mtl_is_a_warning() {
 
 #[test]
 fn concave_polygon_is_triangulated() {
-    let path = asset!("assimp-obj/concave_polygon.obj");
+    let path = "assimp-obj/concave_polygon.obj";
     let (mesh, report) = load_with(path, FacePolicy::Polygons);
     assert_eq!(report.faces_read, 1);
     assert_eq!(report.non_convex_split, 1, "{report:?}");
@@ -222,7 +223,7 @@ fn concave_polygon_is_triangulated() {
     );
     assert!((0..mesh.face_count()).all(|i| mesh.face_source(i) == Some(0)));
     // The triangles cover the polygon's area exactly (no overlaps, no gaps).
-    let text = std::fs::read_to_string(path).unwrap();
+    let text = std::fs::read_to_string(asset(path)).unwrap();
     let verts: Vec<glam::DVec3> = text
         .lines()
         .filter_map(|l| l.strip_prefix("v "))
@@ -246,7 +247,7 @@ fn concave_polygon_is_triangulated() {
         "{polygon_area} vs {tri_area}"
     );
     let err = load(
-        path,
+        asset(path),
         &LoadOptions::DEFAULT.with_non_convex(NonConvexPolicy::Reject),
     )
     .unwrap_err();
@@ -268,21 +269,15 @@ fn newell_len(p: &[glam::DVec3]) -> f64 {
 
 /// glTF models: path, triangles.
 const GLTF_MODELS: &[(&str, usize)] = &[
-    (asset!("gltf/Box/Box.gltf"), 12),
-    (asset!("gltf/BoxTextured/BoxTextured.gltf"), 12),
-    (asset!("gltf/BoxVertexColors/BoxVertexColors.gltf"), 12),
-    (asset!("gltf/Cube/Cube.gltf"), 12),
-    (asset!("gltf/SimpleMeshes/SimpleMeshes.gltf"), 2),
-    (
-        asset!("gltf/SimpleMeshes/glTF-Embedded/SimpleMeshes.gltf"),
-        2,
-    ),
-    (asset!("gltf/MultipleScenes/MultipleScenes.gltf"), 2),
-    (
-        asset!("gltf/MultipleScenes/glTF-Embedded/MultipleScenes.gltf"),
-        2,
-    ),
-    (asset!("gltf/AnimatedMorphCube/AnimatedMorphCube.gltf"), 12),
+    ("gltf/Box/Box.gltf", 12),
+    ("gltf/BoxTextured/BoxTextured.gltf", 12),
+    ("gltf/BoxVertexColors/BoxVertexColors.gltf", 12),
+    ("gltf/Cube/Cube.gltf", 12),
+    ("gltf/SimpleMeshes/SimpleMeshes.gltf", 2),
+    ("gltf/SimpleMeshes/glTF-Embedded/SimpleMeshes.gltf", 2),
+    ("gltf/MultipleScenes/MultipleScenes.gltf", 2),
+    ("gltf/MultipleScenes/glTF-Embedded/MultipleScenes.gltf", 2),
+    ("gltf/AnimatedMorphCube/AnimatedMorphCube.gltf", 12),
 ];
 
 #[test]
@@ -298,11 +293,11 @@ fn every_gltf_loads_as_triangles() {
 #[test]
 fn boxes_merge_into_six_quads() {
     for path in [
-        asset!("gltf/Box/Box.gltf"),
-        asset!("gltf/BoxTextured/BoxTextured.gltf"),
-        asset!("gltf/BoxVertexColors/BoxVertexColors.gltf"),
-        asset!("gltf/Cube/Cube.gltf"),
-        asset!("gltf/AnimatedMorphCube/AnimatedMorphCube.gltf"),
+        "gltf/Box/Box.gltf",
+        "gltf/BoxTextured/BoxTextured.gltf",
+        "gltf/BoxVertexColors/BoxVertexColors.gltf",
+        "gltf/Cube/Cube.gltf",
+        "gltf/AnimatedMorphCube/AnimatedMorphCube.gltf",
     ] {
         let (mesh, report) = load_with(path, FacePolicy::MergeTriangles);
         assert_eq!(
@@ -329,7 +324,7 @@ fn boxes_merge_into_six_quads() {
 #[test]
 fn spot_triangulated_merges_some_pairs() {
     let (mesh, report) = load_with(
-        asset!("keenan-crane/spot/spot_triangulated.obj"),
+        "keenan-crane/spot/spot_triangulated.obj",
         FacePolicy::MergeTriangles,
     );
     let h = mesh.arity_histogram();
@@ -346,7 +341,7 @@ fn box_node_matrix_is_applied() {
     // mesh node's parent has a matrix rotating -90° about X (Y up to Z up),
     // which leaves the cube's bounds the same. So check the mapping of one
     // face instead: the raw +Z face (normal 0,0,1) must come out facing ±Y.
-    let (mesh, _) = load_with(asset!("gltf/Box/Box.gltf"), FacePolicy::MergeTriangles);
+    let (mesh, _) = load_with("gltf/Box/Box.gltf", FacePolicy::MergeTriangles);
     let (min, max) = mesh.bounds();
     assert!(
         (min + glam::DVec3::splat(0.5)).abs().max_element() < 1e-6,
@@ -356,7 +351,7 @@ fn box_node_matrix_is_applied() {
         (max - glam::DVec3::splat(0.5)).abs().max_element() < 1e-6,
         "{max}"
     );
-    let text = std::fs::read_to_string(asset!("gltf/Box/Box.gltf")).unwrap();
+    let text = std::fs::read_to_string(asset("gltf/Box/Box.gltf")).unwrap();
     assert!(text.contains("\"matrix\""));
     // First primitive face in Box0.bin is the +Z face (normals accessor says
     // 0,0,1); after the rotation about X it faces -Y... check it is not +Z.
@@ -366,10 +361,7 @@ fn box_node_matrix_is_applied() {
 
 #[test]
 fn box_textured_records_texture_path_and_uvs() {
-    let (mesh, report) = load_with(
-        asset!("gltf/BoxTextured/BoxTextured.gltf"),
-        FacePolicy::Polygons,
-    );
+    let (mesh, report) = load_with("gltf/BoxTextured/BoxTextured.gltf", FacePolicy::Polygons);
     assert!(report.warnings.is_empty(), "{report:?}");
     let tex = mesh.materials()[0].texture.as_ref().expect("texture");
     assert!(
@@ -385,12 +377,12 @@ fn multiple_scenes_uses_the_default_scene() {
     // `scene`: 1 — check against scene 0 by count: SOURCES.md says 3 triangles
     // over both meshes (triangle + square); the default scene draws only some.
     let (mesh, _) = load_with(
-        asset!("gltf/MultipleScenes/MultipleScenes.gltf"),
+        "gltf/MultipleScenes/MultipleScenes.gltf",
         FacePolicy::Polygons,
     );
     assert_eq!(mesh.face_count(), 2);
     let (merged, _) = load_with(
-        asset!("gltf/MultipleScenes/MultipleScenes.gltf"),
+        "gltf/MultipleScenes/MultipleScenes.gltf",
         FacePolicy::MergeTriangles,
     );
     assert_eq!(merged.arity_histogram(), hist(&[(4, 1)]));
@@ -398,10 +390,7 @@ fn multiple_scenes_uses_the_default_scene() {
 
 #[test]
 fn simple_meshes_instances_one_mesh_twice() {
-    let (mesh, _) = load_with(
-        asset!("gltf/SimpleMeshes/SimpleMeshes.gltf"),
-        FacePolicy::Polygons,
-    );
+    let (mesh, _) = load_with("gltf/SimpleMeshes/SimpleMeshes.gltf", FacePolicy::Polygons);
     assert_eq!(mesh.face_count(), 2);
     // The second node is translated, so the two triangles differ.
     let a: Vec<_> = mesh.face_positions(0).unwrap().collect();

@@ -8,7 +8,8 @@ use glam::{DAffine2, DMat3, DMat4, DVec2, DVec3, DVec4};
 
 use crate::svg::{hex, project_sprite};
 use crate::tolerance::{
-    HTML_QUAD_WEIGHT_RATIO, HTML_SEAM_PX, HTML_SHARED_EDGE_PX, SINGULAR_DET, UNDERFLOW_ABS,
+    HTML_QUAD_WEIGHT_RATIO, HTML_SEAM_PX, HTML_SHARED_EDGE_PX, HTML_TEXTURE_SEAM_PX, SINGULAR_DET,
+    UNDERFLOW_ABS,
 };
 use crate::{Brush, Scene, SceneSprite, id_colour, perspective_matrix};
 
@@ -159,7 +160,8 @@ pub fn css_matrix3d(m: &DMat4) -> String {
 /// (projective) `matrix3d`, holding an `<img>` placed by the brush's affine uv map in the
 /// square's own plane, so the texture follows the homography exactly; its clip polygon, if
 /// any, is a `clip-path` on an untransformed inner `div` (rastered into the element's layer,
-/// anti-aliased, not the slow case).
+/// anti-aliased, not the slow case), its corners moved [`HTML_TEXTURE_SEAM_PX`] pixels
+/// outward so that neighbours overlap rather than show hairlines of background.
 #[must_use]
 pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
     let (w, h) = (options.width, options.height);
@@ -260,7 +262,11 @@ pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
         {
             let unscale = DMat4::from_scale(DVec3::new(1.0 / size, 1.0 / size, 1.0));
             let m = outer * sprite.transform.matrix * unscale;
-            let clip = sprite.clip.as_ref().map_or_else(String::new, |clip| {
+            let dilated = sprite
+                .clip
+                .as_ref()
+                .map(|clip| dilate_clip(scene.root(), sprite, clip));
+            let clip = dilated.as_ref().map_or_else(String::new, |clip| {
                 let mut c = String::from(" style=\"clip-path:polygon(");
                 for (k, p) in clip.iter().enumerate() {
                     let _ = write!(
@@ -410,6 +416,44 @@ fn seam_strips<'a>(
         }
     }
     out
+}
+
+/// A textured sprite's clip polygon (unit-square coordinates) with each corner moved
+/// [`HTML_TEXTURE_SEAM_PX`] pixels away from the projected polygon's centre, so that
+/// neighbouring clipped textures overlap instead of leaving anti-aliased hairlines of
+/// background between them. The clip as it is when a corner cannot be mapped back.
+fn dilate_clip(root: &DMat4, sprite: &SceneSprite, clip: &[DVec2]) -> Vec<DVec2> {
+    let full = *root * sprite.transform.matrix;
+    let plane = DMat3::from_cols(
+        DVec3::new(full.x_axis.x, full.x_axis.y, full.x_axis.w),
+        DVec3::new(full.y_axis.x, full.y_axis.y, full.y_axis.w),
+        DVec3::new(full.w_axis.x, full.w_axis.y, full.w_axis.w),
+    );
+    if plane.determinant().abs() <= UNDERFLOW_ABS {
+        return clip.to_vec();
+    }
+    let to_square = plane.inverse();
+    let pixels: Option<Vec<DVec2>> = clip
+        .iter()
+        .map(|c| {
+            let h = plane * DVec3::new(c.x, c.y, 1.0);
+            (h.z > 0.0).then(|| DVec2::new(h.x / h.z, h.y / h.z))
+        })
+        .collect();
+    let Some(pixels) = pixels else {
+        return clip.to_vec();
+    };
+    let centre = pixels.iter().copied().sum::<DVec2>() / pixels.len() as f64;
+    let moved: Option<Vec<DVec2>> = pixels
+        .iter()
+        .map(|&p| {
+            let q = p + (p - centre).normalize_or_zero() * HTML_TEXTURE_SEAM_PX;
+            let h = to_square * DVec3::new(q.x, q.y, 1.0);
+            let s = DVec2::new(h.x / h.z, h.y / h.z);
+            (h.z.abs() > UNDERFLOW_ABS && s.is_finite()).then_some(s)
+        })
+        .collect();
+    moved.unwrap_or_else(|| clip.to_vec())
 }
 
 /// CSS `matrix(…)` placing an `<img>` that fills a `size`-pixel box (texture space `[0,1]²`

@@ -34,7 +34,9 @@ pub struct SvgOptions {
     /// (conflation). It also moves every visible boundary outward by half of it (silhouettes,
     /// intersection lines), so it is off by default: an export for people to look at wants
     /// 1.0 (half a pixel still lets hairlines through in resvg), a measurement wants 0.
-    /// ID mode never strokes. Default: 0.
+    /// ID mode never strokes. A textured polygon (not cut by hidden-part removal) has its
+    /// clip grown instead, each corner moved half the width away from its centre.
+    /// Default: 0.
     pub seam_stroke: f64,
     /// Whether hidden parts are written ([`HiddenParts::Keep`], the painter's algorithm as
     /// is) or left out ([`HiddenParts::Remove`]: every polygon, or part of one, that opaque
@@ -233,7 +235,16 @@ pub fn write_svg(scene: &Scene, options: &SvgOptions) -> String {
             let _ = write!(
                 svg,
                 "<clipPath id=\"c{clip_count}\">{}</clipPath><g clip-path=\"url(#c{clip_count})\">",
-                shape.element("")
+                match (&visible, options.seam_stroke > 0.0) {
+                    // The same seam cover for textures: the clip polygon, each corner moved
+                    // half the stroke width away from its centre.
+                    (Visibility::Parts(_), _) | (_, false) => shape.element(""),
+                    _ => Shape::Polygon(points_attribute(&dilate(
+                        &polygon,
+                        options.seam_stroke * 0.5
+                    )))
+                    .element(""),
+                }
             );
             let single = cells.len() == 1;
             for (k, (cell, place)) in cells.iter().enumerate() {
@@ -333,6 +344,15 @@ fn points_attribute(polygon: &[DVec2]) -> String {
         let _ = write!(s, "{},{}", fmt(p.x), fmt(p.y));
     }
     s
+}
+
+/// A polygon with each corner moved `by` pixels away from the corners' mean.
+fn dilate(polygon: &[DVec2], by: f64) -> Vec<DVec2> {
+    let centre = polygon.iter().copied().sum::<DVec2>() / polygon.len().max(1) as f64;
+    polygon
+        .iter()
+        .map(|&p| p + (p - centre).normalize_or_zero() * by)
+        .collect()
 }
 
 /// Shortest text that keeps 1e-4 px.

@@ -81,3 +81,9 @@ pub const HTML_SEAM_PX: f64 = 1.0 / 16.0;
 /// Two projected sprite edges are one shared edge (a split line) when the ends of one lie
 /// within this many pixels of the other's line and they overlap by more than it.
 pub const HTML_SHARED_EDGE_PX: f64 = 1e-6;
+
+/// The HTML writer moves each corner of a textured sprite's `clip-path` this many pixels away
+/// from the projected polygon's centre: neighbouring textured fragments then overlap instead
+/// of showing anti-aliased hairlines of background (it moves silhouettes out by as much,
+/// inside the 0.75 px that CONVENTIONS.md leaves ambiguous).
+pub const HTML_TEXTURE_SEAM_PX: f64 = 0.5;

@@ -1,4 +1,4 @@
-//! `cargo xtask ci`: what CI runs.
+//! `cargo xtask ci`: what CI runs, which is `.ci/run` itself (one list of steps, not two).
 
 use std::process::{Command, ExitCode};
 
@@ -10,40 +10,25 @@ use crate::workspace_root;
 /// Options of `ci`.
 #[derive(Debug, Args)]
 pub struct CiArgs {
-    /// Skip `cargo test` (format and lint only).
+    /// Skip `cargo test` and the packaging check (format and lint only).
     #[arg(long)]
     no_test: bool,
 }
 
-/// Runs `cargo fmt --all -- --check`, `cargo clippy --workspace --all-targets -- -D warnings`
-/// and `cargo test --workspace`, stopping at the first failure.
+/// Runs `.ci/run`: installs Chromium and poppler when missing, then `cargo fmt --check`,
+/// `cargo clippy -D warnings`, `cargo test --workspace` and `cargo package` of the library
+/// crates, stopping at the first failure. `--no-test` sets `CI_NO_TEST=1`, which stops it
+/// after clippy.
 pub fn run(args: &CiArgs) -> Result<ExitCode> {
-    let mut steps: Vec<&[&str]> = vec![
-        &["fmt", "--all", "--", "--check"],
-        &[
-            "clippy",
-            "--workspace",
-            "--all-targets",
-            "--",
-            "-D",
-            "warnings",
-        ],
-    ];
-    if !args.no_test {
-        steps.push(&["test", "--workspace"]);
-    }
-    let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
     let root = workspace_root();
-    for step in steps {
-        eprintln!("ci: cargo {}", step.join(" "));
-        let status = Command::new(&cargo)
-            .args(step)
-            .current_dir(&root)
-            .status()
-            .with_context(|| format!("running cargo {}", step.join(" ")))?;
-        if !status.success() {
-            bail!("`cargo {}` failed ({status})", step.join(" "));
-        }
+    let mut command = Command::new("bash");
+    command.arg(root.join(".ci/run")).current_dir(&root);
+    if args.no_test {
+        command.env("CI_NO_TEST", "1");
+    }
+    let status = command.status().context("running .ci/run")?;
+    if !status.success() {
+        bail!(".ci/run failed ({status})");
     }
     eprintln!("ci: all steps passed");
     Ok(ExitCode::SUCCESS)

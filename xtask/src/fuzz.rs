@@ -24,7 +24,9 @@ pub struct FuzzArgs {
     /// Seed of the generator (a run is reproducible from it).
     #[arg(long, default_value_t = 1)]
     seed: u64,
-    /// Where failing cases go. Default: target/fuzz.
+    /// Where failing cases go. Default: an exact sorter's (Newell, BSP) under
+    /// tests/data/sorters/, where `cargo test` replays them (face-sort/tests/fuzz_cases.rs);
+    /// the other sorters' under target/fuzz.
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
     /// Largest number of failing cases saved per sorter.
@@ -52,6 +54,10 @@ pub fn run(args: &FuzzArgs) -> Result<ExitCode> {
         .out
         .clone()
         .unwrap_or_else(|| crate::target_dir().join("fuzz"));
+    let regressions = args
+        .out
+        .clone()
+        .unwrap_or_else(|| test_support::test_data_dir().join("sorters"));
     let mut seed = [0u8; 32];
     seed[..8].copy_from_slice(&args.seed.to_le_bytes());
     let mut runner = TestRunner::new_with_rng(
@@ -104,7 +110,12 @@ pub fn run(args: &FuzzArgs) -> Result<ExitCode> {
                 } else {
                     (mesh.clone(), spec.clone())
                 };
-                let path = save_case(&out, kind, case, args.seed, &mesh, &spec)?;
+                let dir = if SorterKind::EXACT.contains(&kind) {
+                    &regressions
+                } else {
+                    &out
+                };
+                let path = save_case(dir, kind, case, args.seed, &mesh, &spec)?;
                 bar.println(format!(
                     "{}: {violations} violation(s) in case {case}; saved {}",
                     kind.name(),
@@ -138,7 +149,11 @@ pub fn run(args: &FuzzArgs) -> Result<ExitCode> {
         failed |= exact && tally.failing_cases > 0;
     }
     if failed {
-        println!("failing cases are under {}", out.display());
+        println!(
+            "failing cases are under {} (exact sorters', replayed by cargo test) and {}",
+            regressions.display(),
+            out.display()
+        );
         return Ok(ExitCode::FAILURE);
     }
     Ok(ExitCode::SUCCESS)
@@ -202,6 +217,10 @@ fn replay_args(spec: &ViewSpec, view: &View) -> String {
     s
 }
 
+/// The comment line of a saved case that holds its view ([`ViewSpec`]'s text form), read back
+/// by face-sort/tests/fuzz_cases.rs.
+const VIEW_SPEC_PREFIX: &str = "view-spec: ";
+
 fn save_case(
     dir: &Path,
     kind: SorterKind,
@@ -216,15 +235,23 @@ fn save_case(
     let geometry = Geometry::new(mesh)?;
     let view = spec.view(&geometry);
     let args = replay_args(spec, &view);
+    // Paths inside the workspace are written relative to it: a committed case replays anywhere.
+    let shown = |p: &Path| {
+        p.strip_prefix(crate::workspace_root())
+            .unwrap_or(p)
+            .display()
+            .to_string()
+    };
     let command = format!(
         "cargo xtask render {} {args} --sorter {} --check -o {}",
-        obj.display(),
+        shown(&obj),
         kind.name(),
-        dir.join(format!("{stem}.png")).display()
+        shown(&dir.join(format!("{stem}.png")))
     );
     let mut list = DrawList::new();
     let violations = violations_of(kind, &geometry, &view, &mut list);
     let comment = vec![
+        format!("{VIEW_SPEC_PREFIX}{spec}"),
         format!(
             "xtask fuzz: {} has {violations} order violation(s) in this view",
             kind.name()

@@ -5,10 +5,11 @@
 //!   against error on real models and generated hard scenes, and writes a table, a JSON
 //!   report and a chart under `target/bench/`.
 //! - `fuzz` runs every sorter against the order-violation oracle on generated scenes and
-//!   saves failing cases under `target/fuzz/` for replay with `render`.
+//!   saves failing cases for replay with `render`: an exact sorter's under `tests/data/sorters/`,
+//!   where `cargo test` replays them, the others' under `target/fuzz/`.
 //! - `stress` runs the exact sorters on moved, scaled, coplanar, degenerate and edge-on cases
 //!   and reports violations, pixel error, fragments and NaN counts (docs/ROBUSTNESS.md).
-//! - `ci` runs what CI runs: fmt, clippy, tests.
+//! - `ci` runs what CI runs (`.ci/run`): fmt, clippy, tests, packaging.
 //!
 //! See `xtask/README.md` for examples.
 
@@ -48,10 +49,11 @@ enum Command {
     /// Measure every sorter (and plane-split) for time against error; write
     /// target/bench/report.{md,json} and a chart.
     Bench(bench::BenchArgs),
-    /// Run every sorter against the order-violation oracle on generated scenes; save
-    /// failures under target/fuzz/.
+    /// Run every sorter against the order-violation oracle on generated scenes; save an
+    /// exact sorter's failures under tests/data/sorters/ (replayed by cargo test), the
+    /// others' under target/fuzz/.
     Fuzz(fuzz::FuzzArgs),
-    /// Run what CI runs: cargo fmt --check, clippy -D warnings, tests.
+    /// Run what CI runs (.ci/run): cargo fmt --check, clippy -D warnings, tests, packaging.
     Ci(ci::CiArgs),
     /// Numerical stress: every exact sorter on transformed models and degenerate scenes;
     /// violations, pixel error, fragments, NaN counts, time (docs/ROBUSTNESS.md).

@@ -343,26 +343,27 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
         });
         painter.frame();
         let scene = painter.compositor().scene();
-        // Textured faces in --svg/--html: one exact brush per sprite from the style's plane uv
-        // maps (the brushes above carry a texture's mean colour), when there is one texture.
+        // Textured faces in --svg/--html: one exact brush per sprite from the style's plane
+        // uv maps (the brushes above carry a texture's mean colour), when every texture has a
+        // file to point at (its material's, else --texture or the demo's).
         let textured_scene;
-        let (scene, texture_file) = match (&texture, args.ids) {
-            (Some(file), false) => {
-                let mut textured = scene.clone();
-                let space = sprite_compose::SpriteSpace::of_view(painter.view());
-                sprite_compose::set_plane_textures(&mut textured, &space, |face, p| {
-                    match style.brush(face) {
-                        Some(raster_sink::Brush::Texture(t)) => {
-                            Some((sprite_compose::TextureId(0), t.map.uv(p)))
-                        }
-                        _ => None,
-                    }
-                });
-                textured_scene = textured;
-                let file = std::fs::canonicalize(file).unwrap_or_else(|_| file.clone());
-                (&textured_scene, Some(file.display().to_string()))
+        let (scene, texture_files) = if args.ids {
+            (scene, Vec::new())
+        } else {
+            let mut textured = scene.clone();
+            let space = sprite_compose::SpriteSpace::of_view(painter.view());
+            let images = style.set_sprite_textures(&mut textured, &space);
+            let files: Option<Vec<String>> = images
+                .iter()
+                .map(|image| texture_file(&style, &mesh, image, texture.as_deref()))
+                .collect();
+            match files {
+                Some(files) if !files.is_empty() => {
+                    textured_scene = textured;
+                    (&textured_scene, files)
+                }
+                _ => (scene, Vec::new()),
             }
-            _ => (scene, None),
         };
         if let Some(path) = &args.svg {
             let start = Instant::now();
@@ -373,7 +374,7 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
                     .with_ids(args.ids)
                     .with_seam_stroke(1.0)
                     .with_hidden(hidden)
-                    .with_textures(texture_file.iter().cloned().collect()),
+                    .with_textures(texture_files.clone()),
             );
             svg_summary = Some(VectorSummary {
                 shapes: Some(svg.matches("<polygon").count() + svg.matches("<path").count()),
@@ -408,7 +409,12 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
                 &sprite_compose::HtmlOptions::DEFAULT
                     .with_size(width, height)
                     .with_ids(args.ids)
-                    .with_textures(texture_file.iter().map(|f| format!("file://{f}")).collect()),
+                    .with_textures(
+                        texture_files
+                            .iter()
+                            .map(|f| format!("file://{f}"))
+                            .collect(),
+                    ),
             );
             std::fs::write(path, html).with_context(|| format!("writing {}", path.display()))?;
         }
@@ -593,4 +599,22 @@ fn line(s: &Summary) -> String {
 
 fn ms(start: Instant) -> f64 {
     start.elapsed().as_secs_f64() * 1e3
+}
+
+/// The absolute path of the file `image` was loaded from: the texture of the first face that
+/// paints it (its material's, else `fallback`, the --texture or demo texture).
+fn texture_file(
+    style: &raster_sink::Style,
+    mesh: &obj_quads::Mesh,
+    image: &std::sync::Arc<raster_sink::tiny_skia::Pixmap>,
+    fallback: Option<&std::path::Path>,
+) -> Option<String> {
+    use raster_sink::FaceMaterials as _;
+    let face = (0..mesh.face_count()).find(|&face| {
+        matches!(style.brush(face as u32),
+            Some(raster_sink::Brush::Texture(t)) if std::sync::Arc::ptr_eq(&t.image, image))
+    })?;
+    let file = mesh.face_texture(face).or(fallback)?;
+    let file = std::fs::canonicalize(file).unwrap_or_else(|_| file.to_path_buf());
+    Some(file.display().to_string())
 }

@@ -9,59 +9,14 @@ use raster_sink::face_sort::{DrawList, Geometry, PolygonMesh, PolygonSet};
 
 pub use test_support::Rng;
 
-/// An OBJ model for tests, read with `obj-quads`: positions, uvs, and per face its corners
-/// as (position index, uv index if any).
-pub struct Obj {
-    pub positions: Vec<DVec3>,
-    pub uvs: Vec<DVec2>,
-    /// Per face: (position index, uv index if any).
-    pub faces: Vec<Vec<(u32, Option<u32>)>>,
+/// Spot's control mesh (quads), as face-sort's mesh.
+pub fn spot_control() -> PolygonMesh {
+    test_support::load_polygon_mesh("keenan-crane/spot/spot_control_mesh.obj")
 }
 
-pub fn read_obj(relative: &str) -> Obj {
-    let mesh = test_support::load_model(relative);
-    let mut obj = Obj {
-        positions: mesh.positions().to_vec(),
-        uvs: Vec::new(),
-        faces: Vec::new(),
-    };
-    for face in 0..mesh.face_count() {
-        let corners = mesh.face(face).expect("face in range");
-        let uvs = mesh.face_uvs(face);
-        let face = corners
-            .iter()
-            .enumerate()
-            .map(|(k, &v)| {
-                let t = uvs.map(|uvs| {
-                    obj.uvs
-                        .push(DVec2::new(f64::from(uvs[k].x), f64::from(uvs[k].y)));
-                    (obj.uvs.len() - 1) as u32
-                });
-                (v, t)
-            })
-            .collect();
-        obj.faces.push(face);
-    }
-    obj
-}
-
-impl Obj {
-    pub fn mesh(&self) -> PolygonMesh {
-        let faces: Vec<Vec<u32>> = self
-            .faces
-            .iter()
-            .map(|f| f.iter().map(|c| c.0).collect())
-            .collect();
-        PolygonMesh::new(self.positions.clone(), faces).expect("valid mesh")
-    }
-}
-
-pub fn spot_control() -> Obj {
-    read_obj("keenan-crane/spot/spot_control_mesh.obj")
-}
-
-pub fn spot() -> Obj {
-    read_obj("keenan-crane/spot/spot_quadrangulated.obj")
+/// Spot quadrangulated, as loaded (with uvs).
+pub fn spot() -> obj_quads::Mesh {
+    test_support::load_model("keenan-crane/spot/spot_quadrangulated.obj")
 }
 
 /// Axis-aligned square in the plane z = `z`, counter-clockwise seen from +Z.

@@ -11,7 +11,7 @@ use raster_sink::tiny_skia::Pixmap;
 use raster_sink::{Brush, Light, RasterOptions, Style, render_colour, save_png};
 
 use crate::common::{spot, spot_control};
-use crate::scenes::{centroid_list, grid_first_list, spot_texture, textured_style, with_grid};
+use crate::scenes::{centroid_list, grid_first_list, textured_spot_style, with_grid};
 
 /// Largest per-channel difference that counts as equal.
 const MAX_CHANNEL_DIFF: u8 = 2;
@@ -73,7 +73,7 @@ fn compare(name: &str, image: &Pixmap) {
 }
 
 fn spot_geometry() -> Geometry {
-    Geometry::new(&spot().mesh()).expect("spot")
+    Geometry::new(&test_support::polygon_mesh(&spot())).expect("spot")
 }
 
 #[test]
@@ -92,7 +92,7 @@ fn golden_solid() {
 
 #[test]
 fn golden_palette() {
-    let geometry = Geometry::new(&spot_control().mesh()).expect("spot");
+    let geometry = Geometry::new(&spot_control()).expect("spot");
     let view = View::fit(&geometry.bounds(), SIZE, SIZE).with_yaw_pitch_roll(-35.0, 15.0, 0.0);
     let image = render_colour(
         &view,
@@ -124,9 +124,9 @@ fn golden_shaded() {
 
 #[test]
 fn golden_textured() {
-    let obj = spot();
-    let geometry = Geometry::new(&obj.mesh()).expect("spot");
-    let style = textured_style(&obj, &geometry, spot_texture());
+    let spot = spot();
+    let geometry = Geometry::new(&test_support::polygon_mesh(&spot)).expect("spot");
+    let style = textured_spot_style(&spot, &geometry);
     let view = View::fit(&geometry.bounds(), SIZE, SIZE).with_yaw_pitch_roll(35.0, 15.0, 0.0);
     let list = centroid_list(&view, &geometry);
     let image = render_colour(&view, &list, &style, &RasterOptions::DEFAULT).expect("render");
@@ -143,8 +143,7 @@ fn golden_textured() {
 
 #[test]
 fn golden_grid() {
-    let obj = spot_control();
-    let (mesh, grid, grid_face) = with_grid(&obj, 2.0);
+    let (mesh, grid, grid_face) = with_grid(&spot_control(), 2.0);
     let geometry = Geometry::new(&mesh).expect("geometry");
     let style = Style::solid([200, 200, 210, 255]).with_face(grid_face, Brush::Grid(grid));
     let view = View::fit(&geometry.bounds(), 160, 112)
@@ -162,8 +161,7 @@ fn preview() {
     if std::env::var_os("RASTER_SINK_PREVIEW").is_none() {
         return;
     }
-    let obj = spot_control();
-    let (mesh, grid, grid_face) = with_grid(&obj, 2.0);
+    let (mesh, grid, grid_face) = with_grid(&spot_control(), 2.0);
     let geometry = Geometry::new(&mesh).expect("geometry");
     let style = Style::solid([200, 200, 210, 255]).with_face(grid_face, Brush::Grid(grid));
     let view = View::fit(&geometry.bounds(), 768, 512)

@@ -2,12 +2,9 @@
 
 use std::sync::Arc;
 
-use raster_sink::face_sort::glam::{DVec2, DVec3};
+use raster_sink::face_sort::glam::DVec3;
 use raster_sink::face_sort::{Centroid, DrawList, FaceSorter, Geometry, PolygonMesh, View};
-use raster_sink::tiny_skia::Pixmap;
-use raster_sink::{Brush, GroundGrid, Style, TextureBrush, UvMap};
-
-use crate::common::Obj;
+use raster_sink::{GroundGrid, MaterialOptions, Style};
 
 /// Centroid order (deterministic, independent of the exact sorters' progress).
 pub fn centroid_list(view: &View, geometry: &Geometry) -> DrawList {
@@ -16,48 +13,20 @@ pub fn centroid_list(view: &View, geometry: &Geometry) -> DrawList {
     list
 }
 
-/// Per-face texture brushes from an OBJ's uvs (v flipped: OBJ puts v = 0 at the bottom).
-pub fn textured_style(obj: &Obj, geometry: &Geometry, image: Arc<Pixmap>) -> Style {
-    let centre = geometry.bounds().centre();
-    let mut style = Style::solid([255, 0, 255, 255]);
-    for (face, corners) in obj.faces.iter().enumerate() {
-        let points: Vec<DVec3> = corners
-            .iter()
-            .map(|c| obj.positions[c.0 as usize] - centre)
-            .collect();
-        let uvs: Option<Vec<DVec2>> = corners
-            .iter()
-            .map(|c| {
-                c.1.map(|t| obj.uvs[t as usize])
-                    .map(|uv| DVec2::new(uv.x, 1.0 - uv.y))
-            })
-            .collect();
-        if let Some(map) = uvs.and_then(|uvs| UvMap::fit(&points, &uvs)) {
-            style.set_face(
-                face as u32,
-                Brush::Texture(TextureBrush {
-                    image: Arc::clone(&image),
-                    map,
-                }),
-            );
-        }
-    }
-    style
+/// Spot's faces textured with its texture (raster-sink's own material path: uvs fitted per
+/// face, v flipped).
+pub fn textured_spot_style(spot: &obj_quads::Mesh, geometry: &Geometry) -> Style {
+    let options = MaterialOptions::DEFAULT.with_texture(test_support::model_path(
+        "keenan-crane/spot/spot_texture.png",
+    ));
+    Style::from_materials(spot, geometry.bounds().centre(), &options)
+        .expect("spot's texture")
+        .style
 }
 
-pub fn spot_texture() -> Arc<Pixmap> {
-    Arc::new(
-        Pixmap::load_png(test_support::model_path(
-            "keenan-crane/spot/spot_texture.png",
-        ))
-        .expect("texture"),
-    )
-}
-
-/// An OBJ's mesh plus a ground grid quad as the last face. Returns the mesh, the grid and
+/// A mesh plus a ground grid quad as the last face. Returns the mesh, the grid and
 /// the grid's face index.
-pub fn with_grid(obj: &Obj, grid_size_factor: f64) -> (PolygonMesh, Arc<GroundGrid>, u32) {
-    let base = obj.mesh();
+pub fn with_grid(base: &PolygonMesh, grid_size_factor: f64) -> (PolygonMesh, Arc<GroundGrid>, u32) {
     let bounds = base.bounds().expect("bounds");
     let size = grid_size_factor * bounds.diagonal();
     let grid = GroundGrid::new(&bounds, size).with_cell(size / 40.0);

@@ -85,7 +85,7 @@ fn subdivided_cube_has_no_seams() {
 
 #[test]
 fn spot_has_no_seams() {
-    let mesh: PolygonMesh = spot().mesh();
+    let mesh: PolygonMesh = test_support::polygon_mesh(&spot());
     let geometry = Geometry::new(&mesh).expect("spot");
     for view in [
         View::fit(&geometry.bounds(), 200, 200).with_yaw_pitch_roll(30.0, 15.0, 0.0),

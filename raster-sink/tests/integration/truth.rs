@@ -138,7 +138,7 @@ fn truth_matches_brute_force_perspective() {
 #[test]
 fn truth_matches_brute_force_on_spot() {
     // The control mesh (180 non-planar quads): big enough pieces for unambiguous pixels.
-    let geometry = Geometry::new(&spot_control().mesh()).expect("spot");
+    let geometry = Geometry::new(&spot_control()).expect("spot");
     let view = View::fit(&geometry.bounds(), 80, 80).with_yaw_pitch_roll(40.0, 20.0, 0.0);
     compare_with_brute_force(&view, &geometry, 150);
     let view = view.with_perspective(90.0);
@@ -231,7 +231,7 @@ fn id_png_round_trips() {
 
 #[test]
 fn bsp_order_gives_zero_error_on_spot() {
-    let geometry = Geometry::new(&spot_control().mesh()).expect("spot");
+    let geometry = Geometry::new(&spot_control()).expect("spot");
     for view in [
         View::fit(&geometry.bounds(), 160, 160).with_yaw_pitch_roll(40.0, 20.0, 0.0),
         View::fit(&geometry.bounds(), 160, 160)

@@ -332,5 +332,7 @@ fn textured_spot_html_in_chromium_matches_raster_sink() {
         far * 100.0
     );
     assert!(n > 5_000, "the comparison covers pixels: {n}");
-    assert!(far <= 0.03, "textured spot page: mean {mean}, far {far}");
+    // Measured 0.005 % with the clip-paths grown by HTML_TEXTURE_SEAM_PX (0.57 % without:
+    // hairlines of background between neighbouring clipped textures).
+    assert!(far <= 0.0005, "textured spot page: mean {mean}, far {far}");
 }
