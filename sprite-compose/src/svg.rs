@@ -356,7 +356,7 @@ fn dilate(polygon: &[DVec2], by: f64) -> Vec<DVec2> {
 }
 
 /// Shortest text that keeps 1e-4 px.
-fn fmt(v: f64) -> String {
+pub(crate) fn fmt(v: f64) -> String {
     let s = format!("{v:.4}");
     let s = s.trim_end_matches('0').trim_end_matches('.');
     if s == "-0" {

@@ -87,3 +87,18 @@ pub const HTML_SHARED_EDGE_PX: f64 = 1e-6;
 /// of showing anti-aliased hairlines of background (it moves silhouettes out by as much,
 /// inside the 0.75 px that CONVENTIONS.md leaves ambiguous).
 pub const HTML_TEXTURE_SEAM_PX: f64 = 0.5;
+
+/// Plotter edges ([`plot_edges`](crate::plot_edges)): a point of an edge is covered by a
+/// piece only when its projection is inside the piece's by more than this many pixels.
+pub const PLOT_INSIDE_PX: f64 = 1e-6;
+
+/// Plotter edges: a point of an edge is covered only when it lies behind the piece's plane
+/// by more than this times the model's diagonal `L` (the oracle's depth tolerance).
+pub const PLOT_BEHIND: f64 = 1e-9;
+
+/// Plotter edges: visible parts shorter than this many pixels are dropped (the slivers a
+/// piece that only touches an edge at its end leaves).
+pub const PLOT_MIN_LENGTH_PX: f64 = 1e-3;
+
+/// Plotter edges: polyline ends this close (pixels) are joined.
+pub const PLOT_JOIN_PX: f64 = 1e-6;

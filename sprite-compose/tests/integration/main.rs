@@ -8,6 +8,7 @@ mod browser;
 mod hidden;
 mod painter;
 mod pdf;
+mod plot;
 mod spin;
 mod textures;
 mod writers;

@@ -1,0 +1,758 @@
+//! Visible edges for pen plotters: hidden-line removal, exact in f64, written as strokes.
+//!
+//! A plotter cannot paint one colour over another, so the painter's order alone does not
+//! make a plot: it needs the visible parts of the lines themselves. [`plot_edges`] finds the
+//! edges a drawing shows (boundaries, silhouettes, creases, non-manifold edges, on welded
+//! vertices) and clips each one exactly where a drawn piece covers it.
+//!
+//! **Why the clipping is exact.** Take an edge `A + t·(B − A)` and a drawn convex piece `P`.
+//! A point of the edge is covered by `P` when its projection lies inside `P`'s projection and
+//! it lies behind `P`'s plane, seen from the viewer. In homogeneous screen coordinates the
+//! projection of the edge is linear in `t` (the perspective divide is by `w(t) > 0`, linear
+//! too), so "inside the line through one edge of `P`'s projection" is the sign of a linear
+//! function of `t`, and so is "behind `P`'s plane". The covered set is an intersection of
+//! half-lines: one interval per piece, in closed form. The edge's visible part is `[0, 1]`
+//! minus the union of those intervals. This is the same test as the painter's order (a
+//! piece drawn later covers what lies behind it), asked of every point of the line at once.
+//!
+//! The faces that hold an edge never cover it (it lies on their boundary, where no f64
+//! inside test is reliable): they are left out of its candidates. Pieces that only touch an
+//! edge at an end cover at most a sliver that the margins ([`PLOT_INSIDE_PX`],
+//! [`PLOT_BEHIND`]) remove.
+//!
+//! Not drawn yet: the intersection curves of interpenetrating faces (the edges are clipped
+//! correctly where faces cross, but the crossing line itself is not drawn).
+
+use std::collections::HashMap;
+use std::fmt::Write as _;
+
+use face_sort::tolerance::NEAR_W;
+use face_sort::{Geometry, PolygonMesh, ProjectionScratch, View, Viewer, newell_normal};
+use glam::{DVec2, DVec3};
+
+use crate::tolerance::{PLOT_BEHIND, PLOT_INSIDE_PX, PLOT_JOIN_PX, PLOT_MIN_LENGTH_PX};
+
+/// Options of [`plot_edges`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct PlotOptions {
+    /// Edges between two drawn faces whose normals differ by at least this angle (degrees)
+    /// are creases and drawn. Default: 30.
+    pub crease_deg: f64,
+}
+
+impl PlotOptions {
+    /// The defaults.
+    pub const DEFAULT: PlotOptions = PlotOptions { crease_deg: 30.0 };
+
+    /// The crease angle in degrees.
+    #[must_use]
+    pub fn with_crease_deg(mut self, degrees: f64) -> Self {
+        self.crease_deg = degrees;
+        self
+    }
+}
+
+impl Default for PlotOptions {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
+/// Why an edge is drawn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum EdgeKind {
+    /// The edge of one face only, which is drawn.
+    Boundary,
+    /// Between a face turned toward the viewer and one turned away (with back-face culling:
+    /// one drawn, one culled).
+    Silhouette,
+    /// Between two drawn faces whose normals differ by at least the crease angle.
+    Crease,
+    /// Shared by three or more faces, at least one of them drawn.
+    NonManifold,
+}
+
+/// One drawn edge and its visible parts.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PlotEdge {
+    /// Why it is drawn.
+    pub kind: EdgeKind,
+    /// Its ends in centred model space (model position minus the geometry's bounds centre).
+    pub ends: [DVec3; 2],
+    /// Its visible parts as parameter intervals `[t0, t1]` of `ends[0] + t·(ends[1] −
+    /// ends[0])`, sorted and disjoint; empty when it is hidden.
+    pub visible: Vec<[f64; 2]>,
+}
+
+/// The plot of one view: the drawn edges with their visible parts, joined into polylines
+/// for the pen.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Plot {
+    /// Every drawn edge, visible or not.
+    pub edges: Vec<PlotEdge>,
+    /// The visible parts, joined end to end into polylines (pixels), in pen order.
+    pub polylines: Vec<Vec<DVec2>>,
+    /// Length drawn with the pen down (pixels).
+    pub pen_down_px: f64,
+    /// Travel with the pen up between polylines, in pen order (pixels).
+    pub pen_up_px: f64,
+    /// Image size (pixels).
+    pub size: (u32, u32),
+}
+
+/// The visible edges of `mesh` seen in `view`, clipped exactly (module docs).
+///
+/// `geometry` is `Geometry::new(mesh)` (its pieces are the occluders; pieces culled by the
+/// view hide nothing). Vertices at exactly the same position are one vertex, so OBJ seams
+/// do not cut lines and a flat face cut into two has no line across it.
+#[must_use]
+pub fn plot_edges(
+    mesh: &PolygonMesh,
+    geometry: &Geometry,
+    view: &View,
+    options: &PlotOptions,
+) -> Plot {
+    let centre = geometry.bounds().centre();
+    let occluders = Occluders::new(geometry, view);
+    let edges = classify_edges(mesh, centre, &occluders, view, options);
+    let length = geometry.bounds().diagonal().max(f64::MIN_POSITIVE);
+    let mut stamp = vec![u32::MAX; occluders.pieces.len()];
+    let mut candidates = Vec::new();
+    let mut covered = Vec::new();
+    let mut out = Vec::with_capacity(edges.len());
+    for (k, edge) in edges.into_iter().enumerate() {
+        let visible = match Segment::new(view, edge.ends) {
+            Some(segment) => {
+                occluders.candidates(&segment, k as u32, &mut stamp, &mut candidates);
+                covered.clear();
+                for &piece in &candidates {
+                    let p = &occluders.pieces[piece as usize];
+                    if !edge.faces.contains(&p.face)
+                        && let Some(interval) = segment.covered_by(p, length)
+                    {
+                        covered.push(interval);
+                    }
+                }
+                segment.visible_parts(&mut covered)
+            }
+            None => Vec::new(),
+        };
+        out.push(PlotEdge {
+            kind: edge.kind,
+            ends: edge.ends,
+            visible,
+        });
+    }
+    let segments: Vec<[DVec2; 2]> = out
+        .iter()
+        .flat_map(|e| {
+            e.visible.iter().filter_map(move |&[t0, t1]| {
+                let at =
+                    |t: f64| view.project_view_point(view.to_view(e.ends[0].lerp(e.ends[1], t)));
+                Some([at(t0)?, at(t1)?])
+            })
+        })
+        .collect();
+    let polylines = order_for_pen(join_segments(&segments));
+    let pen_down_px = polylines
+        .iter()
+        .map(|l| l.windows(2).map(|w| w[0].distance(w[1])).sum::<f64>())
+        .sum();
+    let pen_up_px = polylines
+        .windows(2)
+        .map(|w| w[0][w[0].len() - 1].distance(w[1][0]))
+        .sum();
+    Plot {
+        edges: out,
+        polylines,
+        pen_down_px,
+        pen_up_px,
+        size: (view.width(), view.height()),
+    }
+}
+
+impl Plot {
+    /// An SVG of strokes only (no fills), one `<path>` per polyline, black, `stroke_px` wide.
+    #[must_use]
+    pub fn to_svg(&self, stroke_px: f64) -> String {
+        let (w, h) = self.size;
+        let mut s = format!(
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\">\n<g fill=\"none\" stroke=\"black\" stroke-width=\"{}\" stroke-linecap=\"round\" stroke-linejoin=\"round\">\n",
+            crate::svg::fmt(stroke_px)
+        );
+        for line in &self.polylines {
+            s.push_str("<path d=\"");
+            for (k, p) in line.iter().enumerate() {
+                let _ = write!(
+                    s,
+                    "{}{} {}",
+                    if k == 0 { "M" } else { " L" },
+                    crate::svg::fmt(p.x),
+                    crate::svg::fmt(p.y)
+                );
+            }
+            s.push_str("\"/>\n");
+        }
+        s.push_str("</g>\n</svg>\n");
+        s
+    }
+
+    /// HP-GL for plotters that take it: `IN;SP1;`, then per polyline `PU x,y;PD x,y,…;`,
+    /// then `PU;SP0;`. `units_per_px` plotter units per pixel (40 units are 1 mm); y grows
+    /// upward, so the picture is flipped into the plotter's frame.
+    #[must_use]
+    pub fn to_hpgl(&self, units_per_px: f64) -> String {
+        let h = f64::from(self.size.1);
+        let unit = |p: DVec2| {
+            (
+                (p.x * units_per_px).round() as i64,
+                ((h - p.y) * units_per_px).round() as i64,
+            )
+        };
+        let mut s = String::from("IN;SP1;\n");
+        for line in &self.polylines {
+            let (x, y) = unit(line[0]);
+            let _ = write!(s, "PU{x},{y};PD");
+            for (k, &p) in line[1..].iter().enumerate() {
+                let (x, y) = unit(p);
+                let _ = write!(s, "{}{x},{y}", if k == 0 { "" } else { "," });
+            }
+            s.push_str(";\n");
+        }
+        s.push_str("PU;SP0;\n");
+        s
+    }
+}
+
+/// An edge to draw, before clipping.
+struct Classified {
+    kind: EdgeKind,
+    ends: [DVec3; 2],
+    /// The faces that hold it (never its occluders).
+    faces: Vec<u32>,
+}
+
+/// The edges a drawing shows, on welded vertices (same position, bit for bit, is one
+/// vertex; `-0.0` is `0.0`).
+fn classify_edges(
+    mesh: &PolygonMesh,
+    centre: DVec3,
+    occluders: &Occluders,
+    view: &View,
+    options: &PlotOptions,
+) -> Vec<Classified> {
+    let key = |p: DVec3| (p + DVec3::ZERO).to_array().map(f64::to_bits);
+    let mut welded: HashMap<[u64; 3], u32> = HashMap::new();
+    let ids: Vec<u32> = mesh
+        .positions()
+        .iter()
+        .map(|&p| {
+            let next = welded.len() as u32;
+            *welded.entry(key(p)).or_insert(next)
+        })
+        .collect();
+    // (low id, high id) → (face, the face runs it low → high), in face order.
+    let mut edges: HashMap<(u32, u32), Vec<(u32, bool)>> = HashMap::new();
+    let mut order = Vec::new();
+    for (face, corners) in mesh.faces().enumerate() {
+        if !occluders.has_pieces[face] {
+            continue; // no area: it neither draws nor joins edges
+        }
+        for k in 0..corners.len() {
+            let (a, b) = (
+                ids[corners[k] as usize],
+                ids[corners[(k + 1) % corners.len()] as usize],
+            );
+            if a == b {
+                continue;
+            }
+            let key = (a.min(b), a.max(b));
+            let list = edges.entry(key).or_default();
+            if list.is_empty() {
+                order.push((key, corners[k], corners[(k + 1) % corners.len()]));
+            }
+            if !list.iter().any(|&(f, _)| f == face as u32) {
+                list.push((face as u32, a < b));
+            }
+        }
+    }
+    let normal = |face: u32| {
+        let corners: Vec<DVec3> = mesh
+            .face(face as usize)
+            .iter()
+            .map(|&i| mesh.positions()[i as usize] - centre)
+            .collect();
+        newell_normal(&corners).normalize_or_zero()
+    };
+    let viewer = view.viewer();
+    let toward = |face: u32, n: DVec3| -> bool {
+        let first = mesh.positions()[mesh.face(face as usize)[0] as usize] - centre;
+        match viewer {
+            Viewer::Direction(d) => n.dot(d) > 0.0,
+            Viewer::Eye(e) => n.dot(e - first) > 0.0,
+        }
+    };
+    let cos_crease = options.crease_deg.to_radians().cos();
+    let mut out = Vec::new();
+    for (key, a, b) in order {
+        let faces = &edges[&key];
+        let drawn = |f: u32| occluders.drawn_faces[f as usize];
+        let kind = match faces.as_slice() {
+            [(f, _)] => drawn(*f).then_some(EdgeKind::Boundary),
+            [(f, f_up), (g, g_up)] => {
+                let (nf, mut ng) = (normal(*f), normal(*g));
+                // Consistent winding runs a shared edge in opposite directions; otherwise
+                // one normal is flipped for the dihedral.
+                if f_up == g_up {
+                    ng = -ng;
+                }
+                let turned = toward(*f, nf) != toward(*g, ng);
+                match (drawn(*f), drawn(*g)) {
+                    (false, false) => None,
+                    (true, true) if turned => Some(EdgeKind::Silhouette),
+                    (true, true) => (nf.dot(ng) <= cos_crease).then_some(EdgeKind::Crease),
+                    _ => Some(EdgeKind::Silhouette),
+                }
+            }
+            many => many
+                .iter()
+                .any(|&(f, _)| drawn(f))
+                .then_some(EdgeKind::NonManifold),
+        };
+        if let Some(kind) = kind {
+            out.push(Classified {
+                kind,
+                ends: [
+                    mesh.positions()[a as usize] - centre,
+                    mesh.positions()[b as usize] - centre,
+                ],
+                faces: faces.iter().map(|&(f, _)| f).collect(),
+            });
+        }
+    }
+    out
+}
+
+/// A drawn piece as an occluder: its projection, plane and face.
+struct Occluder {
+    face: u32,
+    /// Projected corners (pixels), counter-clockwise in the picture's y-down frame or not:
+    /// `orientation` says which.
+    corners: Vec<DVec2>,
+    orientation: f64,
+    min: DVec2,
+    max: DVec2,
+    normal: DVec3,
+    offset: f64,
+    /// +1 when the viewer is on the side the normal points to, −1 otherwise.
+    viewer_side: f64,
+}
+
+/// The drawn pieces, bucketed in a screen grid.
+struct Occluders {
+    pieces: Vec<Occluder>,
+    /// Per mesh face: it has a piece drawn in this view.
+    drawn_faces: Vec<bool>,
+    /// Per mesh face: it has any piece (faces without area have none).
+    has_pieces: Vec<bool>,
+    origin: DVec2,
+    cell: f64,
+    cols: usize,
+    rows: usize,
+    cells: Vec<Vec<u32>>,
+}
+
+impl Occluders {
+    fn new(geometry: &Geometry, view: &View) -> Self {
+        let set = geometry.pieces();
+        let cull = view.cull_test();
+        let viewer = view.viewer();
+        let mut drawn_faces = vec![false; geometry.face_count()];
+        let mut has_pieces = vec![false; geometry.face_count()];
+        let mut pieces = Vec::new();
+        let mut scratch = ProjectionScratch::default();
+        let mut projected = Vec::new();
+        for i in 0..set.len() {
+            let face = set.face(i);
+            has_pieces[face as usize] = true;
+            let plane = set.plane(i);
+            let corners = set.corners(i);
+            if !cull.is_drawn(plane, corners[0]) {
+                continue;
+            }
+            drawn_faces[face as usize] = true;
+            let facing = viewer.facing(plane);
+            view.project_polygon(corners, &mut projected, &mut scratch);
+            if projected.len() < 3 || facing == 0.0 {
+                continue;
+            }
+            let area: f64 = (0..projected.len())
+                .map(|k| projected[k].perp_dot(projected[(k + 1) % projected.len()]))
+                .sum();
+            if area == 0.0 {
+                continue;
+            }
+            let (min, max) = projected
+                .iter()
+                .fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(lo, hi), &p| {
+                    (lo.min(p), hi.max(p))
+                });
+            pieces.push(Occluder {
+                face,
+                corners: projected.clone(),
+                orientation: area.signum(),
+                min,
+                max,
+                normal: plane.normal(),
+                offset: plane.offset(),
+                viewer_side: facing.signum(),
+            });
+        }
+        // A grid of about one piece per cell over the pieces' extent.
+        let (lo, hi) = pieces
+            .iter()
+            .fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(lo, hi), p| {
+                (lo.min(p.min), hi.max(p.max))
+            });
+        let extent = (hi - lo).max(DVec2::splat(1.0));
+        let side = (pieces.len() as f64).sqrt().ceil().clamp(1.0, 1024.0);
+        let cell = extent.max_element() / side;
+        let (cols, rows) = (
+            ((extent.x / cell).ceil() as usize).max(1),
+            ((extent.y / cell).ceil() as usize).max(1),
+        );
+        let origin = if pieces.is_empty() { DVec2::ZERO } else { lo };
+        let mut grid = Occluders {
+            pieces: Vec::new(),
+            drawn_faces,
+            has_pieces,
+            origin,
+            cell,
+            cols,
+            rows,
+            cells: vec![Vec::new(); cols * rows],
+        };
+        for (k, p) in pieces.iter().enumerate() {
+            let (c0, r0, c1, r1) = grid.cell_range(p.min, p.max);
+            for r in r0..=r1 {
+                for c in c0..=c1 {
+                    grid.cells[r * cols + c].push(k as u32);
+                }
+            }
+        }
+        grid.pieces = pieces;
+        grid
+    }
+
+    /// The grid cells a pixel box touches, clamped to the grid.
+    fn cell_range(&self, min: DVec2, max: DVec2) -> (usize, usize, usize, usize) {
+        let index = |v: f64, n: usize| ((v / self.cell).floor().max(0.0) as usize).min(n - 1);
+        let (a, b) = (min - self.origin, max - self.origin);
+        (
+            index(a.x, self.cols),
+            index(a.y, self.rows),
+            index(b.x, self.cols),
+            index(b.y, self.rows),
+        )
+    }
+
+    /// The pieces whose box overlaps the segment's (each once; `stamp` marks them with
+    /// `tag`).
+    fn candidates(&self, segment: &Segment, tag: u32, stamp: &mut [u32], out: &mut Vec<u32>) {
+        out.clear();
+        let (min, max) = segment.pixel_box();
+        if self.pieces.is_empty() {
+            return;
+        }
+        let (c0, r0, c1, r1) = self.cell_range(min, max);
+        for r in r0..=r1 {
+            for c in c0..=c1 {
+                for &k in &self.cells[r * self.cols + c] {
+                    let p = &self.pieces[k as usize];
+                    if stamp[k as usize] != tag
+                        && p.min.x <= max.x
+                        && p.max.x >= min.x
+                        && p.min.y <= max.y
+                        && p.max.y >= min.y
+                    {
+                        stamp[k as usize] = tag;
+                        out.push(k);
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// An edge in front of the near plane: its ends in centred model space, the parameter range
+/// kept, and its homogeneous screen coordinates at `t = 0` and `t = 1`.
+struct Segment {
+    ends: [DVec3; 2],
+    range: [f64; 2],
+    /// `(x·w, y·w, w)` of the pixel position at `t = 0` and `t = 1` (linear in `t`).
+    screen: [DVec3; 2],
+}
+
+impl Segment {
+    /// `None` when the whole edge lies behind the near plane.
+    fn new(view: &View, ends: [DVec3; 2]) -> Option<Self> {
+        let half = DVec2::new(f64::from(view.width()), f64::from(view.height())) * 0.5;
+        let homogeneous = |p: DVec3| {
+            let v = view.to_view(p);
+            let w = view.w_of_view_point(v);
+            let q = v * view.scale();
+            DVec3::new(half.x * w + q.x, half.y * w - q.y, w)
+        };
+        let screen = [homogeneous(ends[0]), homogeneous(ends[1])];
+        // Keep w(t) ≥ NEAR_W.
+        let (w0, w1) = (screen[0].z, screen[1].z);
+        let mut range = [0.0, 1.0];
+        if w0 < NEAR_W && w1 < NEAR_W {
+            return None;
+        }
+        if w0 < NEAR_W || w1 < NEAR_W {
+            let t = (NEAR_W - w0) / (w1 - w0);
+            if w0 < NEAR_W {
+                range[0] = t;
+            } else {
+                range[1] = t;
+            }
+        }
+        Some(Segment {
+            ends,
+            range,
+            screen,
+        })
+    }
+
+    fn at_pixel(&self, t: f64) -> DVec2 {
+        let h = self.screen[0].lerp(self.screen[1], t);
+        DVec2::new(h.x / h.z, h.y / h.z)
+    }
+
+    fn pixel_box(&self) -> (DVec2, DVec2) {
+        let (a, b) = (self.at_pixel(self.range[0]), self.at_pixel(self.range[1]));
+        (a.min(b), a.max(b))
+    }
+
+    /// The interval of `t` (within the kept range) where `piece` covers the edge: inside
+    /// its projection by more than [`PLOT_INSIDE_PX`] and behind its plane by more than
+    /// [`PLOT_BEHIND`] times `length` (the model's diagonal). `None` when empty.
+    fn covered_by(&self, piece: &Occluder, length: f64) -> Option<[f64; 2]> {
+        let [mut lo, mut hi] = self.range;
+        // Keeps the t where f0 + t·(f1 − f0) > 0.
+        let mut keep = |f0: f64, f1: f64| -> bool {
+            let slope = f1 - f0;
+            if slope == 0.0 {
+                return f0 > 0.0;
+            }
+            let root = -f0 / slope;
+            if slope > 0.0 {
+                lo = lo.max(root);
+            } else {
+                hi = hi.min(root);
+            }
+            lo < hi
+        };
+        let n = piece.corners.len();
+        for k in 0..n {
+            let (q, r) = (piece.corners[k], piece.corners[(k + 1) % n]);
+            let e = r - q;
+            let margin = PLOT_INSIDE_PX * e.length();
+            // orientation · cross(e, p − q) > margin, times w > 0: linear in t.
+            let f = |h: DVec3| {
+                piece.orientation * e.perp_dot(DVec2::new(h.x, h.y) - q * h.z) - margin * h.z
+            };
+            if !keep(f(self.screen[0]), f(self.screen[1])) {
+                return None;
+            }
+        }
+        // Behind the plane: on the side away from the viewer.
+        let side = |p: DVec3| -piece.viewer_side * (piece.normal.dot(p) + piece.offset);
+        let margin = PLOT_BEHIND * length;
+        if !keep(side(self.ends[0]) - margin, side(self.ends[1]) - margin) {
+            return None;
+        }
+        Some([lo, hi])
+    }
+
+    /// The kept range minus the union of `covered`, without parts shorter than
+    /// [`PLOT_MIN_LENGTH_PX`].
+    fn visible_parts(&self, covered: &mut [[f64; 2]]) -> Vec<[f64; 2]> {
+        covered.sort_by(|a, b| a[0].total_cmp(&b[0]));
+        let mut out = Vec::new();
+        let mut from = self.range[0];
+        let mut push = |a: f64, b: f64| {
+            if b > a && self.at_pixel(a).distance(self.at_pixel(b)) >= PLOT_MIN_LENGTH_PX {
+                out.push([a, b]);
+            }
+        };
+        for &[a, b] in covered.iter() {
+            if a > from {
+                push(from, a.min(self.range[1]));
+            }
+            from = from.max(b);
+            if from >= self.range[1] {
+                break;
+            }
+        }
+        push(from, self.range[1]);
+        out
+    }
+}
+
+/// Segments (pixels) joined into polylines where their ends meet (within [`PLOT_JOIN_PX`]):
+/// each walk starts at an end where an odd number of segments meet, when there is one.
+fn join_segments(segments: &[[DVec2; 2]]) -> Vec<Vec<DVec2>> {
+    let key = |p: DVec2| {
+        (
+            (p.x / PLOT_JOIN_PX).round() as i64,
+            (p.y / PLOT_JOIN_PX).round() as i64,
+        )
+    };
+    let mut nodes: HashMap<(i64, i64), usize> = HashMap::new();
+    let mut ends: Vec<[usize; 2]> = Vec::with_capacity(segments.len());
+    let mut incident: Vec<Vec<usize>> = Vec::new();
+    for (s, seg) in segments.iter().enumerate() {
+        let mut node = |p: DVec2| {
+            let next = nodes.len();
+            let n = *nodes.entry(key(p)).or_insert(next);
+            if n == incident.len() {
+                incident.push(Vec::new());
+            }
+            incident[n].push(s);
+            n
+        };
+        ends.push([node(seg[0]), node(seg[1])]);
+    }
+    let mut used = vec![false; segments.len()];
+    let mut cursor = vec![0usize; incident.len()];
+    let mut walk = |start: usize, used: &mut Vec<bool>| -> Option<Vec<DVec2>> {
+        let mut line = Vec::new();
+        let mut node = start;
+        loop {
+            let next = loop {
+                let c = cursor[node];
+                if c >= incident[node].len() {
+                    break None;
+                }
+                cursor[node] += 1;
+                if !used[incident[node][c]] {
+                    break Some(incident[node][c]);
+                }
+            };
+            let Some(s) = next else { break };
+            used[s] = true;
+            let forward = ends[s][0] == node;
+            let (from, to) = if forward {
+                (segments[s][0], segments[s][1])
+            } else {
+                (segments[s][1], segments[s][0])
+            };
+            if line.is_empty() {
+                line.push(from);
+            }
+            line.push(to);
+            node = if forward { ends[s][1] } else { ends[s][0] };
+        }
+        (line.len() >= 2).then_some(line)
+    };
+    let mut lines = Vec::new();
+    let odd: Vec<usize> = (0..incident.len())
+        .filter(|&n| incident[n].len() % 2 == 1)
+        .collect();
+    for n in odd.into_iter().chain(0..incident.len()) {
+        while let Some(line) = walk(n, &mut used) {
+            lines.push(line);
+        }
+    }
+    lines
+}
+
+/// Polylines in pen order: from the end of each, the nearest start or end (reversing the
+/// polyline) of one not yet drawn, found in a grid of polyline ends.
+fn order_for_pen(mut lines: Vec<Vec<DVec2>>) -> Vec<Vec<DVec2>> {
+    if lines.len() < 2 {
+        return lines;
+    }
+    let (lo, hi) = lines
+        .iter()
+        .flatten()
+        .fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(lo, hi), &p| {
+            (lo.min(p), hi.max(p))
+        });
+    let side = ((lines.len() as f64).sqrt().ceil() as usize).clamp(1, 512);
+    let cell = ((hi - lo).max_element() / side as f64).max(f64::MIN_POSITIVE);
+    let index = |p: DVec2| {
+        let c = ((p - lo) / cell).floor();
+        (
+            (c.x.max(0.0) as usize).min(side - 1),
+            (c.y.max(0.0) as usize).min(side - 1),
+        )
+    };
+    // Each cell lists (polyline, which end: 0 start, 1 end).
+    let mut grid: Vec<Vec<(usize, u8)>> = vec![Vec::new(); side * side];
+    for (k, line) in lines.iter().enumerate() {
+        for (end, p) in [(0u8, line[0]), (1u8, line[line.len() - 1])] {
+            let (c, r) = index(p);
+            grid[r * side + c].push((k, end));
+        }
+    }
+    let mut done = vec![false; lines.len()];
+    let mut order: Vec<(usize, bool)> = Vec::with_capacity(lines.len());
+    let mut pen = lines[0][0];
+    for _ in 0..lines.len() {
+        let (c, r) = index(pen);
+        let mut best: Option<(f64, usize, u8)> = None;
+        for ring in 0..side {
+            let (r0, r1) = (r.saturating_sub(ring), (r + ring).min(side - 1));
+            let (c0, c1) = (c.saturating_sub(ring), (c + ring).min(side - 1));
+            for rr in r0..=r1 {
+                for cc in c0..=c1 {
+                    if rr != r0 && rr != r1 && cc != c0 && cc != c1 {
+                        continue; // inside the ring: already searched
+                    }
+                    for &(k, end) in &grid[rr * side + cc] {
+                        if done[k] {
+                            continue;
+                        }
+                        let p = if end == 0 {
+                            lines[k][0]
+                        } else {
+                            lines[k][lines[k].len() - 1]
+                        };
+                        let d = p.distance(pen);
+                        if best.is_none_or(|b| d < b.0) {
+                            best = Some((d, k, end));
+                        }
+                    }
+                }
+            }
+            // Anything beyond this ring is at least `ring · cell` away.
+            if best.is_some_and(|b| b.0 <= ring as f64 * cell) {
+                break;
+            }
+        }
+        let Some((_, k, end)) = best else { break };
+        done[k] = true;
+        let reversed = end == 1;
+        pen = if reversed {
+            lines[k][0]
+        } else {
+            lines[k][lines[k].len() - 1]
+        };
+        order.push((k, reversed));
+    }
+    let mut taken: Vec<Option<Vec<DVec2>>> = lines.drain(..).map(Some).collect();
+    order
+        .into_iter()
+        .filter_map(|(k, reversed)| {
+            let mut line = taken[k].take()?;
+            if reversed {
+                line.reverse();
+            }
+            Some(line)
+        })
+        .collect()
+}

@@ -1,0 +1,379 @@
+//! Plotter edges: the edges drawn and their visible parts, checked against an independent
+//! hidden-line computation that samples every edge densely and casts a ray from the viewer
+//! through each sample against every drawn piece.
+
+use sprite_compose::face_sort::glam::{DVec2, DVec3};
+use sprite_compose::face_sort::{CullMode, Geometry, PolygonMesh, ProjectionScratch, View, Viewer};
+use sprite_compose::{EdgeKind, Plot, PlotOptions, plot_edges};
+
+/// Sample spacing along an edge's projection (pixels).
+const STEP_PX: f64 = 0.25;
+/// A sample is judged only when every piece's projected boundary is at least this far
+/// (pixels) from it, or the piece is clearly not nearer.
+const JUDGE_PX: f64 = 1.0;
+/// Depth gaps within this times the model's diagonal are "on the plane".
+const DEPTH_TOL: f64 = 1e-7;
+
+/// A drawn piece for the brute force: projected corners and plane.
+struct Drawn {
+    corners: Vec<DVec2>,
+    normal: DVec3,
+    offset: f64,
+}
+
+/// Signed distance (pixels) from `p` to a convex polygon's boundary: positive inside.
+fn signed_distance(poly: &[DVec2], p: DVec2) -> f64 {
+    let n = poly.len();
+    let area: f64 = (0..n).map(|k| poly[k].perp_dot(poly[(k + 1) % n])).sum();
+    let mut inside = f64::INFINITY;
+    let mut outside = f64::INFINITY;
+    let mut is_inside = true;
+    for k in 0..n {
+        let (q, r) = (poly[k], poly[(k + 1) % n]);
+        let e = r - q;
+        let d = area.signum() * e.perp_dot(p - q) / e.length();
+        is_inside &= d > 0.0;
+        inside = inside.min(d);
+        let t = ((p - q).dot(e) / e.length_squared()).clamp(0.0, 1.0);
+        outside = outside.min((q + e * t).distance(p));
+    }
+    if is_inside { inside } else { -outside }
+}
+
+/// What the brute force sees at one point of an edge.
+#[derive(Debug, PartialEq)]
+enum Verdict {
+    Visible,
+    Hidden,
+    Ambiguous,
+}
+
+fn brute_force(view: &View, drawn: &[Drawn], x: DVec3, length: f64) -> Verdict {
+    let Some(p) = view.project_view_point(view.to_view(x)) else {
+        return Verdict::Ambiguous;
+    };
+    let tol = DEPTH_TOL * length;
+    let mut ambiguous = false;
+    for piece in drawn {
+        let inside = signed_distance(&piece.corners, p);
+        if inside <= -JUDGE_PX {
+            continue;
+        }
+        // How much nearer the viewer the piece's plane is than `x`, along the ray.
+        let gap = match view.viewer() {
+            Viewer::Direction(d) => {
+                let nd = piece.normal.dot(d);
+                if nd.abs() < 1e-12 {
+                    ambiguous |= inside > -JUDGE_PX;
+                    continue;
+                }
+                -(piece.normal.dot(x) + piece.offset) / nd
+            }
+            Viewer::Eye(e) => {
+                let ray = x - e;
+                let nr = piece.normal.dot(ray);
+                if nr.abs() < 1e-12 {
+                    ambiguous |= inside > -JUDGE_PX;
+                    continue;
+                }
+                let u = -(piece.normal.dot(e) + piece.offset) / nr;
+                (1.0 - u) * ray.length()
+            }
+        };
+        if gap > tol && inside >= JUDGE_PX {
+            return Verdict::Hidden;
+        }
+        // Nearer but near its boundary, or on its plane well inside it (coplanar overlap
+        // or an intersection line passing here): cannot be judged at 1 px.
+        if (gap > tol && inside > -JUDGE_PX) || (gap.abs() <= tol && inside >= JUDGE_PX) {
+            ambiguous = true;
+        }
+    }
+    if ambiguous {
+        Verdict::Ambiguous
+    } else {
+        Verdict::Visible
+    }
+}
+
+/// Counts of the comparison of one plot with the brute force.
+#[derive(Debug, Default)]
+struct Tally {
+    visible: usize,
+    hidden: usize,
+    ambiguous: usize,
+    wrong: Vec<String>,
+}
+
+fn check(mesh: &PolygonMesh, view: &View, name: &str) -> (Plot, Tally) {
+    let geometry = Geometry::new(mesh).expect("geometry");
+    let plot = plot_edges(mesh, &geometry, view, &PlotOptions::DEFAULT);
+    let set = geometry.pieces();
+    let cull = view.cull_test();
+    let mut scratch = ProjectionScratch::default();
+    let mut drawn = Vec::new();
+    for i in 0..set.len() {
+        let plane = set.plane(i);
+        if !cull.is_drawn(plane, set.corners(i)[0]) {
+            continue;
+        }
+        let mut corners = Vec::new();
+        view.project_polygon(set.corners(i), &mut corners, &mut scratch);
+        if corners.len() >= 3 {
+            drawn.push(Drawn {
+                corners,
+                normal: plane.normal(),
+                offset: plane.offset(),
+            });
+        }
+    }
+    let length = geometry.bounds().diagonal();
+    let mut tally = Tally::default();
+    for (k, edge) in plot.edges.iter().enumerate() {
+        let [a, b] = edge.ends;
+        let pa = view.project_view_point(view.to_view(a)).expect("in front");
+        let pb = view.project_view_point(view.to_view(b)).expect("in front");
+        let n = (pa.distance(pb) / STEP_PX).ceil().max(1.0) as usize;
+        for s in 0..n {
+            let t = (s as f64 + 0.5) / n as f64;
+            let shown = edge.visible.iter().any(|&[t0, t1]| t0 <= t && t <= t1);
+            match brute_force(view, &drawn, a.lerp(b, t), length) {
+                Verdict::Ambiguous => tally.ambiguous += 1,
+                Verdict::Visible if shown => tally.visible += 1,
+                Verdict::Hidden if !shown => tally.hidden += 1,
+                v => tally.wrong.push(format!(
+                    "{name}: edge {k} ({:?}) at t = {t:.4}: brute force {v:?}, plot {}",
+                    edge.kind,
+                    if shown { "visible" } else { "hidden" }
+                )),
+            }
+        }
+    }
+    (plot, tally)
+}
+
+fn views(geometry: &Geometry) -> Vec<View> {
+    let base = View::fit(&geometry.bounds(), 256, 256);
+    let ld = base.diagonal() * base.scale();
+    vec![
+        base.with_yaw_pitch_roll(30.0, 20.0, 0.0),
+        base.with_yaw_pitch_roll(200.0, -35.0, 10.0),
+        base.with_yaw_pitch_roll(0.0, 80.0, 0.0),
+        base.with_yaw_pitch_roll(120.0, 25.0, 0.0)
+            .with_perspective(1.6 * ld),
+        base.with_yaw_pitch_roll(-60.0, 50.0, 0.0)
+            .with_perspective(0.9 * ld),
+    ]
+}
+
+/// A hexahedron on a quad (counter-clockwise seen from `up`) and the same quad moved by
+/// `up`: six planar faces, outward.
+fn prism(quad: [DVec3; 4], up: DVec3, positions: &mut Vec<DVec3>, faces: &mut Vec<Vec<u32>>) {
+    let b = positions.len() as u32;
+    positions.extend(quad);
+    positions.extend(quad.map(|p| p + up));
+    faces.push(vec![b + 3, b + 2, b + 1, b]); // bottom, facing −up
+    faces.push(vec![b + 4, b + 5, b + 6, b + 7]); // top
+    for k in 0..4u32 {
+        let j = (k + 1) % 4;
+        faces.push(vec![b + k, b + j, b + 4 + j, b + 4 + k]);
+    }
+}
+
+/// Three thick sticks each lying over the next and under the previous one (a cyclic
+/// overlap no order of whole faces can paint), on a ground slab.
+fn cyclic_sticks() -> PolygonMesh {
+    let (mut positions, mut faces) = (Vec::new(), Vec::new());
+    for i in 0..3 {
+        let angle = std::f64::consts::TAU * f64::from(i) / 3.0;
+        let dir = DVec3::new(angle.cos(), angle.sin(), 0.0);
+        let side = DVec3::new(-dir.y, dir.x, 0.0) * 0.15;
+        let start = -dir * 0.3 + DVec3::new(0.0, 0.0, -0.12);
+        let end = dir * 1.0 + DVec3::new(0.0, 0.0, 0.12);
+        prism(
+            [start - side, end - side, end + side, start + side],
+            DVec3::new(0.0, 0.0, 0.1),
+            &mut positions,
+            &mut faces,
+        );
+    }
+    let g = 1.3;
+    prism(
+        [
+            DVec3::new(-g, -g, -0.5),
+            DVec3::new(g, -g, -0.5),
+            DVec3::new(g, g, -0.5),
+            DVec3::new(-g, g, -0.5),
+        ],
+        DVec3::new(0.0, 0.0, 0.1),
+        &mut positions,
+        &mut faces,
+    );
+    PolygonMesh::new(positions, faces).expect("sticks")
+}
+
+/// A box with a smaller box poking out of it through one side, a box fully inside, and a
+/// box standing on top.
+fn nested_boxes() -> PolygonMesh {
+    let v = DVec3::new;
+    test_support::models::boxes(&[
+        (v(-1.0, -1.0, -1.0), v(1.0, 1.0, 1.0)),
+        (v(0.2, -0.4, -0.4), v(1.6, 0.3, 0.5)),
+        (v(-0.5, -0.5, -0.5), v(0.0, 0.0, 0.0)),
+        (v(-0.8, 1.0, -0.6), v(-0.1, 1.5, 0.2)),
+    ])
+}
+
+#[test]
+fn cube_from_a_corner_has_six_silhouettes_and_three_creases() {
+    let cube = test_support::models::boxes(&[(DVec3::splat(-1.0), DVec3::splat(1.0))]);
+    let geometry = Geometry::new(&cube).unwrap();
+    let view = View::fit(&geometry.bounds(), 200, 200).with_yaw_pitch_roll(35.0, 25.0, 0.0);
+    let plot = plot_edges(&cube, &geometry, &view, &PlotOptions::DEFAULT);
+    let count = |kind| plot.edges.iter().filter(|e| e.kind == kind).count();
+    assert_eq!(count(EdgeKind::Silhouette), 6, "{:?}", plot.edges);
+    assert_eq!(count(EdgeKind::Crease), 3, "{:?}", plot.edges);
+    assert_eq!(plot.edges.len(), 9);
+    assert!(plot.edges.iter().all(|e| e.visible == vec![[0.0, 1.0]]));
+    // Nine edges meeting at the near corner and around the outline: one closed outline and
+    // the three creases from the near corner, in few strokes.
+    assert!(plot.polylines.len() <= 3, "{:?}", plot.polylines);
+    assert!(plot.pen_down_px > 0.0);
+    // Crease angle above 90°: the cube's creases are no longer drawn.
+    let plot = plot_edges(
+        &cube,
+        &geometry,
+        &view,
+        &PlotOptions::DEFAULT.with_crease_deg(91.0),
+    );
+    assert_eq!(plot.edges.len(), 6);
+}
+
+#[test]
+fn coincident_vertices_are_one_and_a_flat_face_cut_in_two_has_no_line_across() {
+    // Two quads in one plane sharing an edge by position only (an OBJ uv seam duplicates
+    // the vertices), and a third, folded up by 20° (under the crease angle).
+    let v = DVec3::new;
+    let positions = vec![
+        v(0.0, 0.0, 0.0),
+        v(1.0, 0.0, 0.0),
+        v(1.0, 1.0, 0.0),
+        v(0.0, 1.0, 0.0),
+        v(1.0, 0.0, 0.0), // 4 = 1
+        v(2.0, 0.0, 0.0),
+        v(2.0, 1.0, 0.0),
+        v(1.0, 1.0, 0.0), // 7 = 2
+        v(
+            2.0 + 20f64.to_radians().cos(),
+            0.0,
+            20f64.to_radians().sin(),
+        ),
+        v(
+            2.0 + 20f64.to_radians().cos(),
+            1.0,
+            20f64.to_radians().sin(),
+        ),
+    ];
+    let faces = vec![vec![0, 1, 2, 3], vec![4, 5, 6, 7], vec![5, 8, 9, 6]];
+    let mesh = PolygonMesh::new(positions, faces).unwrap();
+    let geometry = Geometry::new(&mesh).unwrap();
+    let view = View::fit(&geometry.bounds(), 200, 200)
+        .with_yaw_pitch_roll(10.0, 30.0, 0.0)
+        .with_cull(CullMode::None);
+    let plot = plot_edges(&mesh, &geometry, &view, &PlotOptions::DEFAULT);
+    assert_eq!(plot.edges.len(), 8, "{:?}", plot.edges);
+    assert!(plot.edges.iter().all(|e| e.kind == EdgeKind::Boundary));
+    // The outline is one closed stroke.
+    assert_eq!(plot.polylines.len(), 1, "{:?}", plot.polylines);
+    assert_eq!(plot.pen_up_px, 0.0);
+}
+
+#[test]
+fn plot_matches_the_brute_force_on_boxy_scenes() {
+    for (name, mesh) in [
+        ("cyclic sticks", cyclic_sticks()),
+        ("nested boxes", nested_boxes()),
+    ] {
+        let geometry = Geometry::new(&mesh).unwrap();
+        let mut total = Tally::default();
+        for (k, view) in views(&geometry).into_iter().enumerate() {
+            for cull in [CullMode::Back, CullMode::None] {
+                let (plot, tally) = check(
+                    &mesh,
+                    &view.with_cull(cull),
+                    &format!("{name} view {k} {cull:?}"),
+                );
+                assert!(!plot.polylines.is_empty());
+                total.visible += tally.visible;
+                total.hidden += tally.hidden;
+                total.ambiguous += tally.ambiguous;
+                total.wrong.extend(tally.wrong);
+            }
+        }
+        println!(
+            "{name}: {} samples visible, {} hidden, {} not judged, {} wrong",
+            total.visible,
+            total.hidden,
+            total.ambiguous,
+            total.wrong.len()
+        );
+        assert!(
+            total.wrong.is_empty(),
+            "{:#?}",
+            &total.wrong[..total.wrong.len().min(20)]
+        );
+        // The check must see both verdicts, and judge most samples (the rest lie within a
+        // pixel of another piece's outline: thin sides, ends where faces meet).
+        assert!(total.visible > 1_000 && total.hidden > 200, "{total:?}");
+        assert!(total.ambiguous < total.visible + total.hidden, "{total:?}");
+    }
+}
+
+#[test]
+fn plot_matches_the_brute_force_on_suzanne() {
+    let mesh = test_support::load_polygon_mesh("suzanne/suzanne.obj");
+    let geometry = Geometry::new(&mesh).unwrap();
+    let mut total = Tally::default();
+    for (k, view) in views(&geometry).into_iter().enumerate().take(3) {
+        let (_, tally) = check(&mesh, &view, &format!("suzanne view {k}"));
+        total.visible += tally.visible;
+        total.hidden += tally.hidden;
+        total.ambiguous += tally.ambiguous;
+        total.wrong.extend(tally.wrong);
+    }
+    println!(
+        "suzanne: {} samples visible, {} hidden, {} not judged, {} wrong",
+        total.visible,
+        total.hidden,
+        total.ambiguous,
+        total.wrong.len()
+    );
+    assert!(
+        total.wrong.is_empty(),
+        "{:#?}",
+        &total.wrong[..total.wrong.len().min(20)]
+    );
+    assert!(total.visible > 1_000 && total.hidden > 100, "{total:?}");
+}
+
+#[test]
+fn svg_and_hpgl_hold_the_polylines() {
+    let mesh = nested_boxes();
+    let geometry = Geometry::new(&mesh).unwrap();
+    let view = views(&geometry)[0];
+    let plot = plot_edges(&mesh, &geometry, &view, &PlotOptions::DEFAULT);
+    let svg = plot.to_svg(1.0);
+    assert_eq!(svg.matches("<path").count(), plot.polylines.len());
+    assert!(!svg.contains("fill=\"black\"") && svg.contains("fill=\"none\""));
+    let hpgl = plot.to_hpgl(40.0);
+    assert!(hpgl.starts_with("IN;SP1;") && hpgl.trim_end().ends_with("PU;SP0;"));
+    assert_eq!(hpgl.matches("PD").count(), plot.polylines.len());
+    // Every polyline vertex lies on the image (ends are on visible edges of a fitted view).
+    let (w, h) = (256.0, 256.0);
+    for p in plot.polylines.iter().flatten() {
+        assert!(
+            (-1.0..=w + 1.0).contains(&p.x) && (-1.0..=h + 1.0).contains(&p.y),
+            "{p}"
+        );
+    }
+}
