@@ -79,7 +79,7 @@ pub use painter::{FrameStats, RotationHandle, RotationSource, SpritePainter};
 pub use pdf::{PdfOptions, write_pdf};
 pub use pick::{ProjectedFrame, contains, outline_svg_path};
 pub use plane_textures::set_plane_textures;
-pub use plot::{EdgeKind, Plot, PlotEdge, PlotOptions, plot_edges};
+pub use plot::{EdgeKind, Plot, PlotEdge, PlotOptions, plot_edges, plot_edges_where};
 pub use recording::{RecordingCompositor, Scene, SceneSprite};
 pub use root::{perspective_matrix, root_transform, rotation_from_yaw_pitch_roll};
 pub use spin::{SpinOptions, write_spin_html};

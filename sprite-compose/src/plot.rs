@@ -113,8 +113,21 @@ pub fn plot_edges(
     view: &View,
     options: &PlotOptions,
 ) -> Plot {
+    plot_edges_where(mesh, geometry, view, options, |_| true)
+}
+
+/// [`plot_edges`] over the faces `include` keeps: the others neither draw edges nor hide
+/// anything (e.g. a ground grid, lines over a transparent face).
+#[must_use]
+pub fn plot_edges_where(
+    mesh: &PolygonMesh,
+    geometry: &Geometry,
+    view: &View,
+    options: &PlotOptions,
+    include: impl Fn(u32) -> bool,
+) -> Plot {
     let centre = geometry.bounds().centre();
-    let occluders = Occluders::new(geometry, view);
+    let occluders = Occluders::new(geometry, view, &include);
     let edges = classify_edges(mesh, centre, &occluders, view, options);
     let length = geometry.bounds().diagonal().max(f64::MIN_POSITIVE);
     let mut stamp = vec![u32::MAX; occluders.pieces.len()];
@@ -364,7 +377,7 @@ struct Occluders {
 }
 
 impl Occluders {
-    fn new(geometry: &Geometry, view: &View) -> Self {
+    fn new(geometry: &Geometry, view: &View, include: &impl Fn(u32) -> bool) -> Self {
         let set = geometry.pieces();
         let cull = view.cull_test();
         let viewer = view.viewer();
@@ -375,6 +388,9 @@ impl Occluders {
         let mut projected = Vec::new();
         for i in 0..set.len() {
             let face = set.face(i);
+            if !include(face) {
+                continue;
+            }
             has_pieces[face as usize] = true;
             let plane = set.plane(i);
             let corners = set.corners(i);

@@ -101,6 +101,18 @@ pub struct RenderArgs {
     /// point).
     #[arg(long, value_name = "OUT.pdf")]
     pdf: Option<PathBuf>,
+    /// Also write a plot of the same view: an SVG of strokes only, the visible parts of the
+    /// boundary, silhouette, crease and non-manifold edges (hidden-line removal), joined
+    /// into polylines for a pen plotter.
+    #[arg(long, value_name = "OUT.svg")]
+    plot: Option<PathBuf>,
+    /// With --plot: edges between drawn faces whose normals differ by at least this many
+    /// degrees are creases and drawn.
+    #[arg(long, value_name = "DEG", default_value_t = 30.0)]
+    crease: f64,
+    /// Also write the plot as HP-GL (40 plotter units per pixel: one pixel to one mm).
+    #[arg(long, value_name = "OUT.hpgl")]
+    hpgl: Option<PathBuf>,
     /// Write every polygon into --svg and --pdf, hidden parts included (the default leaves out
     /// every polygon, or part of one, that opaque polygons in front cover).
     #[arg(long)]
@@ -193,6 +205,25 @@ struct Summary {
     svg: Option<VectorSummary>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pdf: Option<VectorSummary>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    plot: Option<PlotSummary>,
+}
+
+/// What `--plot` (and `--hpgl`) wrote.
+#[derive(Debug, Serialize)]
+struct PlotSummary {
+    /// Edges drawn (boundary, silhouette, crease, non-manifold), visible or not.
+    edges: usize,
+    /// Of those, the ones with a visible part.
+    visible_edges: usize,
+    polylines: usize,
+    /// Length drawn with the pen down, pixels.
+    pen_down_px: f64,
+    /// Travel with the pen up between polylines, pixels.
+    pen_up_px: f64,
+    bytes: usize,
+    /// Edge classification, hidden-line removal, joining and ordering.
+    plot_ms: f64,
 }
 
 /// What `--svg` or `--pdf` wrote.
@@ -419,6 +450,41 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
             std::fs::write(path, html).with_context(|| format!("writing {}", path.display()))?;
         }
     }
+    let plot_summary = if args.plot.is_some() || args.hpgl.is_some() {
+        let start = Instant::now();
+        // The ground grid is left out: it is lines over a transparent face, so it hides
+        // nothing, and its outline is not an edge of the model.
+        let grid_face = grid.as_ref().map(|(face, _)| *face);
+        let plot = sprite_compose::plot_edges_where(
+            &polygons,
+            &geometry,
+            &view,
+            &sprite_compose::PlotOptions::DEFAULT.with_crease_deg(args.crease),
+            |face| Some(face) != grid_face,
+        );
+        let plot_ms = ms(start);
+        let mut bytes = 0;
+        if let Some(path) = &args.plot {
+            let svg = plot.to_svg(1.0);
+            bytes = svg.len();
+            std::fs::write(path, svg).with_context(|| format!("writing {}", path.display()))?;
+        }
+        if let Some(path) = &args.hpgl {
+            std::fs::write(path, plot.to_hpgl(40.0))
+                .with_context(|| format!("writing {}", path.display()))?;
+        }
+        Some(PlotSummary {
+            edges: plot.edges.len(),
+            visible_edges: plot.edges.iter().filter(|e| !e.visible.is_empty()).count(),
+            polylines: plot.polylines.len(),
+            pen_down_px: plot.pen_down_px,
+            pen_up_px: plot.pen_up_px,
+            bytes,
+            plot_ms,
+        })
+    } else {
+        None
+    };
     let start = Instant::now();
     if args.ids {
         // ID images carry file-order face indices (a face split or merged by the loader
@@ -475,6 +541,7 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
         violations,
         svg: svg_summary,
         pdf: pdf_summary,
+        plot: plot_summary,
     };
     if args.json {
         println!("{}", serde_json::to_string(&summary)?);
@@ -592,6 +659,12 @@ fn line(s: &Summary) -> String {
                 v.bytes, v.write_ms
             ));
         }
+    }
+    if let Some(p) = &s.plot {
+        out.push_str(&format!(
+            "; plot {} of {} edges visible, {} polylines, pen down {:.0} px, pen up {:.0} px, {:.1} ms",
+            p.visible_edges, p.edges, p.polylines, p.pen_down_px, p.pen_up_px, p.plot_ms
+        ));
     }
     out.push_str(&format!(" -> {}", s.output));
     out

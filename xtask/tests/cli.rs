@@ -327,3 +327,44 @@ fn render_survives_a_texture_declaring_30000_squared_pixels() {
     );
     assert!(out.exists());
 }
+
+#[test]
+fn plot_writes_strokes_and_hpgl() {
+    let model = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../assets/models/fandisk-quads/fandisk_quads.converted.obj"
+    );
+    let dir = temp_dir("plot");
+    let (svg, hpgl) = (dir.join("fandisk.svg"), dir.join("fandisk.hpgl"));
+    let mut counts = Vec::new();
+    for crease in ["30", "89"] {
+        let value = render_summary(
+            model,
+            &[
+                "--plot",
+                svg.to_str().unwrap(),
+                "--hpgl",
+                hpgl.to_str().unwrap(),
+                "--crease",
+                crease,
+            ],
+            &format!("plot-{crease}"),
+        );
+        let plot = &value["plot"];
+        let written = std::fs::read_to_string(&svg).unwrap();
+        assert_eq!(plot["bytes"], written.len(), "{value}");
+        assert_eq!(
+            written.matches("<path").count() as u64,
+            plot["polylines"].as_u64().unwrap(),
+            "{value}"
+        );
+        assert!(written.contains("fill=\"none\"") && !written.contains("<polygon"));
+        let hpgl = std::fs::read_to_string(&hpgl).unwrap();
+        assert!(hpgl.starts_with("IN;SP1;"), "{hpgl}");
+        assert!(plot["pen_down_px"].as_f64().unwrap() > 100.0, "{value}");
+        assert!(plot["pen_up_px"].as_f64().is_some(), "{value}");
+        counts.push(plot["edges"].as_u64().unwrap());
+    }
+    // A larger crease angle draws fewer creases.
+    assert!(counts[1] < counts[0], "{counts:?}");
+}
