@@ -15,22 +15,27 @@
 //! minus the union of those intervals. This is the same test as the painter's order (a
 //! piece drawn later covers what lies behind it), asked of every point of the line at once.
 //!
-//! The faces that hold an edge never cover it (it lies on their boundary, where no f64
-//! inside test is reliable): they are left out of its candidates. Pieces that only touch an
+//! The pieces an edge lies on never cover it (it lies on their boundary, where no f64 inside
+//! test is reliable): they are left out of its candidates. Those are the pieces of the faces
+//! whose edge it is that have corners at both its ends; another fan triangle of a non-planar
+//! face can cover its own face's edge, and does. Pieces that only touch an
 //! edge at an end cover at most a sliver that the margins ([`PLOT_INSIDE_PX`],
 //! [`PLOT_BEHIND`]) remove.
 //!
-//! Not drawn yet: the intersection curves of interpenetrating faces (the edges are clipped
-//! correctly where faces cross, but the crossing line itself is not drawn).
+//! Where two drawn faces pass through each other, their intersection segment (on the line
+//! where their planes meet, the overlap of the chords each cuts from the other's plane) is
+//! one more edge, clipped the same way ([`EdgeKind::Intersection`]).
 
 use std::collections::HashMap;
 use std::fmt::Write as _;
 
 use face_sort::tolerance::NEAR_W;
-use face_sort::{Geometry, PolygonMesh, ProjectionScratch, View, Viewer, newell_normal};
+use face_sort::{Geometry, Plane, PolygonMesh, ProjectionScratch, View, Viewer, newell_normal};
 use glam::{DVec2, DVec3};
 
-use crate::tolerance::{PLOT_BEHIND, PLOT_INSIDE_PX, PLOT_JOIN_PX, PLOT_MIN_LENGTH_PX};
+use crate::tolerance::{
+    PLOT_BEHIND, PLOT_INSIDE_PX, PLOT_JOIN_PX, PLOT_MIN_LENGTH_PX, PLOT_SAME_CORNER,
+};
 
 /// Options of [`plot_edges`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -71,6 +76,8 @@ pub enum EdgeKind {
     Crease,
     /// Shared by three or more faces, at least one of them drawn.
     NonManifold,
+    /// Where two drawn faces pass through each other.
+    Intersection,
 }
 
 /// One drawn edge and its visible parts.
@@ -101,7 +108,8 @@ pub struct Plot {
     pub size: (u32, u32),
 }
 
-/// The visible edges of `mesh` seen in `view`, clipped exactly (module docs).
+/// The visible edges of `mesh` seen in `view`, and the intersection lines of its drawn faces,
+/// clipped exactly (module docs).
 ///
 /// `geometry` is `Geometry::new(mesh)` (its pieces are the occluders; pieces culled by the
 /// view hide nothing). Vertices at exactly the same position are one vertex, so OBJ seams
@@ -128,8 +136,10 @@ pub fn plot_edges_where(
 ) -> Plot {
     let centre = geometry.bounds().centre();
     let occluders = Occluders::new(geometry, view, &include);
-    let edges = classify_edges(mesh, centre, &occluders, view, options);
     let length = geometry.bounds().diagonal().max(f64::MIN_POSITIVE);
+    let mut edges = classify_edges(mesh, centre, &occluders, view, options);
+    edges.extend(intersection_edges(&occluders, length));
+    let same_corner = PLOT_SAME_CORNER * length;
     let mut stamp = vec![u32::MAX; occluders.pieces.len()];
     let mut candidates = Vec::new();
     let mut covered = Vec::new();
@@ -141,7 +151,7 @@ pub fn plot_edges_where(
                 covered.clear();
                 for &piece in &candidates {
                     let p = &occluders.pieces[piece as usize];
-                    if !edge.faces.contains(&p.face)
+                    if !edge.lies_on(piece, p, same_corner)
                         && let Some(interval) = segment.covered_by(p, length)
                     {
                         covered.push(interval);
@@ -242,8 +252,30 @@ impl Plot {
 struct Classified {
     kind: EdgeKind,
     ends: [DVec3; 2],
-    /// The faces that hold it (never its occluders).
+    /// The faces whose boundary it is.
     faces: Vec<u32>,
+    /// The two pieces it lies inside (intersection lines).
+    pieces: Option<[u32; 2]>,
+}
+
+impl Classified {
+    /// Whether the edge lies on occluder `index` (`piece`), which therefore never covers it:
+    /// a piece of a face whose boundary it is with corners at both its ends (within
+    /// `same_corner`: planar faces are snapped onto their plane), or one of the two pieces of
+    /// an intersection line. Another fan triangle of a non-planar face may cover its own
+    /// face's edge, and does.
+    fn lies_on(&self, index: u32, piece: &Occluder, same_corner: f64) -> bool {
+        if let Some(pieces) = self.pieces {
+            return pieces.contains(&index);
+        }
+        self.faces.contains(&piece.face)
+            && self.ends.iter().all(|&end| {
+                piece
+                    .corners_3d
+                    .iter()
+                    .any(|&c| c.distance_squared(end) <= same_corner * same_corner)
+            })
+    }
 }
 
 /// The edges a drawing shows, on welded vertices (same position, bit for bit, is one
@@ -341,23 +373,123 @@ fn classify_edges(
                     mesh.positions()[b as usize] - centre,
                 ],
                 faces: faces.iter().map(|&(f, _)| f).collect(),
+                pieces: None,
             });
         }
     }
     out
 }
 
+/// The intersection segments of drawn pieces that pass through each other (each has corners
+/// on both sides of the other's plane by more than [`PLOT_BEHIND`] times `length`): on the
+/// line where their planes meet, the overlap of the chords each cuts from the other's plane.
+/// Pieces that only touch (neighbours along an edge or a corner) have none.
+fn intersection_edges(occluders: &Occluders, length: f64) -> Vec<Classified> {
+    let tol = PLOT_BEHIND * length;
+    let mut out = Vec::new();
+    let mut stamp = vec![u32::MAX; occluders.pieces.len()];
+    let mut d = Vec::new();
+    for (i, p) in occluders.pieces.iter().enumerate() {
+        let (c0, r0, c1, r1) = occluders.cell_range(p.min, p.max);
+        for r in r0..=r1 {
+            for c in c0..=c1 {
+                for &j in &occluders.cells[r * occluders.cols + c] {
+                    let q = &occluders.pieces[j as usize];
+                    if j as usize <= i
+                        || stamp[j as usize] == i as u32
+                        || q.face == p.face
+                        || q.min.x > p.max.x
+                        || q.max.x < p.min.x
+                        || q.min.y > p.max.y
+                        || q.max.y < p.min.y
+                    {
+                        continue;
+                    }
+                    stamp[j as usize] = i as u32;
+                    let direction = p.plane.normal().cross(q.plane.normal());
+                    let (Some(a), Some(b)) = (
+                        chord(p, q, direction, tol, &mut d),
+                        chord(q, p, direction, tol, &mut d),
+                    ) else {
+                        continue;
+                    };
+                    // Overlap of the two chords along the line.
+                    let lo = if a.0[0] >= b.0[0] { a.1[0] } else { b.1[0] };
+                    let hi = if a.0[1] <= b.0[1] { a.1[1] } else { b.1[1] };
+                    if direction.dot(hi - lo) > 0.0 {
+                        out.push(Classified {
+                            kind: EdgeKind::Intersection,
+                            ends: [lo, hi],
+                            faces: Vec::new(),
+                            pieces: Some([i as u32, j]),
+                        });
+                    }
+                }
+            }
+        }
+    }
+    out
+}
+
+/// The chord piece `p` cuts from `q`'s plane: its ends' positions along `direction` and the
+/// ends (sorted along it). `None` unless `p` has corners on both sides by more than `tol`.
+fn chord(
+    p: &Occluder,
+    q: &Occluder,
+    direction: DVec3,
+    tol: f64,
+    d: &mut Vec<f64>,
+) -> Option<([f64; 2], [DVec3; 2])> {
+    d.clear();
+    d.extend(p.corners_3d.iter().map(|&c| q.plane.signed_distance(c)));
+    let (lo, hi) = d
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| {
+            (lo.min(v), hi.max(v))
+        });
+    if lo >= -tol || hi <= tol {
+        return None;
+    }
+    let n = d.len();
+    let mut ends: Option<([f64; 2], [DVec3; 2])> = None;
+    for k in 0..n {
+        let (da, db) = (d[k], d[(k + 1) % n]);
+        if (da > 0.0) == (db > 0.0) {
+            continue;
+        }
+        let (a, b) = (p.corners_3d[k], p.corners_3d[(k + 1) % n]);
+        let x = a + (b - a) * (da / (da - db));
+        let s = direction.dot(x);
+        ends = Some(match ends {
+            None => ([s, s], [x, x]),
+            Some((mut range, mut points)) => {
+                if s < range[0] {
+                    range[0] = s;
+                    points[0] = x;
+                }
+                if s > range[1] {
+                    range[1] = s;
+                    points[1] = x;
+                }
+                (range, points)
+            }
+        });
+    }
+    ends.filter(|(range, _)| range[1] > range[0])
+}
+
 /// A drawn piece as an occluder: its projection, plane and face.
 struct Occluder {
     face: u32,
+    /// Corners in centred model space.
+    corners_3d: Vec<DVec3>,
     /// Projected corners (pixels), counter-clockwise in the picture's y-down frame or not:
     /// `orientation` says which.
     corners: Vec<DVec2>,
     orientation: f64,
     min: DVec2,
     max: DVec2,
-    normal: DVec3,
-    offset: f64,
+    plane: Plane,
     /// +1 when the viewer is on the side the normal points to, −1 otherwise.
     viewer_side: f64,
 }
@@ -416,12 +548,12 @@ impl Occluders {
                 });
             pieces.push(Occluder {
                 face,
+                corners_3d: corners.to_vec(),
                 corners: projected.clone(),
                 orientation: area.signum(),
                 min,
                 max,
-                normal: plane.normal(),
-                offset: plane.offset(),
+                plane: *plane,
                 viewer_side: facing.signum(),
             });
         }
@@ -585,7 +717,7 @@ impl Segment {
             }
         }
         // Behind the plane: on the side away from the viewer.
-        let side = |p: DVec3| -piece.viewer_side * (piece.normal.dot(p) + piece.offset);
+        let side = |p: DVec3| -piece.viewer_side * piece.plane.signed_distance(p);
         let margin = PLOT_BEHIND * length;
         if !keep(side(self.ends[0]) - margin, side(self.ends[1]) - margin) {
             return None;

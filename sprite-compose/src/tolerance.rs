@@ -102,3 +102,8 @@ pub const PLOT_MIN_LENGTH_PX: f64 = 1e-3;
 
 /// Plotter edges: polyline ends this close (pixels) are joined.
 pub const PLOT_JOIN_PX: f64 = 1e-6;
+
+/// Plotter edges: an edge lies on a piece of its own face when the piece has corners within
+/// this times the model's diagonal `L` of both its ends (planar faces are snapped onto their
+/// plane by up to `face_sort::tolerance::PLANARITY` of their size).
+pub const PLOT_SAME_CORNER: f64 = 1e-5;
