@@ -69,6 +69,7 @@ mod fill;
 mod grid;
 mod ids;
 mod materials;
+mod overlay;
 mod project;
 mod seams;
 mod style;
@@ -86,6 +87,7 @@ pub use ids::{IdImage, MAX_ID_FACE, render_ids, render_ids_into};
 pub use materials::{
     FaceMaterials, MaterialOptions, MaterialStyle, load_texture, load_texture_with,
 };
+pub use overlay::draw_overlay;
 pub use style::{Brush, Style, TextureBrush, UvMap};
 pub use truth::{PixelError, Truth, pixel_error, truth};
 

@@ -54,7 +54,9 @@ mod bake;
 mod compositor;
 mod hidden;
 mod html;
+mod occlusion;
 mod order;
+mod overlay;
 mod painter;
 mod pdf;
 mod pick;
@@ -75,6 +77,7 @@ pub use bake::{
 pub use compositor::{Brush, Compositor, OpCounts, SpriteId, TextureId};
 pub use hidden::{HiddenParts, Visibility, visible_parts};
 pub use html::{HtmlMode, HtmlOptions, HtmlPieces, css_matrix3d, write_html};
+pub use overlay::{Dot, DrawnOverlay, Line, Overlay, Point, Stroke, visible_overlay};
 pub use painter::{FrameStats, RotationHandle, RotationSource, SpritePainter};
 pub use pdf::{PdfOptions, write_pdf};
 pub use pick::{ProjectedFrame, contains, outline_svg_path};

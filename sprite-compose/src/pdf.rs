@@ -1,11 +1,11 @@
 //! The PDF writer: a scene's visible sprites as filled vector paths in paint order, through
 //! `pdf-writer`.
 
-use pdf_writer::types::LineJoinStyle;
+use pdf_writer::types::{LineCapStyle, LineJoinStyle};
 use pdf_writer::{Content, Finish, Pdf, Rect, Ref};
 
 use crate::hidden::{VectorShape, vector_shapes};
-use crate::{HiddenParts, Scene, Visibility, id_colour};
+use crate::{DrawnOverlay, HiddenParts, Scene, Visibility, id_colour};
 
 /// Options of [`write_pdf`].
 #[derive(Clone, Debug, PartialEq)]
@@ -29,6 +29,9 @@ pub struct PdfOptions {
     /// Keep or remove hidden parts (as [`SvgOptions::hidden`](crate::SvgOptions::hidden)).
     /// Default: keep.
     pub hidden: HiddenParts,
+    /// Lines and points drawn after the faces, in their own colours (their visible parts,
+    /// [`visible_overlay`](crate::visible_overlay)), in ID mode too. Default: none.
+    pub overlay: Option<DrawnOverlay>,
 }
 
 impl PdfOptions {
@@ -41,7 +44,15 @@ impl PdfOptions {
         background: None,
         seam_stroke: 0.0,
         hidden: HiddenParts::Keep,
+        overlay: None,
     };
+
+    /// Lines and points drawn after the faces.
+    #[must_use]
+    pub fn with_overlay(mut self, overlay: DrawnOverlay) -> Self {
+        self.overlay = Some(overlay);
+        self
+    }
 
     /// Image size in pixels.
     #[must_use]
@@ -146,6 +157,9 @@ pub fn write_pdf(scene: &Scene, options: &PdfOptions) -> Vec<u8> {
             content.fill_even_odd();
         }
     }
+    if let Some(overlay) = &options.overlay {
+        draw_overlay(&mut content, overlay);
+    }
 
     let mut pdf = Pdf::new();
     pdf.catalog(catalog).pages(pages);
@@ -158,6 +172,40 @@ pub fn write_pdf(scene: &Scene, options: &PdfOptions) -> Vec<u8> {
     page_writer.finish();
     pdf.stream(content_id, &content.finish());
     pdf.finish()
+}
+
+/// Strokes (butt caps) then dots (four cubic Béziers each, within 3e-4 of the radius).
+fn draw_overlay(content: &mut Content, overlay: &DrawnOverlay) {
+    content.set_line_cap(LineCapStyle::ButtCap);
+    for stroke in &overlay.strokes {
+        let [r, g, b] = unit_rgb(stroke.colour);
+        let [a, c] = stroke.ends;
+        content
+            .set_stroke_rgb(r, g, b)
+            .set_line_width(stroke.width_px as f32)
+            .move_to(a.x as f32, a.y as f32)
+            .line_to(c.x as f32, c.y as f32)
+            .stroke();
+    }
+    // Control distance of a quarter circle: 4/3 · tan(π/8).
+    const K: f64 = 0.552_284_749_830_793_4;
+    for dot in &overlay.dots {
+        fill_colour(content, dot.colour);
+        let (c, r) = (dot.centre, dot.radius_px);
+        let p = |x: f64, y: f64| ((c.x + x * r) as f32, (c.y + y * r) as f32);
+        let start = p(1.0, 0.0);
+        content.move_to(start.0, start.1);
+        for [(x1, y1), (x2, y2), (x3, y3)] in [
+            [(1.0, K), (K, 1.0), (0.0, 1.0)],
+            [(-K, 1.0), (-1.0, K), (-1.0, 0.0)],
+            [(-1.0, -K), (-K, -1.0), (0.0, -1.0)],
+            [(K, -1.0), (1.0, -K), (1.0, 0.0)],
+        ] {
+            let (a, b, e) = (p(x1, y1), p(x2, y2), p(x3, y3));
+            content.cubic_to(a.0, a.1, b.0, b.1, e.0, e.1);
+        }
+        content.close_path().fill_nonzero();
+    }
 }
 
 fn trace(content: &mut Content, contour: &[glam::DVec2]) {

@@ -6,6 +6,7 @@ mod support;
 mod bake;
 mod browser;
 mod hidden;
+mod overlay;
 mod painter;
 mod pdf;
 mod plot;

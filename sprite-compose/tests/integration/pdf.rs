@@ -27,9 +27,9 @@ use crate::writers::ids_of_rgba;
 const PDFTOPPM: &str = "pdftoppm";
 const SIZE: u32 = 200;
 /// Odd, so that one hi-res pixel is centred on each pixel centre.
-const ZOOM: u32 = 5;
+pub const ZOOM: u32 = 5;
 
-fn pdftoppm_available() -> bool {
+pub fn pdftoppm_available() -> bool {
     let found = Command::new(PDFTOPPM).arg("-v").output().is_ok();
     if !found {
         assert!(
@@ -42,7 +42,7 @@ fn pdftoppm_available() -> bool {
 }
 
 /// Rasterises a one-page PDF at `72 · zoom` dpi (one point to `zoom` pixels), anti-aliasing off.
-fn rasterise(pdf: &[u8], name: &str, zoom: u32) -> resvg::tiny_skia::Pixmap {
+pub fn rasterise(pdf: &[u8], name: &str, zoom: u32) -> resvg::tiny_skia::Pixmap {
     let dir =
         std::env::temp_dir().join(format!("sprite-compose-pdf-{name}-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);

@@ -17,7 +17,7 @@ const JUDGE_PX: f64 = 1.0;
 const DEPTH_TOL: f64 = 1e-7;
 
 /// A drawn piece for the brute force: projected corners and plane.
-struct Drawn {
+pub struct Drawn {
     corners: Vec<DVec2>,
     plane: Plane,
 }
@@ -43,13 +43,15 @@ fn signed_distance(poly: &[DVec2], p: DVec2) -> f64 {
 
 /// What the brute force sees at one point of an edge.
 #[derive(Debug, PartialEq)]
-enum Verdict {
+pub enum Verdict {
     Visible,
     Hidden,
     Ambiguous,
 }
 
-fn brute_force(view: &View, drawn: &[Drawn], x: DVec3, length: f64) -> Verdict {
+/// Whether centred model point `x` is seen: a ray from the viewer through it against every
+/// drawn piece (point in polygon with a 1 px margin, ray–plane depth).
+pub fn brute_force(view: &View, drawn: &[Drawn], x: DVec3, length: f64) -> Verdict {
     let Some(p) = view.project_view_point(view.to_view(x)) else {
         return Verdict::Ambiguous;
     };
@@ -107,9 +109,8 @@ struct Tally {
     wrong: Vec<String>,
 }
 
-fn check(mesh: &PolygonMesh, view: &View, name: &str) -> (Plot, Tally) {
-    let geometry = Geometry::new(mesh).expect("geometry");
-    let plot = plot_edges(mesh, &geometry, view, &PlotOptions::DEFAULT);
+/// The pieces of `geometry` drawn in `view`, projected.
+pub fn drawn_pieces(geometry: &Geometry, view: &View) -> Vec<Drawn> {
     let set = geometry.pieces();
     let cull = view.cull_test();
     let mut scratch = ProjectionScratch::default();
@@ -128,6 +129,13 @@ fn check(mesh: &PolygonMesh, view: &View, name: &str) -> (Plot, Tally) {
             });
         }
     }
+    drawn
+}
+
+fn check(mesh: &PolygonMesh, view: &View, name: &str) -> (Plot, Tally) {
+    let geometry = Geometry::new(mesh).expect("geometry");
+    let plot = plot_edges(mesh, &geometry, view, &PlotOptions::DEFAULT);
+    let drawn = drawn_pieces(&geometry, view);
     let length = geometry.bounds().diagonal();
     let mut tally = Tally::default();
     for (k, edge) in plot.edges.iter().enumerate() {
