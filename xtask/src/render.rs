@@ -101,6 +101,13 @@ pub struct RenderArgs {
     /// point).
     #[arg(long, value_name = "OUT.pdf")]
     pdf: Option<PathBuf>,
+    /// Draw every mesh edge over the model (hidden parts hidden), black, 1 px, in the PNG,
+    /// --svg and --pdf (not in --html; ignored with --ids).
+    #[arg(long)]
+    wire: bool,
+    /// Draw every vertex (hidden ones hidden) as a 2 px dot, like --wire.
+    #[arg(long)]
+    points: bool,
     /// Also write a plot of the same view: an SVG of strokes only, the visible parts of the
     /// boundary, silhouette, crease and non-manifold edges (hidden-line removal), joined
     /// into polylines for a pen plotter.
@@ -349,6 +356,30 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
     } else {
         raster::face_style(&geometry, &mesh, texture.clone(), grid.as_ref())?
     };
+    // --wire / --points: the visible parts of the mesh's edges and vertices, drawn after the
+    // faces by every writer but the HTML one (the ground grid's outline left out).
+    let overlay = ((args.wire || args.points) && !args.ids).then(|| {
+        let grid_face = grid.as_ref().map(|(face, _)| *face);
+        let mut overlay = sprite_compose::Overlay::default();
+        if args.wire {
+            overlay = overlay.with(sprite_compose::Overlay::wireframe(
+                &polygons,
+                [0, 0, 0, 255],
+                1.0,
+            ));
+        }
+        if args.points {
+            overlay = overlay.with(sprite_compose::Overlay::vertices(
+                &polygons,
+                [0, 0, 0, 255],
+                2.0,
+            ));
+        }
+        let model_face = |faces: &[u32]| faces.iter().any(|&f| Some(f) != grid_face);
+        overlay.lines.retain(|l| model_face(&l.faces));
+        overlay.points.retain(|p| model_face(&p.faces));
+        sprite_compose::visible_overlay(&geometry, &view, &overlay)
+    });
     let (mut svg_summary, mut pdf_summary) = (None, None);
     let hidden = if args.keep_hidden {
         sprite_compose::HiddenParts::Keep
@@ -405,7 +436,8 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
                     .with_ids(args.ids)
                     .with_seam_stroke(1.0)
                     .with_hidden(hidden)
-                    .with_textures(texture_files.clone()),
+                    .with_textures(texture_files.clone())
+                    .with_overlay(overlay.as_ref().map_or_else(String::new, |o| o.to_svg())),
             );
             svg_summary = Some(VectorSummary {
                 shapes: Some(svg.matches("<polygon").count() + svg.matches("<path").count()),
@@ -417,15 +449,16 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
         }
         if let Some(path) = &args.pdf {
             let start = Instant::now();
-            let pdf = sprite_compose::write_pdf(
-                scene,
-                &sprite_compose::PdfOptions::DEFAULT
-                    .with_size(width, height)
-                    .with_ids(args.ids)
-                    .with_background(args.ids.then_some([0, 0, 0, 255]))
-                    .with_seam_stroke(if args.ids { 0.0 } else { 1.0 })
-                    .with_hidden(hidden),
-            );
+            let mut options = sprite_compose::PdfOptions::DEFAULT
+                .with_size(width, height)
+                .with_ids(args.ids)
+                .with_background(args.ids.then_some([0, 0, 0, 255]))
+                .with_seam_stroke(if args.ids { 0.0 } else { 1.0 })
+                .with_hidden(hidden);
+            if let Some(overlay) = &overlay {
+                options = options.with_overlay(overlay.clone());
+            }
+            let pdf = sprite_compose::write_pdf(scene, &options);
             pdf_summary = Some(VectorSummary {
                 shapes: None,
                 bytes: pdf.len(),
@@ -502,8 +535,11 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
         let options = raster_sink::RasterOptions::DEFAULT
             .with_anti_alias(!args.no_aa)
             .with_shading(shade);
-        let image = raster_sink::render_colour(&view, &list, &style, &options)
+        let mut image = raster_sink::render_colour(&view, &list, &style, &options)
             .map_err(|e| anyhow::anyhow!("raster: {e}"))?;
+        if let Some(overlay) = &overlay {
+            raster_sink::draw_overlay(&mut image, overlay, !args.no_aa);
+        }
         raster_sink::save_png(&image, &output)
             .map_err(|e| anyhow::anyhow!("{}: {e}", output.display()))?;
     }

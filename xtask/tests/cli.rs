@@ -368,3 +368,34 @@ fn plot_writes_strokes_and_hpgl() {
     // A larger crease angle draws fewer creases.
     assert!(counts[1] < counts[0], "{counts:?}");
 }
+
+#[test]
+fn wire_and_points_are_drawn_in_png_svg_and_pdf() {
+    let model = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../assets/models/fandisk-quads/fandisk_quads.converted.obj"
+    );
+    let dir = temp_dir("wire");
+    let (svg, pdf) = (dir.join("fandisk.svg"), dir.join("fandisk.pdf"));
+    let mut sizes = Vec::new();
+    for extra in [&[][..], &["--wire", "--points"][..]] {
+        let mut args = vec![
+            "--svg",
+            svg.to_str().unwrap(),
+            "--pdf",
+            pdf.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        render_summary(model, &args, &format!("wire-{}", extra.len()));
+        let written = std::fs::read_to_string(&svg).unwrap();
+        sizes.push((
+            written.matches("<line").count(),
+            written.matches("<circle").count(),
+            std::fs::metadata(&pdf).unwrap().len(),
+        ));
+    }
+    assert_eq!((sizes[0].0, sizes[0].1), (0, 0), "{sizes:?}");
+    // Fandisk's 764 faces: hundreds of visible edge parts and vertices.
+    assert!(sizes[1].0 > 300 && sizes[1].1 > 100, "{sizes:?}");
+    assert!(sizes[1].2 > sizes[0].2, "{sizes:?}");
+}
