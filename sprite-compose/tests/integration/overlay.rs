@@ -356,3 +356,77 @@ fn lines_and_points_are_exact_in_pdf() {
         rgba
     });
 }
+
+/// Cases per property: 24, or `PROPTEST_CASES`.
+fn proptest_config() -> proptest::test_runner::Config {
+    let cases = std::env::var("PROPTEST_CASES")
+        .ok()
+        .and_then(|c| c.parse().ok())
+        .unwrap_or(24);
+    proptest::test_runner::Config::with_cases(cases)
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest_config())]
+
+    /// Random scenes (non-intersecting, interpenetrating, cyclic; tiny and huge scales) and
+    /// views, and random lines through their bounds: every point of a line that the ray-cast
+    /// brute force sees (judged at 1 px) is drawn, and none it finds hidden.
+    #[test]
+    fn a_lines_visible_parts_are_what_the_rays_see(
+        scene in sprite_compose::face_sort::strategies::any_scene(),
+        spec in sprite_compose::face_sort::strategies::view_spec(),
+        fractions in proptest::collection::vec(proptest::array::uniform6(0.0..1.0f64), 1..4),
+    ) {
+        let Ok(geometry) = Geometry::new(&scene) else { return Ok(()); };
+        let view = spec.view(&geometry);
+        let bounds = geometry.bounds();
+        let at = |f: &[f64]| bounds.min + (bounds.max - bounds.min) * DVec3::new(f[0], f[1], f[2]);
+        let overlay = Overlay {
+            lines: fractions
+                .iter()
+                .map(|f| Line { ends: [at(&f[..3]), at(&f[3..])], colour: RED, width_px: 1.0, faces: Vec::new() })
+                .collect(),
+            points: Vec::new(),
+        };
+        let drawn = visible_overlay(&geometry, &view, &overlay);
+        let pieces = drawn_pieces(&geometry, &view);
+        let centre = bounds.centre();
+        let length = bounds.diagonal();
+        for (n, line) in overlay.lines.iter().enumerate() {
+            let (pa, pb) = (line.ends[0] - centre, line.ends[1] - centre);
+            let project = |p: DVec3| view.project_view_point(view.to_view(p));
+            let (Some(a), Some(b)) = (project(pa), project(pb)) else { continue };
+            let len = a.distance(b);
+            if len < 3.0 || len > 1e5 { continue; }
+            let (wa, wb) = (view.w_of_view_point(view.to_view(pa)), view.w_of_view_point(view.to_view(pb)));
+            let seen = |s: f64| {
+                let t = s * wa / (s * wa + (1.0 - s) * wb);
+                brute_force(&view, &pieces, pa.lerp(pb, t), length)
+            };
+            let steps = (len / 0.25).ceil() as usize;
+            for k in 0..steps {
+                let s = (k as f64 + 0.5) / steps as f64;
+                if s * len < 1.0 || (1.0 - s) * len < 1.0 {
+                    continue;
+                }
+                let verdict = seen(s);
+                if verdict == Verdict::Ambiguous || seen(s - 1.0 / len) != verdict || seen(s + 1.0 / len) != verdict {
+                    continue;
+                }
+                let p = a.lerp(b, s);
+                let shown = drawn.strokes.iter().filter(|st| st.line == n).any(|st| {
+                    let [u, v] = st.ends;
+                    let uv = v - u;
+                    let q = ((p - u).dot(uv) / uv.length_squared().max(f64::MIN_POSITIVE)).clamp(0.0, 1.0);
+                    (u + uv * q).distance(p) <= 1e-6 * len.max(1.0)
+                });
+                proptest::prop_assert_eq!(
+                    shown,
+                    verdict == Verdict::Visible,
+                    "line {} at s = {}: brute force {:?}", n, s, verdict
+                );
+            }
+        }
+    }
+}
