@@ -398,7 +398,7 @@ proptest::proptest! {
             let project = |p: DVec3| view.project_view_point(view.to_view(p));
             let (Some(a), Some(b)) = (project(pa), project(pb)) else { continue };
             let len = a.distance(b);
-            if len < 3.0 || len > 1e5 { continue; }
+            if !(3.0..=1e5).contains(&len) { continue; }
             let (wa, wb) = (view.w_of_view_point(view.to_view(pa)), view.w_of_view_point(view.to_view(pb)));
             let seen = |s: f64| {
                 let t = s * wa / (s * wa + (1.0 - s) * wb);
