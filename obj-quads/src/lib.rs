@@ -93,7 +93,7 @@ use std::path::Path;
 pub use error::{FaceLocation, LoadError};
 #[cfg(feature = "gltf")]
 pub use gltf_load::{load_gltf, load_gltf_slice};
-pub use mesh::{Material, Mesh};
+pub use mesh::{EmbeddedTexture, Material, Mesh};
 #[cfg(feature = "obj")]
 pub use obj::{load_obj, load_obj_reader, load_obj_str};
 pub use options::{FacePolicy, LoadOptions, LoadReport, NonConvexPolicy, NonPlanarPolicy};

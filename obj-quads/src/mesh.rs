@@ -21,6 +21,33 @@ pub struct Material {
     /// directory; glTF base colour texture with a URI, resolved relative to the
     /// glTF file's directory). `None` for embedded images.
     pub texture: Option<PathBuf>,
+    /// Diffuse texture held in the file itself (glTF data URI or GLB buffer view), encoded
+    /// (PNG or JPEG), for `decode_texture`. `None` when the texture is a file or absent.
+    pub embedded_texture: Option<EmbeddedTexture>,
+    /// Whether the texture's texels are multiplied by [`diffuse`](Self::diffuse): glTF's base
+    /// colour is `baseColorFactor × texture` (true); an OBJ's `Kd` is the colour of faces
+    /// without a texture and leaves `map_Kd` as it is (false).
+    pub texture_times_diffuse: bool,
+}
+
+/// An encoded image held in a model file.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub struct EmbeddedTexture {
+    /// Where it came from, for messages: e.g. `image 0 (buffer view 3)`.
+    pub name: String,
+    /// The encoded bytes (PNG or JPEG), shared by every material that uses it.
+    pub bytes: std::sync::Arc<[u8]>,
+}
+
+impl EmbeddedTexture {
+    /// An embedded image with a name for messages.
+    pub fn new(name: impl Into<String>, bytes: impl Into<std::sync::Arc<[u8]>>) -> Self {
+        EmbeddedTexture {
+            name: name.into(),
+            bytes: bytes.into(),
+        }
+    }
 }
 
 impl Material {
@@ -30,6 +57,8 @@ impl Material {
             name: name.into(),
             diffuse,
             texture: None,
+            embedded_texture: None,
+            texture_times_diffuse: false,
         }
     }
 

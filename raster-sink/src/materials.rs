@@ -35,8 +35,20 @@ pub trait FaceMaterials {
     /// A face's diffuse colour, RGBA in 0..=1, mapped linearly to bytes; `None` when the
     /// face has no material (it is then painted in its palette colour).
     fn face_diffuse(&self, face: usize) -> Option<[f32; 4]>;
-    /// A face's diffuse texture file (PNG), if its material has one.
+    /// A face's diffuse texture file (PNG or JPEG), if its material has one.
     fn face_texture(&self, face: usize) -> Option<&Path>;
+    /// A face's diffuse texture held in the model file (encoded PNG or JPEG), with a name for
+    /// messages, when it has no texture file. Default: none.
+    fn face_embedded_texture(&self, face: usize) -> Option<(&str, &[u8])> {
+        let _ = face;
+        None
+    }
+    /// The factor a face's texture is multiplied by (linear RGBA, e.g. glTF's
+    /// `baseColorFactor`); `None` leaves the texture as it is. Default: none.
+    fn face_texture_factor(&self, face: usize) -> Option<[f32; 4]> {
+        let _ = face;
+        None
+    }
     /// A face's model-space normal (any length) for flat shading: by default Newell's
     /// normal of its corners.
     fn face_normal(&self, face: usize) -> Option<DVec3> {
@@ -100,6 +112,48 @@ pub fn load_texture_with(
         path: path.to_path_buf(),
         source: Box::new(source),
     })?;
+    pixmap_of(texture, path)
+}
+
+/// Where a face's texture comes from.
+#[derive(Clone, Copy)]
+enum TextureSource<'a> {
+    File(&'a Path),
+    /// Name for messages, encoded bytes.
+    Embedded(&'a str, &'a [u8]),
+}
+
+/// A decoded texture's cache key: its file, or its bytes' address and length.
+#[derive(Clone, PartialEq, Eq, Hash)]
+enum TextureKey {
+    File(PathBuf),
+    Embedded(usize, usize),
+}
+
+impl TextureSource<'_> {
+    fn key(&self) -> TextureKey {
+        match *self {
+            TextureSource::File(path) => TextureKey::File(path.to_path_buf()),
+            TextureSource::Embedded(_, bytes) => {
+                TextureKey::Embedded(bytes.as_ptr() as usize, bytes.len())
+            }
+        }
+    }
+}
+
+/// Decodes a texture held in a model file within the default texture limits.
+fn decode_embedded(name: &str, bytes: &[u8]) -> Result<Pixmap, RasterError> {
+    let path = PathBuf::from(name);
+    let texture = obj_quads::decode_texture(bytes, name, &obj_quads::LoadOptions::DEFAULT)
+        .map_err(|source| RasterError::Texture {
+            path: path.clone(),
+            source: Box::new(source),
+        })?;
+    pixmap_of(texture, &path)
+}
+
+/// A decoded texture (straight RGBA) as a premultiplied pixmap.
+fn pixmap_of(texture: obj_quads::Texture, path: &Path) -> Result<Pixmap, RasterError> {
     let size = tiny_skia::IntSize::from_wh(texture.width, texture.height);
     let mut data = texture.rgba;
     for pixel in data.chunks_exact_mut(4) {
@@ -111,6 +165,41 @@ pub fn load_texture_with(
             path: path.to_path_buf(),
             message: "decoded texture does not fit a pixmap".into(),
         })
+}
+
+/// `image` with every texel multiplied by `factor` (linear RGBA, as glTF's
+/// `baseColorFactor`): sRGB texels to linear, times the factor, back to sRGB.
+fn tint(image: &Pixmap, factor: [f32; 4]) -> Pixmap {
+    let to_linear = |c: u8| {
+        let c = f32::from(c) / 255.0;
+        if c <= 0.04045 {
+            c / 12.92
+        } else {
+            ((c + 0.055) / 1.055).powf(2.4)
+        }
+    };
+    let to_srgb = |l: f32| {
+        let l = l.clamp(0.0, 1.0);
+        let c = if l <= 0.003_130_8 {
+            l * 12.92
+        } else {
+            1.055 * l.powf(1.0 / 2.4) - 0.055
+        };
+        (c * 255.0).round() as u8
+    };
+    let mut out = image.clone();
+    for pixel in out.pixels_mut() {
+        let c = pixel.demultiply();
+        let a = (f32::from(c.alpha()) * factor[3].clamp(0.0, 1.0)).round() as u8;
+        let tinted = tiny_skia::ColorU8::from_rgba(
+            to_srgb(to_linear(c.red()) * factor[0]),
+            to_srgb(to_linear(c.green()) * factor[1]),
+            to_srgb(to_linear(c.blue()) * factor[2]),
+            a,
+        );
+        *pixel = tinted.premultiply();
+    }
+    out
 }
 
 /// A diffuse colour in 0..=1 as bytes.
@@ -133,31 +222,61 @@ impl Style {
     ) -> Result<MaterialStyle, RasterError> {
         let mut style = Style::palette();
         let mut warnings = Vec::new();
-        let mut textures: HashMap<PathBuf, Option<Arc<Pixmap>>> = HashMap::new();
-        let mut load = |path: &Path| -> Result<Option<Arc<Pixmap>>, RasterError> {
-            if let Some(t) = textures.get(path) {
-                return Ok(t.clone());
-            }
-            let image = match load_texture(path) {
-                Ok(image) => Some(Arc::new(image)),
-                Err(e) if options.texture.as_deref() == Some(path) => return Err(e),
-                Err(e) => {
-                    warnings.push(e);
-                    None
+        // Decoded textures by source, and tinted copies by source and factor.
+        let mut textures: HashMap<TextureKey, Option<Arc<Pixmap>>> = HashMap::new();
+        let mut tinted: HashMap<(TextureKey, [u32; 4]), Arc<Pixmap>> = HashMap::new();
+        let mut load = |source: TextureSource<'_>,
+                        factor: Option<[f32; 4]>|
+         -> Result<Option<Arc<Pixmap>>, RasterError> {
+            let key = source.key();
+            let image = match textures.get(&key) {
+                Some(t) => t.clone(),
+                None => {
+                    let decoded = match source {
+                        TextureSource::File(path) => load_texture(path),
+                        TextureSource::Embedded(name, bytes) => decode_embedded(name, bytes),
+                    };
+                    let image = match decoded {
+                        Ok(image) => Some(Arc::new(image)),
+                        Err(e) if matches!(source, TextureSource::File(p) if options.texture.as_deref() == Some(p)) =>
+                        {
+                            return Err(e);
+                        }
+                        Err(e) => {
+                            warnings.push(e);
+                            None
+                        }
+                    };
+                    textures.insert(key.clone(), image.clone());
+                    image
                 }
             };
-            textures.insert(path.to_owned(), image.clone());
-            Ok(image)
+            Ok(match (image, factor) {
+                (Some(image), Some(f)) if f != [1.0; 4] => Some(Arc::clone(
+                    tinted
+                        .entry((key, f.map(f32::to_bits)))
+                        .or_insert_with(|| Arc::new(tint(&image, f))),
+                )),
+                (image, _) => image,
+            })
         };
         let positions = faces.positions();
         let mut corners = Vec::new();
         let mut uv_points = Vec::new();
         for face in 0..faces.face_count() {
-            let texture_path = faces.face_texture(face).or(options.texture.as_deref());
+            let source = faces
+                .face_texture(face)
+                .map(TextureSource::File)
+                .or_else(|| {
+                    faces
+                        .face_embedded_texture(face)
+                        .map(|(name, bytes)| TextureSource::Embedded(name, bytes))
+                })
+                .or(options.texture.as_deref().map(TextureSource::File));
             let mut brush = None;
-            if let (Some(path), Some(uvs), Some(indices)) =
-                (texture_path, faces.face_uvs(face), faces.face_corners(face))
-                && let Some(image) = load(path)?
+            if let (Some(source), Some(uvs), Some(indices)) =
+                (source, faces.face_uvs(face), faces.face_corners(face))
+                && let Some(image) = load(source, faces.face_texture_factor(face))?
             {
                 corners.clear();
                 corners.extend(indices.iter().map(|&i| positions[i as usize] - centre));
@@ -295,6 +414,18 @@ impl FaceMaterials for obj_quads::Mesh {
         self.face_material(face)
             .and_then(|m| self.materials().get(m as usize))
             .and_then(|m| m.texture.as_deref())
+    }
+    fn face_embedded_texture(&self, face: usize) -> Option<(&str, &[u8])> {
+        self.face_material(face)
+            .and_then(|m| self.materials().get(m as usize))
+            .and_then(|m| m.embedded_texture.as_ref())
+            .map(|t| (t.name.as_str(), &t.bytes[..]))
+    }
+    fn face_texture_factor(&self, face: usize) -> Option<[f32; 4]> {
+        self.face_material(face)
+            .and_then(|m| self.materials().get(m as usize))
+            .filter(|m| m.texture_times_diffuse)
+            .map(|m| m.diffuse)
     }
     fn face_normal(&self, face: usize) -> Option<DVec3> {
         obj_quads::Mesh::face_normal(self, face)

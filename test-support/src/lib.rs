@@ -30,6 +30,7 @@ pub mod models;
 mod obj_text;
 mod paths;
 mod rng;
+pub mod textured_box;
 
 pub use obj_text::to_obj;
 pub use paths::{

@@ -476,7 +476,13 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
                     .with_textures(
                         texture_files
                             .iter()
-                            .map(|f| format!("file://{f}"))
+                            .map(|f| {
+                                if f.starts_with("data:") {
+                                    f.clone()
+                                } else {
+                                    format!("file://{f}")
+                                }
+                            })
                             .collect(),
                     ),
             );
@@ -710,20 +716,37 @@ fn ms(start: Instant) -> f64 {
     start.elapsed().as_secs_f64() * 1e3
 }
 
-/// The absolute path of the file `image` was loaded from: the texture of the first face that
-/// paints it (its material's, else `fallback`, the --texture or demo texture).
+/// Where the SVG and HTML writers find `image`: the absolute path of the file it was loaded
+/// from (the texture of the first face that paints it: its material's, else `fallback`, the
+/// --texture or demo texture), or, for a texture held in the model file or multiplied by a
+/// glTF `baseColorFactor`, a PNG data URI of the image itself.
 fn texture_file(
     style: &raster_sink::Style,
     mesh: &obj_quads::Mesh,
     image: &std::sync::Arc<raster_sink::tiny_skia::Pixmap>,
     fallback: Option<&std::path::Path>,
 ) -> Option<String> {
+    use base64::Engine as _;
     use raster_sink::FaceMaterials as _;
     let face = (0..mesh.face_count()).find(|&face| {
         matches!(style.brush(face as u32),
             Some(raster_sink::Brush::Texture(t)) if std::sync::Arc::ptr_eq(&t.image, image))
     })?;
-    let file = mesh.face_texture(face).or(fallback)?;
-    let file = std::fs::canonicalize(file).unwrap_or_else(|_| file.to_path_buf());
-    Some(file.display().to_string())
+    let tinted = mesh
+        .face_texture_factor(face)
+        .is_some_and(|f| f != [1.0; 4]);
+    match mesh.face_texture(face).or(fallback) {
+        Some(file) if !tinted && mesh.face_embedded_texture(face).is_none() => {
+            let file = std::fs::canonicalize(file).unwrap_or_else(|_| file.to_path_buf());
+            Some(file.display().to_string())
+        }
+        _ => {
+            // Straight-alpha PNG of the (premultiplied) pixmap.
+            let png = image.encode_png().ok()?;
+            Some(format!(
+                "data:image/png;base64,{}",
+                base64::engine::general_purpose::STANDARD.encode(png)
+            ))
+        }
+    }
 }

@@ -399,3 +399,45 @@ fn wire_and_points_are_drawn_in_png_svg_and_pdf() {
     assert!(sizes[1].0 > 300 && sizes[1].1 > 100, "{sizes:?}");
     assert!(sizes[1].2 > sizes[0].2, "{sizes:?}");
 }
+
+#[test]
+fn embedded_gltf_textures_reach_every_writer() {
+    use test_support::textured_box::{ImageSource, textured_box};
+    let dir = temp_dir("glb");
+    let glb = dir.join("box.glb");
+    std::fs::write(
+        &glb,
+        textured_box(ImageSource::Glb, Some([0.5, 1.0, 0.25, 1.0])),
+    )
+    .unwrap();
+    let (svg, html) = (dir.join("box.svg"), dir.join("box.html"));
+    let out = xtask(&[
+        "render",
+        glb.to_str().unwrap(),
+        "--yaw",
+        "30",
+        "--pitch",
+        "25",
+        "--svg",
+        svg.to_str().unwrap(),
+        "--html",
+        html.to_str().unwrap(),
+        "-o",
+        dir.join("box.png").to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    // No warning about the texture: it is drawn, not replaced by the fallback colour.
+    assert!(
+        !text(&out.stderr).contains("texture"),
+        "{}",
+        text(&out.stderr)
+    );
+    for page in [&svg, &html] {
+        let written = std::fs::read_to_string(page).unwrap();
+        assert!(
+            written.contains("data:image/png;base64,"),
+            "{}: the embedded, tinted texture is written as a data URI",
+            page.display()
+        );
+    }
+}

@@ -1,17 +1,18 @@
-//! Materials: base colour factor and base colour texture path (confined to
-//! the model's folder).
+//! Materials: base colour factor and base colour texture: a path (confined to the
+//! model's folder), or the encoded image held in the file (data URI, GLB buffer view).
 
 use std::path::PathBuf;
 
 use gltf::Document;
 
-use super::buffers::uri_path;
+use super::buffers::{data_uri, uri_path};
 use crate::paths::Folder;
-use crate::{LoadOptions, Material};
+use crate::{EmbeddedTexture, LoadOptions, Material};
 
 /// Materials in document order: base colour factor and texture.
 pub(super) fn materials(
     doc: &Document,
+    buffers: &[Vec<u8>],
     folder: Option<&Folder>,
     options: &LoadOptions,
     warnings: &mut Vec<String>,
@@ -31,26 +32,70 @@ pub(super) fn materials(
                 diffuse = [1.0; 4];
             }
             let mut material = Material::new(name, diffuse);
+            material.texture_times_diffuse = true;
             if let Some(info) = pbr.base_color_texture() {
-                match info.texture().source().source() {
+                let image = info.texture().source();
+                let found = match image.source() {
                     gltf::image::Source::Uri { uri, .. } if !uri.starts_with("data:") => {
-                        match texture_path(uri, folder, options) {
-                            Ok(path) => material.texture = Some(path),
-                            Err(e) => warnings.push(format!(
-                                "material `{}`: texture not used (fallback colour): {e}",
-                                material.name
-                            )),
-                        }
+                        texture_path(uri, folder, options).map(|path| material.texture = Some(path))
                     }
-                    _ => warnings.push(format!(
-                        "material `{}`: base colour texture is embedded; no path recorded",
+                    source => embedded(image.index(), &source, buffers, options)
+                        .map(|texture| material.embedded_texture = Some(texture)),
+                };
+                if let Err(e) = found {
+                    warnings.push(format!(
+                        "material `{}`: texture not used (fallback colour): {e}",
                         material.name
-                    )),
+                    ));
                 }
             }
             material
         })
         .collect()
+}
+
+/// The encoded bytes of an image held in the file: a data URI, or a buffer view (its range
+/// checked against its buffer), within the texture file size limit.
+fn embedded(
+    index: usize,
+    source: &gltf::image::Source<'_>,
+    buffers: &[Vec<u8>],
+    options: &LoadOptions,
+) -> Result<EmbeddedTexture, String> {
+    let (name, bytes) = match source {
+        gltf::image::Source::Uri { uri, .. } => {
+            let decoded = data_uri(uri).unwrap_or_else(|| Err("not a data URI".into()))?;
+            (format!("image {index} (data URI)"), decoded)
+        }
+        gltf::image::Source::View { view, .. } => {
+            let buffer = buffers.get(view.buffer().index()).ok_or_else(|| {
+                format!("image {index}: buffer {} missing", view.buffer().index())
+            })?;
+            let (start, length) = (view.offset(), view.length());
+            let bytes = start
+                .checked_add(length)
+                .and_then(|end| buffer.get(start..end))
+                .ok_or_else(|| {
+                    format!(
+                        "image {index}: buffer view {} ({length} bytes at {start}) overruns its buffer of {} bytes",
+                        view.index(),
+                        buffer.len()
+                    )
+                })?;
+            (
+                format!("image {index} (buffer view {})", view.index()),
+                bytes.to_vec(),
+            )
+        }
+    };
+    if bytes.len() as u64 > options.max_texture_file_bytes {
+        return Err(format!(
+            "{name}: {} bytes, over the texture limit of {}",
+            bytes.len(),
+            options.max_texture_file_bytes
+        ));
+    }
+    Ok(EmbeddedTexture::new(name, bytes))
 }
 
 /// The path of a texture URI, confined to the model's folder unless allowed.

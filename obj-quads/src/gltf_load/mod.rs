@@ -103,7 +103,13 @@ fn load_gltf_bytes(
     let (document, blob) = parse(bytes, &file)?;
     let buffers = buffers::load_buffers(&document, blob, folder, &file, options)?;
     let mut raw = RawMesh::new(file);
-    raw.materials = materials::materials(&document, folder, options, &mut raw.report.warnings);
+    raw.materials = materials::materials(
+        &document,
+        &buffers,
+        folder,
+        options,
+        &mut raw.report.warnings,
+    );
     let instances = scene::walk_scene(&document, &raw.file, options)?;
     let mut uvs = primitive::Uvs::default();
     for (node, world) in instances {

@@ -169,3 +169,119 @@ fn sprite_brushes_follow_the_style() {
     );
     assert_eq!(shaded[2], sprite_compose::Brush::Palette);
 }
+
+/// sRGB byte → linear, and back (the glTF colour spaces), written here independently of the
+/// library's.
+fn srgb_to_linear(c: u8) -> f64 {
+    let c = f64::from(c) / 255.0;
+    if c <= 0.04045 {
+        c / 12.92
+    } else {
+        ((c + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+fn linear_to_srgb(l: f64) -> f64 {
+    let l = l.clamp(0.0, 1.0);
+    255.0
+        * if l <= 0.0031308 {
+            l * 12.92
+        } else {
+            1.055 * l.powf(1.0 / 2.4) - 0.055
+        }
+}
+
+/// The box's texture held in the file (data URI, GLB) draws exactly as the file beside it,
+/// and `baseColorFactor` multiplies it (in linear light, as glTF says).
+#[test]
+fn embedded_gltf_textures_draw_and_the_factor_multiplies_them() {
+    use raster_sink::face_sort::{Centroid, DrawList, FaceSorter, Geometry};
+    use test_support::textured_box::{ImageSource, textured_box};
+
+    let factor = [0.5f32, 1.0, 0.25, 1.0];
+    // The file variant with the factor: the JSON written beside copies of its files.
+    let dir = std::env::temp_dir().join(format!("raster-sink-box-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for file in ["BoxTextured0.bin", "CesiumLogoFlat.png"] {
+        std::fs::copy(
+            test_support::model_path(&format!("gltf/BoxTextured/{file}")),
+            dir.join(file),
+        )
+        .unwrap();
+    }
+    let mut pictures = Vec::new();
+    for source in [ImageSource::File, ImageSource::DataUri, ImageSource::Glb] {
+        for factor in [None, Some(factor)] {
+            let bytes = textured_box(source, factor);
+            let mesh = match source {
+                ImageSource::File => {
+                    let path = dir.join("box.gltf");
+                    std::fs::write(&path, &bytes).unwrap();
+                    test_support::load_model_at(&path)
+                }
+                _ => {
+                    obj_quads::load_gltf_slice(&bytes, &obj_quads::LoadOptions::DEFAULT)
+                        .unwrap()
+                        .0
+                }
+            };
+            let polygons = test_support::polygon_mesh(&mesh);
+            let geometry = Geometry::new(&polygons).unwrap();
+            let resolved =
+                Style::from_materials(&mesh, geometry.bounds().centre(), &MaterialOptions::DEFAULT)
+                    .unwrap();
+            assert!(resolved.warnings.is_empty(), "{:?}", resolved.warnings);
+            let Some(Brush::Texture(texture)) = resolved.style.brush(0) else {
+                panic!("{source:?}: face 0 is not textured");
+            };
+            // Texels: the PNG's, times the factor in linear light.
+            let png = raster_sink::load_texture(&dir.join("CesiumLogoFlat.png")).unwrap();
+            for (k, (got, raw)) in texture
+                .image
+                .pixels()
+                .iter()
+                .zip(png.pixels())
+                .enumerate()
+                .step_by(97)
+            {
+                let (got, raw) = (got.demultiply(), raw.demultiply());
+                let f = factor.unwrap_or([1.0; 4]);
+                for (channel, (g, r)) in [
+                    (got.red(), raw.red()),
+                    (got.green(), raw.green()),
+                    (got.blue(), raw.blue()),
+                ]
+                .into_iter()
+                .enumerate()
+                {
+                    let want = linear_to_srgb(srgb_to_linear(r) * f64::from(f[channel]));
+                    assert!(
+                        (f64::from(g) - want).abs() <= 1.0,
+                        "{source:?} texel {k} channel {channel}: {g} vs {want:.1}"
+                    );
+                }
+            }
+            let view = View::fit(&geometry.bounds(), 96, 96).with_yaw_pitch_roll(30.0, 25.0, 0.0);
+            let mut list = DrawList::new();
+            Centroid::new(&geometry).sort(&view, &mut list);
+            let image = raster_sink::render_colour(
+                &view,
+                &list,
+                &resolved.style,
+                &raster_sink::RasterOptions::DEFAULT,
+            )
+            .unwrap();
+            pictures.push((source, factor.is_some(), image));
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
+    // Every source draws the same picture, with and without the factor; the factor changes it.
+    for (source, tinted, image) in &pictures[2..] {
+        let same_as = &pictures[usize::from(*tinted)].2;
+        assert!(
+            image.data() == same_as.data(),
+            "{source:?} (tinted: {tinted}) differs from the file's"
+        );
+    }
+    assert!(pictures[0].2.data() != pictures[1].2.data());
+}
