@@ -573,8 +573,32 @@ impl FaceSorter for Bsp {
     }
 
     fn sort(&mut self, view: &View, out: &mut DrawList) {
+        self.sort_culled(&view.cull_test(), out);
+    }
+
+    fn stats(&self) -> SorterStats {
+        SorterStats {
+            build_ms: self.tree.build_ms,
+            polygons: self.tree.fragments.len(),
+            cached_bytes: self.tree.heap_bytes()
+                + self.base.capacity() * 4
+                + self.order.capacity() * 4
+                + self.piece_drawn.capacity()
+                + self.piece_facing.capacity()
+                + self.viewer_in_front.capacity(),
+            depth: self.tree.depth,
+            fallbacks: 0,
+        }
+    }
+}
+
+impl Bsp {
+    /// The painter's order for a viewer given by its cull test alone: the BSP needs no
+    /// projection, only which side of each plane the viewer is on. With
+    /// [`CullTest::transformed`] one tree serves every placement of its geometry (a scene's
+    /// instances) without a rebuild.
+    pub fn sort_culled(&mut self, cull: &crate::CullTest, out: &mut DrawList) {
         let tree = &*self.tree;
-        let cull = view.cull_test();
         let (point, w) = cull.viewer_point();
         let facing =
             |row: &[f64; 4]| row[0] * point.x + row[1] * point.y + row[2] * point.z - w * row[3];
@@ -672,20 +696,5 @@ impl FaceSorter for Bsp {
             drawn += usize::from(self.piece_drawn[tree.fragment_piece[f] as usize]);
         }
         items.truncate(drawn);
-    }
-
-    fn stats(&self) -> SorterStats {
-        SorterStats {
-            build_ms: self.tree.build_ms,
-            polygons: self.tree.fragments.len(),
-            cached_bytes: self.tree.heap_bytes()
-                + self.base.capacity() * 4
-                + self.order.capacity() * 4
-                + self.piece_drawn.capacity()
-                + self.piece_facing.capacity()
-                + self.viewer_in_front.capacity(),
-            depth: self.tree.depth,
-            fallbacks: 0,
-        }
     }
 }

@@ -46,6 +46,7 @@ mod plan;
 mod plane;
 mod polygon;
 mod polygon_set;
+mod scene;
 mod screen_grid;
 mod sorter;
 #[cfg(any(test, feature = "proptest"))]
@@ -65,6 +66,7 @@ pub use plan::{Auto, CostModel, CullOnly, Plan, PlanHint, Strategy};
 pub use plane::{Plane, Side, newell_normal};
 pub use polygon::{Box2, clip_convex_2d, signed_area_2d, split_polygon};
 pub use polygon_set::PolygonSet;
+pub use scene::{Instance, SceneError, SceneSorter, SceneStats};
 pub use sorter::{FaceSorter, SorterStats};
 pub use topological::Topological;
 pub use view::{

@@ -376,6 +376,24 @@ pub struct CullTest {
 }
 
 impl CullTest {
+    /// The same test for geometry placed by an affine map: `to_local` maps this test's
+    /// (centred) coordinates to the geometry's (centred) coordinates. The viewer is mapped
+    /// (an eye as a point, a direction by the linear part, normalised), so a piece's facing
+    /// sign in its own coordinates is its facing sign in these: plane sides are preserved by
+    /// affine maps. A mirroring map (negative determinant) keeps each piece's own front, as
+    /// glTF asks of mirrored nodes. Under a non-uniform scale the cull margin is measured in
+    /// the geometry's coordinates.
+    #[must_use]
+    pub fn transformed(&self, to_local: &glam::DAffine3) -> CullTest {
+        let viewer = match self.viewer {
+            Viewer::Eye(e) => Viewer::Eye(to_local.transform_point3(e)),
+            Viewer::Direction(d) => {
+                Viewer::Direction(to_local.transform_vector3(d).normalize_or_zero())
+            }
+        };
+        CullTest { viewer, ..*self }
+    }
+
     /// Whether a piece with this plane and first corner is drawn.
     #[inline]
     #[must_use]

@@ -1,0 +1,556 @@
+//! Scenes of many objects: meshes shared by instances, ordered coarse to fine.
+//!
+//! A [`SceneSorter`] holds each mesh once, with its BSP built once, and places it by any
+//! number of [`Instance`]s (an affine world transform each: rotations, non-uniform and
+//! nested scales, mirrors). A frame:
+//!
+//! 1. **Objects** are culled by their world box against the image.
+//! 2. **Coarse order.** The instances' world boxes are split by axis-aligned planes that
+//!    separate them (every box entirely on one side), as in the flight simulator's AA-BSP:
+//!    across such a plane, the side away from the viewer is drawn first, and no face of one
+//!    side can cover a face of the other that is farther from the viewer. The split nearest
+//!    the middle is taken, on any axis; the tree is rebuilt only when an instance moves (it
+//!    is O(n log n) in the instances).
+//! 3. **Fine order.** A leaf with one object is drawn by its mesh's own BSP, the viewer
+//!    mapped into the mesh's frame ([`CullTest::transformed`]): plane sides are preserved by
+//!    affine maps, so nothing is rebuilt per instance or per frame. A leaf whose boxes
+//!    interlock (no plane separates them) is a **cluster**: the members' faces in world
+//!    space, one BSP over them, built when the cluster first appears and again only when
+//!    one of its members moves.
+//!
+//! The output is an ordinary [`DrawList`] in the scene's centred world coordinates (the
+//! view must be fitted to [`SceneSorter::bounds`]), with faces numbered as in
+//! [`SceneSorter::flattened`]: instance by instance, each instance's faces in its mesh's
+//! order. A mirrored instance (negative determinant) keeps each face's own front, as glTF
+//! asks of mirrored nodes, and is drawn with its corners reversed so that world winding
+//! and front agree.
+
+use std::collections::HashMap;
+use std::sync::Arc;
+
+use glam::{DAffine3, DVec3};
+
+use crate::{
+    Bounds, Bsp, CullTest, DrawList, FaceSorter, Geometry, MeshError, Plane, PolygonMesh,
+    PolygonSet, View, Viewer,
+};
+
+/// One placement of a mesh: `world = transform · local`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Instance {
+    /// Index of the mesh in the scene's meshes.
+    pub mesh: usize,
+    /// Local to world.
+    pub transform: DAffine3,
+}
+
+/// Why a [`SceneSorter`] could not be built.
+#[derive(Debug, thiserror::Error, Clone, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum SceneError {
+    /// An instance names a mesh that does not exist.
+    #[error("instance {instance} names mesh {mesh}, but the scene has {meshes} meshes")]
+    NoSuchMesh {
+        /// The instance.
+        instance: usize,
+        /// The mesh it names.
+        mesh: usize,
+        /// Number of meshes.
+        meshes: usize,
+    },
+    /// An instance's transform is not invertible or not finite.
+    #[error("instance {instance}: its transform is singular or not finite")]
+    SingularTransform {
+        /// The instance.
+        instance: usize,
+    },
+    /// A mesh (or the scene) has no area or is out of range.
+    #[error("mesh {mesh}: {source}")]
+    Mesh {
+        /// The mesh (the scene's count for the whole scene).
+        mesh: usize,
+        /// Why.
+        source: MeshError,
+    },
+    /// The scene has no instance.
+    #[error("the scene has no instance")]
+    Empty,
+}
+
+/// What the last frame did.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SceneStats {
+    /// Instances drawn (not culled by their box).
+    pub objects_drawn: usize,
+    /// Instances whose box lies outside the image.
+    pub objects_culled: usize,
+    /// Leaves of the coarse order with interlocking instances.
+    pub clusters: usize,
+    /// Cluster trees built since the sorter was made.
+    pub cluster_builds: usize,
+    /// Coarse trees built since the sorter was made.
+    pub tree_builds: usize,
+}
+
+struct SceneMesh {
+    mesh: PolygonMesh,
+    centre: DVec3,
+    bounds: Bounds,
+    bsp: Bsp,
+}
+
+/// The coarse order: axis-aligned planes between instance boxes.
+enum Node {
+    Split {
+        axis: usize,
+        at: f64,
+        below: usize,
+        above: usize,
+    },
+    Leaf(Vec<usize>),
+}
+
+/// Interlocking instances ordered together: their faces in world space under one BSP.
+struct Cluster {
+    bsp: Bsp,
+    /// World position of the cluster geometry's centre.
+    centre: DVec3,
+    /// Cluster face → scene face.
+    faces: Vec<u32>,
+}
+
+/// Orders the faces of a scene of instances (module docs).
+pub struct SceneSorter {
+    meshes: Vec<SceneMesh>,
+    instances: Vec<Instance>,
+    face_offsets: Vec<u32>,
+    boxes: Vec<Bounds>,
+    bounds: Bounds,
+    nodes: Vec<Node>,
+    tree_dirty: bool,
+    clusters: HashMap<Vec<usize>, Cluster>,
+    stats: SceneStats,
+    // Per-frame scratch.
+    leaves: Vec<usize>,
+    local: DrawList,
+    corners: Vec<DVec3>,
+    empty: Arc<PolygonSet>,
+}
+
+impl SceneSorter {
+    /// A scene of `instances` of `meshes`. Builds each mesh's BSP once. The scene's
+    /// [`bounds`](Self::bounds) (its frame of reference: fit views to it) are those of the
+    /// instances' vertices now; they stay when instances move, unless set again.
+    pub fn new(meshes: Vec<PolygonMesh>, instances: Vec<Instance>) -> Result<Self, SceneError> {
+        let scene_meshes = meshes
+            .into_iter()
+            .enumerate()
+            .map(|(k, mesh)| {
+                let geometry =
+                    Geometry::new(&mesh).map_err(|source| SceneError::Mesh { mesh: k, source })?;
+                Ok(SceneMesh {
+                    centre: geometry.bounds().centre(),
+                    bounds: geometry.bounds(),
+                    bsp: Bsp::new(&geometry),
+                    mesh,
+                })
+            })
+            .collect::<Result<Vec<_>, SceneError>>()?;
+        let mut face_offsets = Vec::with_capacity(instances.len());
+        let mut faces = 0u32;
+        for (k, instance) in instances.iter().enumerate() {
+            let Some(mesh) = scene_meshes.get(instance.mesh) else {
+                return Err(SceneError::NoSuchMesh {
+                    instance: k,
+                    mesh: instance.mesh,
+                    meshes: scene_meshes.len(),
+                });
+            };
+            check_transform(k, &instance.transform)?;
+            face_offsets.push(faces);
+            faces = faces
+                .checked_add(mesh.mesh.face_count() as u32)
+                .ok_or(SceneError::Mesh {
+                    mesh: scene_meshes.len(),
+                    source: MeshError::TooLarge,
+                })?;
+        }
+        let boxes: Vec<Bounds> = instances
+            .iter()
+            .map(|i| world_box(&scene_meshes[i.mesh].bounds, &i.transform))
+            .collect();
+        let bounds = Bounds::from_points(instances.iter().flat_map(|i| {
+            scene_meshes[i.mesh]
+                .mesh
+                .positions()
+                .iter()
+                .map(|&p| i.transform.transform_point3(p))
+        }))
+        .ok_or(SceneError::Empty)?;
+        Ok(SceneSorter {
+            meshes: scene_meshes,
+            instances,
+            face_offsets,
+            boxes,
+            bounds,
+            nodes: Vec::new(),
+            tree_dirty: true,
+            clusters: HashMap::new(),
+            stats: SceneStats::default(),
+            leaves: Vec::new(),
+            local: DrawList::new(),
+            corners: Vec::new(),
+            empty: Arc::new(PolygonSet::new()),
+        })
+    }
+
+    /// The scene's frame of reference, a world box: fit views to it (its centre is the
+    /// origin of the draw lists' centred coordinates). The instances' vertices when the
+    /// scene was made, unless set by [`set_bounds`](Self::set_bounds).
+    #[must_use]
+    pub fn bounds(&self) -> Bounds {
+        self.bounds
+    }
+
+    /// Sets the frame of reference, e.g. a box that holds every instance wherever it moves
+    /// (then [`flattened`](Self::flattened) keeps the same centre frame after frame).
+    pub fn set_bounds(&mut self, bounds: Bounds) {
+        self.bounds = bounds;
+    }
+
+    /// The instances.
+    #[must_use]
+    pub fn instances(&self) -> &[Instance] {
+        &self.instances
+    }
+
+    /// Moves instance `instance`: the coarse order is rebuilt at the next frame, and the
+    /// clusters it belongs to; nothing of the other instances is.
+    pub fn set_transform(
+        &mut self,
+        instance: usize,
+        transform: DAffine3,
+    ) -> Result<(), SceneError> {
+        check_transform(instance, &transform)?;
+        let Some(slot) = self.instances.get_mut(instance) else {
+            return Err(SceneError::NoSuchMesh {
+                instance,
+                mesh: usize::MAX,
+                meshes: self.meshes.len(),
+            });
+        };
+        slot.transform = transform;
+        self.boxes[instance] = world_box(&self.meshes[slot.mesh].bounds, &transform);
+        self.tree_dirty = true;
+        self.clusters
+            .retain(|members, _| !members.contains(&instance));
+        Ok(())
+    }
+
+    /// What the last frame did.
+    #[must_use]
+    pub fn stats(&self) -> SceneStats {
+        self.stats
+    }
+
+    /// The whole scene as one mesh in world space, faces numbered as the draw lists number
+    /// them (instance by instance), a mirrored instance's faces reversed so that their
+    /// winding gives their front. For references (the truth, the oracle) and for the
+    /// flattening that the instance path replaces.
+    #[must_use]
+    pub fn flattened(&self) -> PolygonMesh {
+        let (positions, faces) =
+            world_faces(&self.meshes, &self.instances, 0..self.instances.len());
+        PolygonMesh::new(positions, faces).expect("instances of valid meshes are a valid mesh")
+    }
+
+    fn build_tree(&mut self) {
+        self.nodes.clear();
+        let all: Vec<usize> = (0..self.instances.len()).collect();
+        build(&self.boxes, all, &mut self.nodes);
+        self.tree_dirty = false;
+        self.stats.tree_builds += 1;
+    }
+
+    /// Leaves in drawing order (far to near) for a viewer in world coordinates.
+    fn order_leaves(&mut self, viewer: Viewer) {
+        self.leaves.clear();
+        let mut stack = vec![0usize];
+        while let Some(n) = stack.pop() {
+            match &self.nodes[n] {
+                Node::Leaf(_) => self.leaves.push(n),
+                &Node::Split {
+                    axis,
+                    at,
+                    below,
+                    above,
+                } => {
+                    // The side holding the viewer is nearer: drawn last, so pushed first.
+                    let viewer_above = match viewer {
+                        Viewer::Eye(e) => e[axis] >= at,
+                        Viewer::Direction(d) => d[axis] >= 0.0,
+                    };
+                    if viewer_above {
+                        stack.extend([above, below]);
+                    } else {
+                        stack.extend([below, above]);
+                    }
+                }
+            }
+        }
+    }
+}
+
+impl FaceSorter for SceneSorter {
+    fn name(&self) -> &'static str {
+        "scene"
+    }
+
+    /// `view` must be fitted to [`bounds`](SceneSorter::bounds) (its centre is the scene's).
+    fn sort(&mut self, view: &View, out: &mut DrawList) {
+        if self.tree_dirty {
+            self.build_tree();
+        }
+        let centre = self.bounds.centre();
+        let cull = view.cull_test();
+        let world_viewer = match cull.viewer {
+            Viewer::Eye(e) => Viewer::Eye(e + centre),
+            d @ Viewer::Direction(_) => d,
+        };
+        self.order_leaves(world_viewer);
+        out.begin(&self.empty);
+        let mut drawn = 0;
+        let mut culled = 0;
+        let mut clusters = 0;
+        let leaves = std::mem::take(&mut self.leaves);
+        for &leaf in &leaves {
+            let Node::Leaf(members) = &self.nodes[leaf] else {
+                continue;
+            };
+            let members: Vec<usize> = members
+                .iter()
+                .copied()
+                .filter(|&i| {
+                    let seen = box_in_image(view, &self.boxes[i], centre);
+                    culled += usize::from(!seen);
+                    seen
+                })
+                .collect();
+            drawn += members.len();
+            match members.as_slice() {
+                [] => {}
+                &[one] => self.draw_instance(one, &cull, centre, out),
+                _ => {
+                    clusters += 1;
+                    self.draw_cluster(members, &cull, centre, out);
+                }
+            }
+        }
+        self.leaves = leaves;
+        self.stats.objects_drawn = drawn;
+        self.stats.objects_culled = culled;
+        self.stats.clusters = clusters;
+    }
+}
+
+impl SceneSorter {
+    /// One instance by its mesh's own BSP, the viewer mapped into the mesh's frame.
+    fn draw_instance(&mut self, index: usize, cull: &CullTest, centre: DVec3, out: &mut DrawList) {
+        let instance = self.instances[index];
+        let mesh = &mut self.meshes[instance.mesh];
+        // World-centred → mesh-centred: x_l = T⁻¹(x + c_w) − c_l.
+        let to_local = DAffine3::from_translation(-mesh.centre)
+            * instance.transform.inverse()
+            * DAffine3::from_translation(centre);
+        let to_world = to_local.inverse();
+        mesh.bsp
+            .sort_culled(&cull.transformed(&to_local), &mut self.local);
+        let mirrored = instance.transform.matrix3.determinant() < 0.0;
+        let offset = self.face_offsets[index];
+        for item in self.local.items() {
+            self.corners.clear();
+            self.corners.extend(
+                self.local
+                    .corners(*item)
+                    .iter()
+                    .map(|&p| to_world.transform_point3(p)),
+            );
+            if mirrored {
+                self.corners.reverse();
+            }
+            emit(out, &self.corners, offset + item.face);
+        }
+    }
+
+    /// Interlocking instances by one BSP over their world faces (built once per membership
+    /// and placement).
+    fn draw_cluster(
+        &mut self,
+        members: Vec<usize>,
+        cull: &CullTest,
+        centre: DVec3,
+        out: &mut DrawList,
+    ) {
+        if !self.clusters.contains_key(&members) {
+            let (positions, faces) =
+                world_faces(&self.meshes, &self.instances, members.iter().copied());
+            let mut scene_faces = Vec::new();
+            for &m in &members {
+                let n = self.meshes[self.instances[m].mesh].mesh.face_count() as u32;
+                scene_faces.extend(self.face_offsets[m]..self.face_offsets[m] + n);
+            }
+            let mesh = PolygonMesh::new(positions, faces)
+                .expect("instances of valid meshes are a valid mesh");
+            let Ok(geometry) = Geometry::new(&mesh) else {
+                return;
+            };
+            self.stats.cluster_builds += 1;
+            self.clusters.insert(
+                members.clone(),
+                Cluster {
+                    bsp: Bsp::new(&geometry),
+                    centre: geometry.bounds().centre(),
+                    faces: scene_faces,
+                },
+            );
+        }
+        let Some(cluster) = self.clusters.get_mut(&members) else {
+            return;
+        };
+        let shift = centre - cluster.centre;
+        let to_local = DAffine3::from_translation(shift);
+        cluster
+            .bsp
+            .sort_culled(&cull.transformed(&to_local), &mut self.local);
+        for item in self.local.items() {
+            self.corners.clear();
+            self.corners
+                .extend(self.local.corners(*item).iter().map(|&p| p - shift));
+            emit(out, &self.corners, cluster.faces[item.face as usize]);
+        }
+    }
+}
+
+/// Appends a world polygon as a per-frame polygon and an item.
+fn emit(out: &mut DrawList, corners: &[DVec3], face: u32) {
+    if let Some(plane) = Plane::try_from_polygon(corners) {
+        let polygon = out.add_frame_polygon(corners, face, plane);
+        out.push(polygon, face);
+    }
+}
+
+/// The world positions and faces of some instances (a mirrored one's faces reversed).
+fn world_faces(
+    meshes: &[SceneMesh],
+    instances: &[Instance],
+    which: impl Iterator<Item = usize>,
+) -> (Vec<DVec3>, Vec<Vec<u32>>) {
+    let mut positions = Vec::new();
+    let mut faces = Vec::new();
+    for k in which {
+        let instance = &instances[k];
+        let mesh = &meshes[instance.mesh].mesh;
+        let first = positions.len() as u32;
+        positions.extend(
+            mesh.positions()
+                .iter()
+                .map(|&p| instance.transform.transform_point3(p)),
+        );
+        let mirrored = instance.transform.matrix3.determinant() < 0.0;
+        for face in mesh.faces() {
+            let mut f: Vec<u32> = face.iter().map(|&i| first + i).collect();
+            if mirrored {
+                f.reverse();
+            }
+            faces.push(f);
+        }
+    }
+    (positions, faces)
+}
+
+fn check_transform(instance: usize, t: &DAffine3) -> Result<(), SceneError> {
+    let det = t.matrix3.determinant();
+    if !t.is_finite() || det == 0.0 || !det.is_finite() {
+        return Err(SceneError::SingularTransform { instance });
+    }
+    Ok(())
+}
+
+/// The world box of a local box under a transform (its eight corners').
+fn world_box(local: &Bounds, t: &DAffine3) -> Bounds {
+    let corners = (0..8).map(|k| {
+        t.transform_point3(DVec3::new(
+            if k & 1 == 0 { local.min.x } else { local.max.x },
+            if k & 2 == 0 { local.min.y } else { local.max.y },
+            if k & 4 == 0 { local.min.z } else { local.max.z },
+        ))
+    });
+    Bounds::from_points(corners).unwrap_or(*local)
+}
+
+/// Whether any of a world box can show in the image: `false` only when all its corners
+/// are in front of the near plane and beyond one side of the image.
+fn box_in_image(view: &View, b: &Bounds, centre: DVec3) -> bool {
+    let (w, h) = (f64::from(view.width()), f64::from(view.height()));
+    let mut out = [true; 4];
+    for k in 0..8 {
+        let p = DVec3::new(
+            if k & 1 == 0 { b.min.x } else { b.max.x },
+            if k & 2 == 0 { b.min.y } else { b.max.y },
+            if k & 4 == 0 { b.min.z } else { b.max.z },
+        );
+        let Some(s) = view.project_view_point(view.to_view(p - centre)) else {
+            return true;
+        };
+        out[0] &= s.x < 0.0;
+        out[1] &= s.x > w;
+        out[2] &= s.y < 0.0;
+        out[3] &= s.y > h;
+    }
+    !out.iter().any(|&o| o)
+}
+
+/// Builds the coarse tree over `items` (instance indices) into `nodes`; returns its index.
+fn build(boxes: &[Bounds], mut items: Vec<usize>, nodes: &mut Vec<Node>) -> usize {
+    let here = nodes.len();
+    nodes.push(Node::Leaf(Vec::new()));
+    if items.len() < 2 {
+        nodes[here] = Node::Leaf(items);
+        return here;
+    }
+    // The separating plane nearest the middle, on any axis: sorted by their low side, a
+    // split after position k works when no box before it reaches past the next one's low
+    // side.
+    let mut best: Option<(usize, usize, f64, usize)> = None; // (imbalance, axis, at, k)
+    let n = items.len();
+    for axis in 0..3 {
+        items.sort_by(|&a, &b| boxes[a].min[axis].total_cmp(&boxes[b].min[axis]));
+        let mut reach = f64::NEG_INFINITY;
+        for k in 0..n - 1 {
+            reach = reach.max(boxes[items[k]].max[axis]);
+            let next = boxes[items[k + 1]].min[axis];
+            if reach <= next {
+                let imbalance = (k + 1).abs_diff(n - k - 1);
+                if best.is_none_or(|b| imbalance < b.0) {
+                    best = Some((imbalance, axis, 0.5 * (reach + next), k));
+                }
+            }
+        }
+    }
+    let Some((_, axis, at, k)) = best else {
+        items.sort_unstable();
+        nodes[here] = Node::Leaf(items);
+        return here;
+    };
+    items.sort_by(|&a, &b| boxes[a].min[axis].total_cmp(&boxes[b].min[axis]));
+    let above_items = items.split_off(k + 1);
+    let below = build(boxes, items, nodes);
+    let above = build(boxes, above_items, nodes);
+    nodes[here] = Node::Split {
+        axis,
+        at,
+        below,
+        above,
+    };
+    here
+}
