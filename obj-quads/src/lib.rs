@@ -92,7 +92,9 @@ use std::path::Path;
 
 pub use error::{FaceLocation, LoadError};
 #[cfg(feature = "gltf")]
-pub use gltf_load::{load_gltf, load_gltf_slice};
+pub use gltf_load::{
+    GltfInstance, GltfScene, load_gltf, load_gltf_scene, load_gltf_scene_slice, load_gltf_slice,
+};
 pub use mesh::{EmbeddedTexture, Material, Mesh};
 #[cfg(feature = "obj")]
 pub use obj::{load_obj, load_obj_reader, load_obj_str};

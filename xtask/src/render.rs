@@ -245,6 +245,54 @@ struct VectorSummary {
     keep_hidden: bool,
 }
 
+/// The scene path for a glTF file: its meshes and nodes as a `SceneSorter`, when the file
+/// is glTF with at least two mesh nodes and the scene's faces and frame of reference are
+/// those of the flattened load (`geometry`); else `None` (the flattened path).
+fn gltf_scene(
+    path: &std::path::Path,
+    allow_outside: bool,
+    geometry: &Geometry,
+) -> Option<(Box<dyn FaceSorter>, String)> {
+    let gltf = matches!(
+        path.extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase)
+            .as_deref(),
+        Some("gltf" | "glb")
+    );
+    if !gltf {
+        return None;
+    }
+    let options = obj_quads::LoadOptions::DEFAULT.with_allow_outside_paths(allow_outside);
+    let loaded = obj_quads::load_gltf_scene(path, &options).ok()?;
+    let meshes: Vec<face_sort::PolygonMesh> = loaded
+        .meshes
+        .iter()
+        .map(scenes::to_polygon_mesh)
+        .collect::<Result<_>>()
+        .ok()?;
+    let instances: Vec<face_sort::Instance> = loaded
+        .instances
+        .iter()
+        .map(|i| face_sort::Instance {
+            mesh: i.mesh,
+            transform: i.world,
+        })
+        .collect();
+    let (count, kinds) = (instances.len(), meshes.len());
+    if count < 2 {
+        return None; // one object: the planner's one-picture choice is cheaper
+    }
+    let scene = face_sort::SceneSorter::new(meshes, instances).ok()?;
+    let faces = scene.flattened().face_count();
+    (faces == geometry.face_count() && scene.bounds() == geometry.bounds()).then(|| {
+        let plan = format!(
+            "glTF scene: {count} instances of {kinds} meshes, one BSP per mesh, objects ordered by separating planes"
+        );
+        (Box::new(scene) as Box<dyn FaceSorter>, plan)
+    })
+}
+
 /// Builds the sorter; for `auto`, the planner's choice for one picture, and why.
 fn plan(choice: SorterChoice, geometry: &Geometry) -> (Box<dyn FaceSorter>, String) {
     let asked = |kind: SorterKind| (kind.build(geometry), format!("{} (asked for)", kind.name()));
@@ -327,7 +375,16 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
     )?;
 
     let start = Instant::now();
-    let (mut sorter, plan) = plan(args.sorter, &geometry);
+    // A glTF file of several mesh nodes, with `auto` and no ground grid, goes through the
+    // scene path: each mesh once, its BSP built once, placed by its nodes
+    // (`face_sort::SceneSorter`).
+    let scene = (args.sorter == SorterChoice::Auto && grid.is_none())
+        .then(|| gltf_scene(&model_path, args.allow_outside, &geometry))
+        .flatten();
+    let (mut sorter, plan) = match scene {
+        Some(scene) => scene,
+        None => plan(args.sorter, &geometry),
+    };
     let build_ms = ms(start);
     let sorter_name = sorter.name();
     let mut list = DrawList::new();

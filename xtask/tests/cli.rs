@@ -441,3 +441,29 @@ fn embedded_gltf_textures_reach_every_writer() {
         );
     }
 }
+
+#[test]
+fn gltf_renders_through_the_scene_path_exactly() {
+    let dir = temp_dir("gltf-scene");
+    let model = dir.join("cubes.gltf");
+    std::fs::write(&model, test_support::gltf_scene::cube_scene_gltf()).unwrap();
+    let svg = dir.join("cubes.svg");
+    for view in [
+        &["--yaw", "30", "--pitch", "25"][..],
+        &["--yaw", "250", "--pitch", "50", "--persp", "700"][..],
+    ] {
+        let mut args = vec!["--svg", svg.to_str().unwrap()];
+        args.extend_from_slice(view);
+        let value = render_summary(model.to_str().unwrap(), &args, "gltf-scene");
+        assert!(
+            value["plan"]
+                .as_str()
+                .unwrap()
+                .starts_with("glTF scene: 5 instances of 1 meshes"),
+            "{value}"
+        );
+        assert_eq!(value["violations"], 0, "{value}");
+        assert_eq!(value["pixel_error"], 0.0, "{value}");
+        assert!(std::fs::read_to_string(&svg).unwrap().contains("<polygon"));
+    }
+}

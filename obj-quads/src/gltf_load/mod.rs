@@ -94,6 +94,151 @@ fn parse(bytes: &[u8], file: &str) -> Result<(gltf::Document, Option<Vec<u8>>), 
     Ok((document, blob))
 }
 
+/// A glTF scene as instances: each glTF mesh the scene draws, once, in its own coordinates,
+/// and every node that carries one with its world matrix. Loaded by [`load_gltf_scene`].
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub struct GltfScene {
+    /// The meshes, each in its own coordinates, in order of first use by the scene walk
+    /// (every one carries the document's materials).
+    pub meshes: Vec<Mesh>,
+    /// Every mesh-carrying node of the scene, in the scene walk's order, which is the order
+    /// of [`load_gltf`]'s faces: instance `k`'s faces there are its mesh's faces (a
+    /// mirroring instance's with their corners reversed).
+    pub instances: Vec<GltfInstance>,
+    /// The meshes' load reports, merged.
+    pub report: LoadReport,
+}
+
+/// One node of a [`GltfScene`] carrying a mesh.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub struct GltfInstance {
+    /// Index into [`GltfScene::meshes`].
+    pub mesh: usize,
+    /// The glTF node index.
+    pub node: usize,
+    /// Local to world: the node's matrix times its ancestors' (affine; a negative
+    /// determinant mirrors, and glTF then makes clockwise faces the front).
+    pub world: glam::DAffine3,
+}
+
+/// Loads a `.gltf` or `.glb` file as a scene of instances ([`GltfScene`]), with the same
+/// confinement, limits and errors as [`load_gltf`]; each mesh is loaded once however many
+/// nodes carry it. A node matrix that is not affine is a [`LoadError::Gltf`].
+pub fn load_gltf_scene(
+    path: impl AsRef<Path>,
+    options: &LoadOptions,
+) -> Result<GltfScene, LoadError> {
+    let path = path.as_ref();
+    let file = path.display().to_string();
+    let bytes = crate::read_file_capped(path, &file, options.max_file_bytes)?;
+    let folder = Folder::new(
+        path.parent().unwrap_or(Path::new("")),
+        options.allow_outside_paths,
+    );
+    load_scene_bytes(&bytes, file, Some(&folder), options)
+}
+
+/// [`load_gltf_scene`] from memory (see [`load_gltf_slice`]).
+pub fn load_gltf_scene_slice(bytes: &[u8], options: &LoadOptions) -> Result<GltfScene, LoadError> {
+    load_scene_bytes(bytes, crate::obj_memory_name(), None, options)
+}
+
+fn load_scene_bytes(
+    bytes: &[u8],
+    file: String,
+    folder: Option<&Folder>,
+    options: &LoadOptions,
+) -> Result<GltfScene, LoadError> {
+    let (document, blob) = parse(bytes, &file)?;
+    let buffers = buffers::load_buffers(&document, blob, folder, &file, options)?;
+    let mut report = LoadReport::default();
+    let materials =
+        materials::materials(&document, &buffers, folder, options, &mut report.warnings);
+    let walked = scene::walk_scene(&document, &file, options)?;
+    // glTF mesh index → scene mesh index, in order of first use.
+    let mut index: std::collections::HashMap<usize, usize> = std::collections::HashMap::new();
+    let mut meshes = Vec::new();
+    let mut instances = Vec::new();
+    for (node, world) in &walked {
+        let Some(gltf_mesh) = node.mesh() else {
+            continue;
+        };
+        let row = world.row(3);
+        if row != glam::DVec4::new(0.0, 0.0, 0.0, 1.0) {
+            return Err(gltf_err(
+                &file,
+                format!(
+                    "node {}: its world matrix is not affine (last row {row})",
+                    node.index()
+                ),
+            ));
+        }
+        let mesh = match index.get(&gltf_mesh.index()) {
+            Some(&m) => m,
+            None => {
+                let mut raw = RawMesh::new(file.clone());
+                raw.materials = materials.clone();
+                let mut uvs = primitive::Uvs::default();
+                for prim in gltf_mesh.primitives() {
+                    primitive::append(
+                        &mut raw,
+                        &mut uvs,
+                        node,
+                        glam::DMat4::IDENTITY,
+                        &prim,
+                        &buffers,
+                        options,
+                    )?;
+                }
+                uvs.finish(&mut raw);
+                if raw.face_count() == 0 {
+                    report.warnings.append(&mut raw.report.warnings);
+                    report.skipped_primitives += raw.report.skipped_primitives;
+                    continue;
+                }
+                let (mesh, part) = finish(raw, options)?;
+                merge(&mut report, part);
+                meshes.push(mesh);
+                index.insert(gltf_mesh.index(), meshes.len() - 1);
+                meshes.len() - 1
+            }
+        };
+        instances.push(GltfInstance {
+            mesh,
+            node: node.index(),
+            world: glam::DAffine3::from_mat4(*world),
+        });
+    }
+    if instances.is_empty() {
+        return Err(LoadError::EmptyModel {
+            file,
+            detail: format!(
+                "no triangles in the scene ({} primitives skipped)",
+                report.skipped_primitives
+            ),
+        });
+    }
+    Ok(GltfScene {
+        meshes,
+        instances,
+        report,
+    })
+}
+
+/// Adds one mesh's load report to the scene's.
+fn merge(total: &mut LoadReport, part: LoadReport) {
+    total.faces_read += part.faces_read;
+    total.faces_kept += part.faces_kept;
+    total.degenerate_dropped += part.degenerate_dropped;
+    total.non_planar += part.non_planar;
+    total.non_convex_split += part.non_convex_split;
+    total.triangles_merged += part.triangles_merged;
+    total.skipped_primitives += part.skipped_primitives;
+    total.warnings.extend(part.warnings);
+}
+
 fn load_gltf_bytes(
     bytes: &[u8],
     file: String,
