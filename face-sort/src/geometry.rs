@@ -30,6 +30,18 @@ impl Geometry {
     /// outside what f64 orders exactly ([`MeshError::ExtentOutOfRange`]).
     pub fn new(mesh: &PolygonMesh) -> Result<Self, MeshError> {
         let bounds = mesh.bounds().ok_or(MeshError::Empty)?;
+        Self::new_in_frame(mesh, bounds)
+    }
+
+    /// Cuts `mesh` into pieces centred on `frame`'s centre, with `frame` as the bounds that
+    /// views are fitted to and tolerances are relative to, instead of the mesh's own: for
+    /// a part of a larger scene (a [`SceneSorter`](crate::SceneSorter)'s clusters, or its
+    /// flattened reference) whose draw lists must share the scene's coordinates.
+    pub fn new_in_frame(mesh: &PolygonMesh, frame: Bounds) -> Result<Self, MeshError> {
+        if mesh.face_count() == 0 {
+            return Err(MeshError::Empty);
+        }
+        let bounds = frame;
         let diagonal = bounds.diagonal();
         if diagonal > 0.0 && !(MIN_EXTENT_ABS..=MAX_EXTENT_ABS).contains(&diagonal) {
             // The largest side, not the diagonal: its square may have overflowed. `as`

@@ -15,8 +15,9 @@
 //!    mapped into the mesh's frame ([`CullTest::transformed`]): plane sides are preserved by
 //!    affine maps, so nothing is rebuilt per instance or per frame. A leaf whose boxes
 //!    interlock (no plane separates them) is a **cluster**: the members' faces in world
-//!    space, one BSP over them, built when the cluster first appears and again only when
-//!    one of its members moves.
+//!    space, ordered by Newell while the cluster is new (a member that moves makes a new
+//!    cluster every frame, and Newell needs no tree), and by one BSP over them once the
+//!    cluster has been drawn unchanged for a few frames.
 //!
 //! The output is an ordinary [`DrawList`] in the scene's centred world coordinates (the
 //! view must be fitted to [`SceneSorter::bounds`]), with faces numbered as in
@@ -86,8 +87,10 @@ pub struct SceneStats {
     pub objects_culled: usize,
     /// Leaves of the coarse order with interlocking instances.
     pub clusters: usize,
-    /// Cluster trees built since the sorter was made.
+    /// Clusters made (their members' faces gathered) since the sorter was made.
     pub cluster_builds: usize,
+    /// Cluster BSPs built (for clusters that stayed still) since the sorter was made.
+    pub cluster_trees: usize,
     /// Coarse trees built since the sorter was made.
     pub tree_builds: usize,
 }
@@ -110,14 +113,26 @@ enum Node {
     Leaf(Vec<usize>),
 }
 
-/// Interlocking instances ordered together: their faces in world space under one BSP.
+/// Interlocking instances ordered together: their faces in world space, in the scene's frame
+/// ([`Geometry::new_in_frame`]).
 struct Cluster {
-    bsp: Bsp,
-    /// World position of the cluster geometry's centre.
-    centre: DVec3,
+    geometry: Geometry,
+    /// Newell while the cluster is new (no tree to pay for while its members move), a BSP
+    /// once it has been drawn unchanged for [`SETTLED_FRAMES`] frames.
+    sorter: ClusterSorter,
+    /// Frames drawn since it was made.
+    frames: u32,
     /// Cluster face → scene face.
     faces: Vec<u32>,
 }
+
+enum ClusterSorter {
+    Newell(Box<crate::Newell>),
+    Bsp(Bsp),
+}
+
+/// Frames a cluster is drawn unchanged (its members still) before its BSP is built.
+const SETTLED_FRAMES: u32 = 8;
 
 /// Orders the faces of a scene of instances (module docs).
 pub struct SceneSorter {
@@ -132,6 +147,8 @@ pub struct SceneSorter {
     stats: SceneStats,
     // Per-frame scratch.
     leaves: Vec<usize>,
+    stack: Vec<usize>,
+    members: Vec<usize>,
     local: DrawList,
     corners: Vec<DVec3>,
     empty: Arc<PolygonSet>,
@@ -198,6 +215,8 @@ impl SceneSorter {
             clusters: HashMap::new(),
             stats: SceneStats::default(),
             leaves: Vec::new(),
+            stack: Vec::new(),
+            members: Vec::new(),
             local: DrawList::new(),
             corners: Vec::new(),
             empty: Arc::new(PolygonSet::new()),
@@ -275,7 +294,9 @@ impl SceneSorter {
     /// Leaves in drawing order (far to near) for a viewer in world coordinates.
     fn order_leaves(&mut self, viewer: Viewer) {
         self.leaves.clear();
-        let mut stack = vec![0usize];
+        let stack = &mut self.stack;
+        stack.clear();
+        stack.push(0);
         while let Some(n) = stack.pop() {
             match &self.nodes[n] {
                 Node::Leaf(_) => self.leaves.push(n),
@@ -323,30 +344,31 @@ impl FaceSorter for SceneSorter {
         let mut culled = 0;
         let mut clusters = 0;
         let leaves = std::mem::take(&mut self.leaves);
+        let mut members = std::mem::take(&mut self.members);
         for &leaf in &leaves {
-            let Node::Leaf(members) = &self.nodes[leaf] else {
+            let Node::Leaf(all) = &self.nodes[leaf] else {
                 continue;
             };
-            let members: Vec<usize> = members
-                .iter()
-                .copied()
-                .filter(|&i| {
-                    let seen = box_in_image(view, &self.boxes[i], centre);
-                    culled += usize::from(!seen);
-                    seen
-                })
-                .collect();
+            members.clear();
+            for &i in all {
+                if box_in_image(view, &self.boxes[i], centre) {
+                    members.push(i);
+                } else {
+                    culled += 1;
+                }
+            }
             drawn += members.len();
             match members.as_slice() {
                 [] => {}
                 &[one] => self.draw_instance(one, &cull, centre, out),
                 _ => {
                     clusters += 1;
-                    self.draw_cluster(members, &cull, centre, out);
+                    self.draw_cluster(&members, view, out);
                 }
             }
         }
         self.leaves = leaves;
+        self.members = members;
         self.stats.objects_drawn = drawn;
         self.stats.objects_culled = culled;
         self.stats.clusters = clusters;
@@ -367,6 +389,10 @@ impl SceneSorter {
             .sort_culled(&cull.transformed(&to_local), &mut self.local);
         let mirrored = instance.transform.matrix3.determinant() < 0.0;
         let offset = self.face_offsets[index];
+        // A plane n·x = o in the mesh's frame is (Aᵀn)·x = o − n·b in the scene's, for
+        // x_local = A·x + b; a mirrored instance's corners are reversed, and so its normal.
+        let normals = to_local.matrix3.transpose();
+        let side = if mirrored { -1.0 } else { 1.0 };
         for item in self.local.items() {
             self.corners.clear();
             self.corners.extend(
@@ -378,64 +404,63 @@ impl SceneSorter {
             if mirrored {
                 self.corners.reverse();
             }
-            emit(out, &self.corners, offset + item.face);
+            let local = self.local.plane(*item);
+            let normal = normals * local.normal() * side;
+            if let Some(plane) = Plane::try_from_point_normal(self.corners[0], normal) {
+                let polygon = out.add_frame_polygon(&self.corners, offset + item.face, plane);
+                out.push(polygon, offset + item.face);
+            }
         }
     }
 
-    /// Interlocking instances by one BSP over their world faces (built once per membership
-    /// and placement).
-    fn draw_cluster(
-        &mut self,
-        members: Vec<usize>,
-        cull: &CullTest,
-        centre: DVec3,
-        out: &mut DrawList,
-    ) {
-        if !self.clusters.contains_key(&members) {
+    /// Interlocking instances ordered together (module docs): Newell while the cluster is
+    /// new, one BSP over their world faces once it has stayed unchanged.
+    fn draw_cluster(&mut self, members: &[usize], view: &View, out: &mut DrawList) {
+        if !self.clusters.contains_key(members) {
             let (positions, faces) =
                 world_faces(&self.meshes, &self.instances, members.iter().copied());
             let mut scene_faces = Vec::new();
-            for &m in &members {
+            for &m in members {
                 let n = self.meshes[self.instances[m].mesh].mesh.face_count() as u32;
                 scene_faces.extend(self.face_offsets[m]..self.face_offsets[m] + n);
             }
             let mesh = PolygonMesh::new(positions, faces)
                 .expect("instances of valid meshes are a valid mesh");
-            let Ok(geometry) = Geometry::new(&mesh) else {
+            // Centred like the scene; tolerances relative to the scene's size.
+            let Ok(geometry) = Geometry::new_in_frame(&mesh, self.bounds) else {
                 return;
             };
             self.stats.cluster_builds += 1;
             self.clusters.insert(
-                members.clone(),
+                members.to_vec(),
                 Cluster {
-                    bsp: Bsp::new(&geometry),
-                    centre: geometry.bounds().centre(),
+                    sorter: ClusterSorter::Newell(Box::new(crate::Newell::new(&geometry))),
+                    geometry,
+                    frames: 0,
                     faces: scene_faces,
                 },
             );
         }
-        let Some(cluster) = self.clusters.get_mut(&members) else {
+        let Some(cluster) = self.clusters.get_mut(members) else {
             return;
         };
-        let shift = centre - cluster.centre;
-        let to_local = DAffine3::from_translation(shift);
-        cluster
-            .bsp
-            .sort_culled(&cull.transformed(&to_local), &mut self.local);
-        for item in self.local.items() {
-            self.corners.clear();
-            self.corners
-                .extend(self.local.corners(*item).iter().map(|&p| p - shift));
-            emit(out, &self.corners, cluster.faces[item.face as usize]);
+        cluster.frames += 1;
+        if cluster.frames == SETTLED_FRAMES
+            && let ClusterSorter::Newell(_) = cluster.sorter
+        {
+            cluster.sorter = ClusterSorter::Bsp(Bsp::new(&cluster.geometry));
+            self.stats.cluster_trees += 1;
         }
-    }
-}
-
-/// Appends a world polygon as a per-frame polygon and an item.
-fn emit(out: &mut DrawList, corners: &[DVec3], face: u32) {
-    if let Some(plane) = Plane::try_from_polygon(corners) {
-        let polygon = out.add_frame_polygon(corners, face, plane);
-        out.push(polygon, face);
+        match &mut cluster.sorter {
+            ClusterSorter::Newell(newell) => newell.sort(view, &mut self.local),
+            ClusterSorter::Bsp(bsp) => bsp.sort(view, &mut self.local),
+        }
+        for item in self.local.items() {
+            let face = cluster.faces[item.face as usize];
+            let polygon =
+                out.add_frame_polygon(self.local.corners(*item), face, *self.local.plane(*item));
+            out.push(polygon, face);
+        }
     }
 }
 

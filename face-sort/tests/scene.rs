@@ -72,8 +72,17 @@ fn instanced_scenes_are_exact_and_draw_what_the_flattened_scene_draws() {
         clusters += scene.stats().clusters;
         assert_eq!(scene.stats().objects_culled, 0);
     }
-    // Interlocking instances were ordered as clusters, and built once each.
+    // Interlocking instances were ordered as clusters (Newell while new), gathered once
+    // each; drawn unchanged for more frames, they get their BSP, still exact.
     assert!(clusters > 0);
+    assert_eq!(scene.stats().cluster_trees, 0);
+    let view = views(&scene)[3];
+    for _ in 0..10 {
+        scene.sort(&view, &mut list);
+        assert_eq!(oracle::count_violations(&view, &list), 0);
+    }
+    assert!(scene.stats().cluster_trees > 0, "{:?}", scene.stats());
+    assert_same_faces(&list, &flat, &view, "settled");
     let builds = scene.stats().cluster_builds;
     assert!(
         builds > 0 && builds <= clusters,
@@ -161,6 +170,41 @@ fn instances_outside_the_image_are_culled_by_their_box() {
     assert!(stats.objects_culled > 4, "{stats:?}");
     assert_eq!(stats.objects_culled + stats.objects_drawn, 16);
     assert_eq!(oracle::count_violations(&view, &list), 0);
+}
+
+#[test]
+fn an_instance_moved_outside_the_frame_of_reference_stays_exact() {
+    let cube = test_support::models::boxes(&[(DVec3::splat(-0.5), DVec3::splat(0.5))]);
+    let at = |x: f64| DAffine3::from_translation(DVec3::new(x, 0.0, 0.0));
+    let mut scene = SceneSorter::new(
+        vec![cube],
+        vec![
+            Instance {
+                mesh: 0,
+                transform: at(0.0),
+            },
+            Instance {
+                mesh: 0,
+                transform: at(0.6),
+            },
+        ],
+    )
+    .unwrap();
+    // Zoomed out, so that the cubes stay in the image where they go.
+    let fit = View::fit(&scene.bounds(), 200, 200);
+    let view = fit
+        .with_yaw_pitch_roll(30.0, 25.0, 0.0)
+        .with_scale(fit.scale() / 10.0);
+    let mut list = DrawList::new();
+    for x in [0.6, 3.0, 5.0] {
+        // Both cubes move out of the scene's bounds, still interlocking.
+        scene.set_transform(0, at(x - 0.6)).unwrap();
+        scene.set_transform(1, at(x)).unwrap();
+        scene.sort(&view, &mut list);
+        assert_eq!(oracle::count_violations(&view, &list), 0, "x = {x}");
+        assert_eq!(scene.stats().clusters, 1, "{:?}", scene.stats());
+        assert_eq!(faces_of(&list).len(), 6, "x = {x}");
+    }
 }
 
 #[test]

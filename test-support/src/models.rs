@@ -97,20 +97,41 @@ pub fn planar_torus(faces: usize) -> PolygonMesh {
 /// Deterministic for a seed.
 #[must_use]
 pub fn instanced_scene(count: usize, seed: u64) -> (Vec<PolygonMesh>, Vec<face_sort::Instance>) {
-    use face_sort::glam::{DAffine3, DMat3, DQuat};
     let meshes = vec![
         boxes(&[(DVec3::splat(-0.5), DVec3::splat(0.5))]),
         uv_sphere(12, 8),
         crate::load_polygon_mesh("suzanne/suzanne.obj"),
     ];
+    let instances = instance_layout(meshes.len(), count, seed, 2.2);
+    (meshes, instances)
+}
+
+/// `"suzanne-scene"`: `count` instances of suzanne (500 faces, a real model, 2.7 units wide)
+/// in the layout of [`instanced_scene`], 5 units apart (one in four pushed into its
+/// neighbour).
+#[must_use]
+pub fn suzanne_scene(count: usize, seed: u64) -> (Vec<PolygonMesh>, Vec<face_sort::Instance>) {
+    let meshes = vec![crate::load_polygon_mesh("suzanne/suzanne.obj")];
+    (meshes, instance_layout(1, count, seed, 5.0))
+}
+
+/// The layout of [`instanced_scene`], `spacing` apart: instance `k` carries mesh
+/// `k % meshes`.
+fn instance_layout(
+    meshes: usize,
+    count: usize,
+    seed: u64,
+    spacing: f64,
+) -> Vec<face_sort::Instance> {
+    use face_sort::glam::{DAffine3, DMat3, DQuat};
     let mut rng = crate::Rng::new(seed);
     let side = (count as f64).sqrt().ceil() as usize;
-    let instances = (0..count)
+    (0..count)
         .map(|k| {
             let (col, row) = ((k % side) as f64, (k / side) as f64);
-            let mut at = DVec3::new(col * 2.2, (k % 3) as f64 * 0.3, row * 2.2);
+            let mut at = DVec3::new(col * spacing, (k % 3) as f64 * 0.3, row * spacing);
             if k % 4 == 1 {
-                at.x -= 1.1; // into the previous instance's box
+                at.x -= 0.5 * spacing; // into the previous instance's box
             }
             let rotation = DQuat::from_axis_angle(rng.direction(), rng.range(0.0, 6.3));
             let mut scale = DVec3::new(
@@ -123,12 +144,11 @@ pub fn instanced_scene(count: usize, seed: u64) -> (Vec<PolygonMesh>, Vec<face_s
             }
             let linear = DMat3::from_quat(rotation) * DMat3::from_diagonal(scale);
             face_sort::Instance {
-                mesh: k % 3,
+                mesh: k % meshes,
                 transform: DAffine3::from_mat3_translation(linear, at),
             }
         })
-        .collect();
-    (meshes, instances)
+        .collect()
 }
 
 #[cfg(test)]
