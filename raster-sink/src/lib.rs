@@ -64,6 +64,7 @@
 //! tiny-skia (with its PNG support), png and obj-quads' texture decoding are always on.
 
 mod colour;
+mod composite;
 mod error;
 mod fill;
 mod grid;
@@ -80,6 +81,7 @@ pub use colour::{
     Light, MAX_SUPERSAMPLE, MAX_TEXTURE_SUBDIVISION, Override, RasterOptions, Step, default_steps,
     new_pixmap, polygon_path, render_colour, run_steps, save_png, shade_colour,
 };
+pub use composite::{CompositeTruth, composite_truth};
 pub use error::RasterError;
 pub use fill::{for_each_pixel_near_segment, for_each_span};
 pub use grid::GroundGrid;
