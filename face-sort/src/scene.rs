@@ -19,6 +19,9 @@
 //!    cluster every frame, and Newell needs no tree), and by one BSP over them once the
 //!    cluster has been drawn unchanged for a few frames.
 //!
+//! Instances are drawn layer by layer ([`Layer`]: background, main, overlay), each layer
+//! ordered as above.
+//!
 //! The output is an ordinary [`DrawList`] in the scene's centred world coordinates (the
 //! view must be fitted to [`SceneSorter::bounds`]), with faces numbered as in
 //! [`SceneSorter::flattened`]: instance by instance, each instance's faces in its mesh's
@@ -36,13 +39,58 @@ use crate::{
     PolygonSet, View, Viewer,
 };
 
-/// One placement of a mesh: `world = transform · local`.
+/// One placement of a mesh: `world = transform · local`, in a layer.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct Instance {
     /// Index of the mesh in the scene's meshes.
     pub mesh: usize,
     /// Local to world.
     pub transform: DAffine3,
+    /// The rendering queue it is drawn in.
+    pub layer: Layer,
+}
+
+impl Instance {
+    /// Mesh `mesh` placed by `transform`, in the main layer.
+    #[must_use]
+    pub fn new(mesh: usize, transform: DAffine3) -> Self {
+        Instance {
+            mesh,
+            transform,
+            layer: Layer::Main,
+        }
+    }
+
+    /// The same instance in `layer`.
+    #[must_use]
+    pub fn with_layer(mut self, layer: Layer) -> Self {
+        self.layer = layer;
+        self
+    }
+}
+
+/// Rendering queues, drawn in this order: everything in one queue is ordered exactly
+/// among itself, and nothing of a later queue is hidden by an earlier one.
+///
+/// There is no separate queue for translucent faces: a z-buffer renderer needs one (drawn
+/// last, sorted by object distance) because its depth test cannot order them, but an exact
+/// painter's order composites translucent and opaque faces correctly in one queue, across
+/// interlocking objects too (raster-sink's `composite_truth` checks it).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Layer {
+    /// Drawn first, behind everything (a sky, a backdrop).
+    Background,
+    /// The scene, opaque and translucent faces together.
+    #[default]
+    Main,
+    /// Drawn last, on top of everything (gizmos, labels, a HUD).
+    Overlay,
+}
+
+impl Layer {
+    /// The layers in drawing order.
+    pub const ALL: [Layer; 3] = [Layer::Background, Layer::Main, Layer::Overlay];
 }
 
 /// Why a [`SceneSorter`] could not be built.
@@ -141,7 +189,8 @@ pub struct SceneSorter {
     face_offsets: Vec<u32>,
     boxes: Vec<Bounds>,
     bounds: Bounds,
-    nodes: Vec<Node>,
+    /// One coarse tree per layer, in [`Layer::ALL`] order.
+    trees: [Vec<Node>; 3],
     tree_dirty: bool,
     clusters: HashMap<Vec<usize>, Cluster>,
     stats: SceneStats,
@@ -210,7 +259,7 @@ impl SceneSorter {
             face_offsets,
             boxes,
             bounds,
-            nodes: Vec::new(),
+            trees: [Vec::new(), Vec::new(), Vec::new()],
             tree_dirty: true,
             clusters: HashMap::new(),
             stats: SceneStats::default(),
@@ -284,21 +333,42 @@ impl SceneSorter {
     }
 
     fn build_tree(&mut self) {
-        self.nodes.clear();
-        let all: Vec<usize> = (0..self.instances.len()).collect();
-        build(&self.boxes, all, &mut self.nodes);
+        for (layer, nodes) in Layer::ALL.iter().zip(&mut self.trees) {
+            nodes.clear();
+            let members: Vec<usize> = (0..self.instances.len())
+                .filter(|&i| self.instances[i].layer == *layer)
+                .collect();
+            if !members.is_empty() {
+                build(&self.boxes, members, nodes);
+            }
+        }
         self.tree_dirty = false;
         self.stats.tree_builds += 1;
     }
 
-    /// Leaves in drawing order (far to near) for a viewer in world coordinates.
-    fn order_leaves(&mut self, viewer: Viewer) {
+    /// The instance whose faces hold scene face `face` (the numbering of
+    /// [`flattened`](Self::flattened)), e.g. for a render step's filter.
+    #[must_use]
+    pub fn instance_of_face(&self, face: u32) -> Option<usize> {
+        let k = self.face_offsets.partition_point(|&first| first <= face);
+        let i = k.checked_sub(1)?;
+        let faces = self.meshes[self.instances[i].mesh].mesh.face_count() as u32;
+        (face - self.face_offsets[i] < faces).then_some(i)
+    }
+
+    /// Leaves of layer `layer`'s tree in drawing order (far to near) for a viewer in world
+    /// coordinates.
+    fn order_leaves(&mut self, layer: usize, viewer: Viewer) {
         self.leaves.clear();
+        let nodes = &self.trees[layer];
+        if nodes.is_empty() {
+            return;
+        }
         let stack = &mut self.stack;
         stack.clear();
         stack.push(0);
         while let Some(n) = stack.pop() {
-            match &self.nodes[n] {
+            match &nodes[n] {
                 Node::Leaf(_) => self.leaves.push(n),
                 &Node::Split {
                     axis,
@@ -338,37 +408,39 @@ impl FaceSorter for SceneSorter {
             Viewer::Eye(e) => Viewer::Eye(e + centre),
             d @ Viewer::Direction(_) => d,
         };
-        self.order_leaves(world_viewer);
         out.begin(&self.empty);
         let mut drawn = 0;
         let mut culled = 0;
         let mut clusters = 0;
-        let leaves = std::mem::take(&mut self.leaves);
-        let mut members = std::mem::take(&mut self.members);
-        for &leaf in &leaves {
-            let Node::Leaf(all) = &self.nodes[leaf] else {
-                continue;
-            };
-            members.clear();
-            for &i in all {
-                if box_in_image(view, &self.boxes[i], centre) {
-                    members.push(i);
-                } else {
-                    culled += 1;
+        for layer in 0..Layer::ALL.len() {
+            self.order_leaves(layer, world_viewer);
+            let leaves = std::mem::take(&mut self.leaves);
+            let mut members = std::mem::take(&mut self.members);
+            for &leaf in &leaves {
+                let Node::Leaf(all) = &self.trees[layer][leaf] else {
+                    continue;
+                };
+                members.clear();
+                for &i in all {
+                    if box_in_image(view, &self.boxes[i], centre) {
+                        members.push(i);
+                    } else {
+                        culled += 1;
+                    }
+                }
+                drawn += members.len();
+                match members.as_slice() {
+                    [] => {}
+                    &[one] => self.draw_instance(one, &cull, centre, out),
+                    _ => {
+                        clusters += 1;
+                        self.draw_cluster(&members, view, out);
+                    }
                 }
             }
-            drawn += members.len();
-            match members.as_slice() {
-                [] => {}
-                &[one] => self.draw_instance(one, &cull, centre, out),
-                _ => {
-                    clusters += 1;
-                    self.draw_cluster(&members, view, out);
-                }
-            }
+            self.leaves = leaves;
+            self.members = members;
         }
-        self.leaves = leaves;
-        self.members = members;
         self.stats.objects_drawn = drawn;
         self.stats.objects_culled = culled;
         self.stats.clusters = clusters;

@@ -134,14 +134,8 @@ fn a_mirrored_instance_keeps_its_own_front() {
     let mut scene = SceneSorter::new(
         vec![cube],
         vec![
-            Instance {
-                mesh: 0,
-                transform: DAffine3::IDENTITY,
-            },
-            Instance {
-                mesh: 0,
-                transform: shifted,
-            },
+            Instance::new(0, DAffine3::IDENTITY),
+            Instance::new(0, shifted),
         ],
     )
     .unwrap();
@@ -178,16 +172,7 @@ fn an_instance_moved_outside_the_frame_of_reference_stays_exact() {
     let at = |x: f64| DAffine3::from_translation(DVec3::new(x, 0.0, 0.0));
     let mut scene = SceneSorter::new(
         vec![cube],
-        vec![
-            Instance {
-                mesh: 0,
-                transform: at(0.0),
-            },
-            Instance {
-                mesh: 0,
-                transform: at(0.6),
-            },
-        ],
+        vec![Instance::new(0, at(0.0)), Instance::new(0, at(0.6))],
     )
     .unwrap();
     // Zoomed out, so that the cubes stay in the image where they go.
@@ -212,20 +197,17 @@ fn bad_scenes_are_typed_errors() {
     let cube = test_support::models::boxes(&[(DVec3::ZERO, DVec3::ONE)]);
     let e = SceneSorter::new(
         vec![cube.clone()],
-        vec![Instance {
-            mesh: 1,
-            transform: DAffine3::IDENTITY,
-        }],
+        vec![Instance::new(1, DAffine3::IDENTITY)],
     )
     .err()
     .unwrap();
     assert!(e.to_string().contains("mesh 1"), "{e}");
     let e = SceneSorter::new(
         vec![cube],
-        vec![Instance {
-            mesh: 0,
-            transform: DAffine3::from_scale(DVec3::new(1.0, 0.0, 1.0)),
-        }],
+        vec![Instance::new(
+            0,
+            DAffine3::from_scale(DVec3::new(1.0, 0.0, 1.0)),
+        )],
     )
     .err()
     .unwrap();

@@ -143,10 +143,7 @@ fn instance_layout(
                 scale.x = -scale.x;
             }
             let linear = DMat3::from_quat(rotation) * DMat3::from_diagonal(scale);
-            face_sort::Instance {
-                mesh: k % meshes,
-                transform: DAffine3::from_mat3_translation(linear, at),
-            }
+            face_sort::Instance::new(k % meshes, DAffine3::from_mat3_translation(linear, at))
         })
         .collect()
 }

@@ -274,10 +274,7 @@ fn gltf_scene(
     let instances: Vec<face_sort::Instance> = loaded
         .instances
         .iter()
-        .map(|i| face_sort::Instance {
-            mesh: i.mesh,
-            transform: i.world,
-        })
+        .map(|i| face_sort::Instance::new(i.mesh, i.world))
         .collect();
     let (count, kinds) = (instances.len(), meshes.len());
     if count < 2 {

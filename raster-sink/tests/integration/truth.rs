@@ -302,10 +302,7 @@ fn gltf_scenes_render_exactly_through_the_scene_path() {
     let instances = gltf
         .instances
         .iter()
-        .map(|i| Instance {
-            mesh: i.mesh,
-            transform: i.world,
-        })
+        .map(|i| Instance::new(i.mesh, i.world))
         .collect();
     let mut scene = SceneSorter::new(meshes, instances).unwrap();
     let (flat, _) = obj_quads::load_gltf_slice(json.as_bytes(), &options).unwrap();
@@ -401,5 +398,105 @@ fn translucent_scenes_composite_exactly() {
     assert!(
         centroid_wrong > 0,
         "the scene must be hard for the centroid sort"
+    );
+}
+
+/// Layers are rendering queues: a backdrop in the background layer is drawn first even
+/// where it stands in front, a marker in the overlay layer last even where it stands
+/// behind; a render step can take one layer and override its brush.
+#[test]
+fn layers_are_queues_and_steps_filter_them() {
+    use raster_sink::face_sort::glam::DAffine3;
+    use raster_sink::face_sort::{FaceSorter, Instance, Layer, SceneSorter};
+    use raster_sink::{Override, RasterOptions, Step, Style, run_steps};
+    let cube = test_support::models::boxes(&[(DVec3::splat(-0.5), DVec3::splat(0.5))]);
+    let at = |x: f64, z: f64, s: f64| {
+        DAffine3::from_scale_rotation_translation(
+            DVec3::splat(s),
+            raster_sink::face_sort::glam::DQuat::IDENTITY,
+            DVec3::new(x, 0.0, z),
+        )
+    };
+    // Seen from +z: the main cube at the back, a big "backdrop" cube in front of it (in the
+    // background layer), a small "marker" cube behind the main one (in the overlay layer).
+    let instances = vec![
+        Instance::new(0, at(0.0, 0.0, 1.0)),
+        Instance::new(0, at(0.0, 2.0, 3.0)).with_layer(Layer::Background),
+        Instance::new(0, at(0.0, -2.0, 0.6)).with_layer(Layer::Overlay),
+    ];
+    let mut scene = SceneSorter::new(vec![cube], instances).unwrap();
+    let view = View::fit(&scene.bounds(), 120, 120);
+    let mut list = DrawList::new();
+    scene.sort(&view, &mut list);
+    let layers: Vec<Layer> = list
+        .items()
+        .iter()
+        .map(|item| scene.instances()[scene.instance_of_face(item.face).unwrap()].layer)
+        .collect();
+    let mut sorted = layers.clone();
+    sorted.sort();
+    assert_eq!(layers, sorted, "background, then main, then overlay");
+    assert!(layers.contains(&Layer::Background) && layers.contains(&Layer::Overlay));
+    // A step drawing only the overlay layer, in one colour, over a cleared canvas.
+    let overlay_only = |item: face_sort::DrawItem| {
+        scene
+            .instance_of_face(item.face)
+            .is_some_and(|i| scene.instances()[i].layer == Layer::Overlay)
+    };
+    let steps = [
+        Step::Clear([0, 0, 0, 255]),
+        Step::Draw {
+            filter: Some(&overlay_only),
+            brush: Override::Solid([255, 0, 0, 255]),
+        },
+        Step::Resolve,
+    ];
+    let image = run_steps(
+        &view,
+        &list,
+        &Style::palette(),
+        &RasterOptions::DEFAULT.with_anti_alias(false),
+        &steps,
+    )
+    .unwrap();
+    let red = image
+        .pixels()
+        .iter()
+        .filter(|p| p.red() == 255 && p.green() == 0)
+        .count();
+    let drawn = image
+        .pixels()
+        .iter()
+        .filter(|p| p.red() > 0 || p.green() > 0 || p.blue() > 0)
+        .count();
+    // The marker is small: some pixels, all of them red.
+    assert!(red > 50 && red == drawn, "{red} red of {drawn}");
+    // In ID images: the overlay marker shows although the main cube stands in front of it;
+    // the backdrop shows only where the main cube does not cover it.
+    let marker_pixels = |list: &DrawList| {
+        render_ids(&view, list)
+            .ids
+            .iter()
+            .filter(|&&id| id > 12)
+            .count()
+    };
+    assert!(marker_pixels(&list) > 50);
+    let mut all_main = SceneSorter::new(
+        vec![test_support::models::boxes(&[(
+            DVec3::splat(-0.5),
+            DVec3::splat(0.5),
+        )])],
+        scene
+            .instances()
+            .iter()
+            .map(|i| Instance::new(i.mesh, i.transform))
+            .collect(),
+    )
+    .unwrap();
+    all_main.sort(&view, &mut list);
+    assert_eq!(
+        marker_pixels(&list),
+        0,
+        "in the main layer the marker is hidden"
     );
 }
