@@ -21,7 +21,10 @@ pub struct CompositeTruth {
     /// (source-over, in sRGB values as tiny-skia blends them) over the background.
     pub rgba: Vec<[u8; 4]>,
     /// Row-major: at least [`EDGE_MARGIN_PX`] from every projected edge of every drawn piece,
-    /// and every two fragments' depths differ by more than [`DEPTH_GAP`]` · L`.
+    /// and no two fragments change places within [`EDGE_MARGIN_PX`] of the centre (their
+    /// depths over that square, sampled at its corners and the centre, stay more than
+    /// [`DEPTH_GAP`]` · L` apart): pixels by an interpenetration line, where a rasteriser's
+    /// fill rule decides, are not judged.
     pub unambiguous: Vec<bool>,
 }
 
@@ -39,8 +42,9 @@ pub fn composite_truth(
     let (width, height) = (view.width(), view.height());
     let n_pixels = width as usize * height as usize;
     let stride = width as usize;
-    // (pixel, depth toward the viewer, face)
-    let mut fragments: Vec<(u32, f64, u32)> = Vec::new();
+    // (pixel, depth toward the viewer at the centre, face, lowest and highest depth over
+    // the pixel's ±EDGE_MARGIN_PX square)
+    let mut fragments: Vec<(u32, f64, u32, f64, f64)> = Vec::new();
     let mut near_edge = vec![false; n_pixels];
     let caster = PixelRays::new(view);
     let cull = view.cull_test();
@@ -71,13 +75,23 @@ pub fn composite_truth(
         for_each_span(points, width, height, |y, x0, x1| {
             let yc = f64::from(y) + 0.5;
             for x in x0..x1 {
-                let z = caster.depth(DVec2::new(f64::from(x) + 0.5, yc), n, offset);
-                let z = if z.is_nan() {
-                    z_hi
-                } else {
-                    z.clamp(z_lo, z_hi)
+                let depth = |dx: f64, dy: f64| {
+                    let z = caster.depth(DVec2::new(f64::from(x) + 0.5 + dx, yc + dy), n, offset);
+                    if z.is_nan() {
+                        z_hi
+                    } else {
+                        z.clamp(z_lo, z_hi)
+                    }
                 };
-                fragments.push(((y as usize * stride + x as usize) as u32, z, face));
+                let z = depth(0.0, 0.0);
+                let m = EDGE_MARGIN_PX;
+                let (mut lo, mut hi) = (z, z);
+                for (dx, dy) in [(-m, -m), (m, -m), (-m, m), (m, m)] {
+                    let d = depth(dx, dy);
+                    lo = lo.min(d);
+                    hi = hi.max(d);
+                }
+                fragments.push(((y as usize * stride + x as usize) as u32, z, face, lo, hi));
             }
         });
         let m = points.len();
@@ -107,7 +121,9 @@ pub fn composite_truth(
                 .count();
         let mut out = premultiply(background);
         for k in start..end {
-            if k > start && fragments[k].1 - fragments[k - 1].1 <= gap {
+            // Sorted by centre depth: the nearer one's lowest depth must clear the farther
+            // one's highest over the whole square.
+            if k > start && fragments[k].3 - fragments[k - 1].4 <= gap {
                 unambiguous[pixel as usize] = false;
             }
             out = over(premultiply(colour(fragments[k].2)), out);

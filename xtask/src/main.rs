@@ -22,6 +22,7 @@ mod peer;
 mod progress;
 mod raster;
 mod render;
+mod scene_demo;
 mod scenes;
 mod stress;
 

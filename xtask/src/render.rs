@@ -29,16 +29,16 @@ const DEMO_PITCH: f64 = -25.0;
 #[derive(Debug, Args)]
 pub struct RenderArgs {
     /// Model to draw (.obj, .gltf, .glb). Default: the demo scene (spot on a ground grid).
-    model: Option<PathBuf>,
+    pub(crate) model: Option<PathBuf>,
     /// Output PNG. Default: target/render.png.
     #[arg(short, long, value_name = "OUT.png")]
-    output: Option<PathBuf>,
+    pub(crate) output: Option<PathBuf>,
     /// Yaw in degrees (about the screen's vertical axis). Default 0 (the demo: 145).
     #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
-    yaw: Option<f64>,
+    pub(crate) yaw: Option<f64>,
     /// Pitch in degrees. Default 0 (the demo: -25; yaw turns the pitched model, so near yaw 180 a negative pitch shows the top).
     #[arg(long, value_name = "DEG", allow_hyphen_values = true)]
-    pitch: Option<f64>,
+    pub(crate) pitch: Option<f64>,
     /// Roll in degrees. Default 0.
     #[arg(
         long,
@@ -46,94 +46,100 @@ pub struct RenderArgs {
         allow_hyphen_values = true,
         default_value_t = 0.0
     )]
-    roll: f64,
+    pub(crate) roll: f64,
     /// Image size.
     #[arg(long, value_name = "WxH", default_value = "512x512", value_parser = parse_size)]
-    size: (u32, u32),
+    pub(crate) size: (u32, u32),
     /// Scale in pixels per model unit. Default: fit (0.9 · min(W, H) / L).
     #[arg(long, value_name = "S")]
-    scale: Option<f64>,
+    pub(crate) scale: Option<f64>,
     /// Perspective with the eye D pixels from the centre (CONVENTIONS default D = W).
     /// Absent: orthographic (the demo is perspective with D = W unless --ortho).
     #[arg(long, value_name = "D")]
-    persp: Option<f64>,
+    pub(crate) persp: Option<f64>,
     /// Orthographic even for the demo scene.
     #[arg(long, conflicts_with = "persp")]
-    ortho: bool,
+    pub(crate) ortho: bool,
     /// Sorter. `auto` picks the best exact one and says why (see `plan` in --json).
     #[arg(long, value_enum, default_value_t = SorterChoice::Auto)]
-    sorter: SorterChoice,
+    pub(crate) sorter: SorterChoice,
     /// Which faces culling removes.
     #[arg(long, value_enum, default_value_t = CullChoice::Back)]
-    cull: CullChoice,
+    pub(crate) cull: CullChoice,
     /// Clockwise faces are the front (default: counter-clockwise).
     #[arg(long)]
-    cw: bool,
+    pub(crate) cw: bool,
     /// Cull margin in degrees: also keep faces this close to edge-on.
     #[arg(long, value_name = "DEG", default_value_t = 0.0)]
-    margin: f64,
+    pub(crate) margin: f64,
     /// Which faces the loader accepts.
     #[arg(long, value_enum, default_value_t = PolicyChoice::Polygons)]
-    policy: PolicyChoice,
+    pub(crate) policy: PolicyChoice,
     /// Write an ID image (CONVENTIONS.md: face index + 1 as 24-bit RGB, no anti-aliasing)
     /// instead of colour.
     #[arg(long)]
-    ids: bool,
+    pub(crate) ids: bool,
     /// Colour without anti-aliasing.
     #[arg(long)]
-    no_aa: bool,
+    pub(crate) no_aa: bool,
     /// Flat shading (Lambert, light over the viewer's shoulder).
     #[arg(long)]
-    shade: bool,
+    pub(crate) shade: bool,
     /// Draw a ground grid under the model (always on for the demo).
     #[arg(long)]
-    grid: bool,
+    pub(crate) grid: bool,
     /// Texture (PNG) for a model with uvs but no material texture (the demo uses spot's).
     #[arg(long, value_name = "PNG")]
-    texture: Option<PathBuf>,
+    pub(crate) texture: Option<PathBuf>,
     /// Also write an SVG of the same view (sprite-compose writer, palette colours).
     #[arg(long, value_name = "OUT.svg")]
-    svg: Option<PathBuf>,
+    pub(crate) svg: Option<PathBuf>,
     /// Also write an HTML/CSS 3D page of the same view (sprite-compose writer).
     #[arg(long, value_name = "OUT.html")]
-    html: Option<PathBuf>,
+    pub(crate) html: Option<PathBuf>,
     /// Also write a one-page PDF of the same view (sprite-compose writer; one pixel to one
     /// point).
     #[arg(long, value_name = "OUT.pdf")]
-    pdf: Option<PathBuf>,
+    pub(crate) pdf: Option<PathBuf>,
     /// Draw every mesh edge over the model (hidden parts hidden), black, 1 px, in the PNG,
     /// --svg and --pdf (not in --html; ignored with --ids).
     #[arg(long)]
-    wire: bool,
+    pub(crate) wire: bool,
     /// Draw every vertex (hidden ones hidden) as a 2 px dot, like --wire.
     #[arg(long)]
-    points: bool,
+    pub(crate) points: bool,
     /// Also write a plot of the same view: an SVG of strokes only, the visible parts of the
     /// boundary, silhouette, crease and non-manifold edges (hidden-line removal), joined
     /// into polylines for a pen plotter.
     #[arg(long, value_name = "OUT.svg")]
-    plot: Option<PathBuf>,
+    pub(crate) plot: Option<PathBuf>,
     /// With --plot: edges between drawn faces whose normals differ by at least this many
     /// degrees are creases and drawn.
     #[arg(long, value_name = "DEG", default_value_t = 30.0)]
-    crease: f64,
+    pub(crate) crease: f64,
     /// Also write the plot as HP-GL (40 plotter units per pixel: one pixel to one mm).
     #[arg(long, value_name = "OUT.hpgl")]
-    hpgl: Option<PathBuf>,
+    pub(crate) hpgl: Option<PathBuf>,
     /// Write every polygon into --svg and --pdf, hidden parts included (the default leaves out
     /// every polygon, or part of one, that opaque polygons in front cover).
     #[arg(long)]
-    keep_hidden: bool,
+    pub(crate) keep_hidden: bool,
     /// Read files the model names (glTF buffers and images, OBJ mtllib, MTL map_Kd) even
     /// when they resolve outside the model's folder. Only for files you trust.
     #[arg(long)]
-    allow_outside: bool,
+    pub(crate) allow_outside: bool,
+    /// Render the generated demo scene instead of a model: 30 instances of a box, a sphere
+    /// and suzanne (rotated, non-uniformly scaled, mirrored, some interlocking), a third of
+    /// them translucent, on a backdrop slab in the background layer, with a marker in the
+    /// overlay layer, ordered by `face_sort::SceneSorter`.
+    #[arg(long, conflicts_with = "model")]
+    pub(crate) scene: bool,
     /// Print one JSON object instead of the summary line.
     #[arg(long)]
-    json: bool,
+    pub(crate) json: bool,
     /// Also measure the order: pixel error against the z-buffer truth, oracle violations.
     #[arg(long)]
-    check: bool,
+    pub(crate) check: bool,
 }
 
 /// `--sorter`.
@@ -309,6 +315,9 @@ fn plan(choice: SorterChoice, geometry: &Geometry) -> (Box<dyn FaceSorter>, Stri
 
 /// Runs `render`.
 pub fn run(args: &RenderArgs) -> Result<ExitCode> {
+    if args.scene {
+        return crate::scene_demo::run(args);
+    }
     let demo = args.model.is_none();
     let model_path = args
         .model

@@ -467,3 +467,24 @@ fn gltf_renders_through_the_scene_path_exactly() {
         assert!(std::fs::read_to_string(&svg).unwrap().contains("<polygon"));
     }
 }
+
+#[test]
+fn the_demo_scene_is_exact_through_the_scene_path() {
+    let out = temp_dir("scene").join("scene.png");
+    let result = xtask(&[
+        "render",
+        "--scene",
+        "--check",
+        "--json",
+        "--size",
+        "160x160",
+        "-o",
+        out.to_str().unwrap(),
+    ]);
+    assert!(result.status.success(), "{}", text(&result.stderr));
+    let value: serde_json::Value = serde_json::from_slice(&result.stdout).unwrap();
+    assert_eq!(value["instances"], 32, "{value}");
+    assert_eq!(value["violations"], 0, "{value}");
+    assert_eq!(value["composite_wrong"], 0, "{value}");
+    assert!(out.exists());
+}
