@@ -95,7 +95,7 @@ pub use error::{FaceLocation, LoadError};
 pub use gltf_load::{
     GltfInstance, GltfScene, load_gltf, load_gltf_scene, load_gltf_scene_slice, load_gltf_slice,
 };
-pub use mesh::{EmbeddedTexture, Material, Mesh};
+pub use mesh::{AlphaMode, EmbeddedTexture, Material, Mesh};
 #[cfg(feature = "obj")]
 pub use obj::{load_obj, load_obj_reader, load_obj_str};
 pub use options::{FacePolicy, LoadOptions, LoadReport, NonConvexPolicy, NonPlanarPolicy};

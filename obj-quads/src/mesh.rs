@@ -28,6 +28,25 @@ pub struct Material {
     /// colour is `baseColorFactor × texture` (true); an OBJ's `Kd` is the colour of faces
     /// without a texture and leaves `map_Kd` as it is (false).
     pub texture_times_diffuse: bool,
+    /// How the colour's alpha (the diffuse alpha times the texture's) is used: glTF's
+    /// `alphaMode`; an OBJ's `d` blends.
+    pub alpha_mode: AlphaMode,
+}
+
+/// How a material's alpha is used (glTF `alphaMode`).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[non_exhaustive]
+pub enum AlphaMode {
+    /// Alpha is ignored: the surface is opaque.
+    Opaque,
+    /// Alpha blends the surface over what is behind it (OBJ `d`, glTF `BLEND`).
+    #[default]
+    Blend,
+    /// Alpha at or above `cutoff` is opaque, below it fully transparent (glTF `MASK`).
+    Mask {
+        /// The threshold, 0 to 1 (glTF's `alphaCutoff`, default 0.5).
+        cutoff: f32,
+    },
 }
 
 /// An encoded image held in a model file.
@@ -59,6 +78,7 @@ impl Material {
             texture: None,
             embedded_texture: None,
             texture_times_diffuse: false,
+            alpha_mode: AlphaMode::Blend,
         }
     }
 

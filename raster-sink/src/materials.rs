@@ -49,6 +49,12 @@ pub trait FaceMaterials {
         let _ = face;
         None
     }
+    /// How a face's alpha is used (glTF `alphaMode`): opaque, blended, or masked at a
+    /// cutoff. Default: blended.
+    fn face_alpha_mode(&self, face: usize) -> obj_quads::AlphaMode {
+        let _ = face;
+        obj_quads::AlphaMode::Blend
+    }
     /// A face's model-space normal (any length) for flat shading: by default Newell's
     /// normal of its corners.
     fn face_normal(&self, face: usize) -> Option<DVec3> {
@@ -167,9 +173,37 @@ fn pixmap_of(texture: obj_quads::Texture, path: &Path) -> Result<Pixmap, RasterE
         })
 }
 
+/// An alpha mode as a hashable cache key.
+type AlphaKey = (u8, u32);
+
+fn alpha_key(mode: obj_quads::AlphaMode) -> AlphaKey {
+    match mode {
+        obj_quads::AlphaMode::Opaque => (0, 0),
+        obj_quads::AlphaMode::Mask { cutoff } => (2, cutoff.to_bits()),
+        _ => (1, 0),
+    }
+}
+
+/// An alpha byte under an alpha mode: as is (blend), 255 (opaque), or 255 / 0 at the
+/// cutoff (mask).
+fn alpha_byte(alpha: u8, mode: obj_quads::AlphaMode) -> u8 {
+    match mode {
+        obj_quads::AlphaMode::Opaque => 255,
+        obj_quads::AlphaMode::Mask { cutoff } => {
+            if f32::from(alpha) / 255.0 >= cutoff {
+                255
+            } else {
+                0
+            }
+        }
+        _ => alpha,
+    }
+}
+
 /// `image` with every texel multiplied by `factor` (linear RGBA, as glTF's
-/// `baseColorFactor`): sRGB texels to linear, times the factor, back to sRGB.
-fn tint(image: &Pixmap, factor: [f32; 4]) -> Pixmap {
+/// `baseColorFactor`: sRGB texels to linear, times the factor, back to sRGB) and its alpha
+/// then taken as `alpha` says.
+fn tint(image: &Pixmap, factor: [f32; 4], alpha: obj_quads::AlphaMode) -> Pixmap {
     let to_linear = |c: u8| {
         let c = f32::from(c) / 255.0;
         if c <= 0.04045 {
@@ -190,11 +224,21 @@ fn tint(image: &Pixmap, factor: [f32; 4]) -> Pixmap {
     let mut out = image.clone();
     for pixel in out.pixels_mut() {
         let c = pixel.demultiply();
-        let a = (f32::from(c.alpha()) * factor[3].clamp(0.0, 1.0)).round() as u8;
+        let a = alpha_byte(
+            (f32::from(c.alpha()) * factor[3].clamp(0.0, 1.0)).round() as u8,
+            alpha,
+        );
+        let scale = |v: u8, f: f32| {
+            if f == 1.0 {
+                v // no round trip through linear light
+            } else {
+                to_srgb(to_linear(v) * f)
+            }
+        };
         let tinted = tiny_skia::ColorU8::from_rgba(
-            to_srgb(to_linear(c.red()) * factor[0]),
-            to_srgb(to_linear(c.green()) * factor[1]),
-            to_srgb(to_linear(c.blue()) * factor[2]),
+            scale(c.red(), factor[0]),
+            scale(c.green(), factor[1]),
+            scale(c.blue(), factor[2]),
             a,
         );
         *pixel = tinted.premultiply();
@@ -224,9 +268,10 @@ impl Style {
         let mut warnings = Vec::new();
         // Decoded textures by source, and tinted copies by source and factor.
         let mut textures: HashMap<TextureKey, Option<Arc<Pixmap>>> = HashMap::new();
-        let mut tinted: HashMap<(TextureKey, [u32; 4]), Arc<Pixmap>> = HashMap::new();
+        let mut tinted: HashMap<(TextureKey, [u32; 4], AlphaKey), Arc<Pixmap>> = HashMap::new();
         let mut load = |source: TextureSource<'_>,
-                        factor: Option<[f32; 4]>|
+                        factor: Option<[f32; 4]>,
+                        alpha: obj_quads::AlphaMode|
          -> Result<Option<Arc<Pixmap>>, RasterError> {
             let key = source.key();
             let image = match textures.get(&key) {
@@ -251,13 +296,16 @@ impl Style {
                     image
                 }
             };
-            Ok(match (image, factor) {
-                (Some(image), Some(f)) if f != [1.0; 4] => Some(Arc::clone(
-                    tinted
-                        .entry((key, f.map(f32::to_bits)))
-                        .or_insert_with(|| Arc::new(tint(&image, f))),
-                )),
-                (image, _) => image,
+            let f = factor.unwrap_or([1.0; 4]);
+            Ok(match image {
+                Some(image) if f != [1.0; 4] || alpha != obj_quads::AlphaMode::Blend => {
+                    Some(Arc::clone(
+                        tinted
+                            .entry((key, f.map(f32::to_bits), alpha_key(alpha)))
+                            .or_insert_with(|| Arc::new(tint(&image, f, alpha))),
+                    ))
+                }
+                image => image,
             })
         };
         let positions = faces.positions();
@@ -276,7 +324,11 @@ impl Style {
             let mut brush = None;
             if let (Some(source), Some(uvs), Some(indices)) =
                 (source, faces.face_uvs(face), faces.face_corners(face))
-                && let Some(image) = load(source, faces.face_texture_factor(face))?
+                && let Some(image) = load(
+                    source,
+                    faces.face_texture_factor(face),
+                    faces.face_alpha_mode(face),
+                )?
             {
                 corners.clear();
                 corners.extend(indices.iter().map(|&i| positions[i as usize] - centre));
@@ -289,9 +341,11 @@ impl Style {
                     .map(|map| Brush::Texture(TextureBrush { image, map }));
             }
             let brush = brush.or_else(|| {
-                faces
-                    .face_diffuse(face)
-                    .map(|d| Brush::Solid(diffuse_bytes(d)))
+                faces.face_diffuse(face).map(|d| {
+                    let mut colour = diffuse_bytes(d);
+                    colour[3] = alpha_byte(colour[3], faces.face_alpha_mode(face));
+                    Brush::Solid(colour)
+                })
             });
             if let Some(brush) = brush {
                 style.set_face(face as u32, brush);
@@ -426,6 +480,11 @@ impl FaceMaterials for obj_quads::Mesh {
             .and_then(|m| self.materials().get(m as usize))
             .filter(|m| m.texture_times_diffuse)
             .map(|m| m.diffuse)
+    }
+    fn face_alpha_mode(&self, face: usize) -> obj_quads::AlphaMode {
+        self.face_material(face)
+            .and_then(|m| self.materials().get(m as usize))
+            .map_or(obj_quads::AlphaMode::Blend, |m| m.alpha_mode)
     }
     fn face_normal(&self, face: usize) -> Option<DVec3> {
         obj_quads::Mesh::face_normal(self, face)

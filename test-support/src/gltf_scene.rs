@@ -4,6 +4,16 @@
 
 use base64::Engine as _;
 
+/// A `data:` URI of `bytes` with a MIME type, base64 (as glTF files embed buffers and
+/// images).
+#[must_use]
+pub fn data_uri(mime: &str, bytes: &[u8]) -> String {
+    format!(
+        "data:{mime};base64,{}",
+        base64::engine::general_purpose::STANDARD.encode(bytes)
+    )
+}
+
 /// The scene's glTF JSON.
 #[must_use]
 pub fn cube_scene_gltf() -> String {
@@ -37,10 +47,7 @@ pub fn cube_scene_gltf() -> String {
             bin.extend(i.to_le_bytes());
         }
     }
-    let uri = format!(
-        "data:application/octet-stream;base64,{}",
-        base64::engine::general_purpose::STANDARD.encode(&bin)
-    );
+    let uri = data_uri("application/octet-stream", &bin);
     format!(
         r#"{{
   "asset": {{"version": "2.0"}},

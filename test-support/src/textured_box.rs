@@ -2,8 +2,7 @@
 //! beside the file (the asset as is), a data URI, or a GLB buffer view; optionally with a
 //! `baseColorFactor`. For the loader's and the raster's embedded-texture tests.
 
-use base64::Engine as _;
-
+use crate::gltf_scene::data_uri;
 use crate::model_path;
 
 /// Where the box's texture is.
@@ -58,19 +57,18 @@ pub fn textured_box(source: ImageSource, factor: Option<[f32; 4]>) -> Vec<u8> {
             ),
         );
     }
-    let b64 = |bytes: &[u8]| base64::engine::general_purpose::STANDARD.encode(bytes);
     match source {
         ImageSource::File => json.into_bytes(),
         ImageSource::DataUri => {
             replace(
                 "\"uri\": \"CesiumLogoFlat.png\"",
-                &format!("\"uri\": \"data:image/png;base64,{}\"", b64(&png)),
+                &format!("\"uri\": \"{}\"", data_uri("image/png", &png)),
             );
             replace(
                 "\"uri\": \"BoxTextured0.bin\"",
                 &format!(
-                    "\"uri\": \"data:application/octet-stream;base64,{}\"",
-                    b64(&bin)
+                    "\"uri\": \"{}\"",
+                    data_uri("application/octet-stream", &bin)
                 ),
             );
             json.into_bytes()

@@ -7,7 +7,7 @@ use gltf::Document;
 
 use super::buffers::{data_uri, uri_path};
 use crate::paths::Folder;
-use crate::{EmbeddedTexture, LoadOptions, Material};
+use crate::{AlphaMode, EmbeddedTexture, LoadOptions, Material};
 
 /// Materials in document order: base colour factor and texture.
 pub(super) fn materials(
@@ -33,6 +33,13 @@ pub(super) fn materials(
             }
             let mut material = Material::new(name, diffuse);
             material.texture_times_diffuse = true;
+            material.alpha_mode = match m.alpha_mode() {
+                gltf::material::AlphaMode::Opaque => AlphaMode::Opaque,
+                gltf::material::AlphaMode::Blend => AlphaMode::Blend,
+                gltf::material::AlphaMode::Mask => AlphaMode::Mask {
+                    cutoff: m.alpha_cutoff().filter(|c| c.is_finite()).unwrap_or(0.5),
+                },
+            };
             if let Some(info) = pbr.base_color_texture() {
                 let image = info.texture().source();
                 let found = match image.source() {

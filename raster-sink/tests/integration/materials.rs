@@ -285,3 +285,115 @@ fn embedded_gltf_textures_draw_and_the_factor_multiplies_them() {
     }
     assert!(pictures[0].2.data() != pictures[1].2.data());
 }
+
+/// glTF `alphaMode`: OPAQUE ignores alpha, BLEND keeps it, MASK cuts at `alphaCutoff`, for
+/// textures (a 2 × 1 texture with alpha 64 and 200) and plain base colours (alpha 0.3).
+#[test]
+fn gltf_alpha_modes_shape_the_brushes() {
+    use raster_sink::face_sort::Geometry;
+    use test_support::gltf_scene::data_uri;
+    let mut texture = raster_sink::tiny_skia::Pixmap::new(2, 1).unwrap();
+    texture.pixels_mut()[0] =
+        raster_sink::tiny_skia::ColorU8::from_rgba(200, 40, 40, 64).premultiply();
+    texture.pixels_mut()[1] =
+        raster_sink::tiny_skia::ColorU8::from_rgba(40, 200, 40, 200).premultiply();
+    let png = data_uri("image/png", &texture.encode_png().unwrap());
+    // Two quads side by side: the first textured, the second with a base colour only.
+    let mut bin: Vec<u8> = Vec::new();
+    let positions: [[f32; 3]; 8] = [
+        [0.0, 0.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [0.0, 1.0, 0.0],
+        [2.0, 0.0, 0.0],
+        [3.0, 0.0, 0.0],
+        [3.0, 1.0, 0.0],
+        [2.0, 1.0, 0.0],
+    ];
+    let uvs: [[f32; 2]; 8] = [
+        [0.0, 1.0],
+        [1.0, 1.0],
+        [1.0, 0.0],
+        [0.0, 0.0],
+        [0.0, 1.0],
+        [1.0, 1.0],
+        [1.0, 0.0],
+        [0.0, 0.0],
+    ];
+    for p in positions {
+        for v in p {
+            bin.extend(v.to_le_bytes());
+        }
+    }
+    for t in uvs {
+        for v in t {
+            bin.extend(v.to_le_bytes());
+        }
+    }
+    for i in [0u16, 1, 2, 0, 2, 3, 0, 1, 2, 0, 2, 3] {
+        bin.extend(i.to_le_bytes());
+    }
+    let buffer = data_uri("application/octet-stream", &bin);
+    let gltf = |mode: &str| {
+        format!(
+            r#"{{"asset": {{"version": "2.0"}}, "scene": 0, "scenes": [{{"nodes": [0]}}],
+  "nodes": [{{"mesh": 0}}],
+  "meshes": [{{"primitives": [
+    {{"attributes": {{"POSITION": 0, "TEXCOORD_0": 1}}, "indices": 2, "material": 0}},
+    {{"attributes": {{"POSITION": 3, "TEXCOORD_0": 4}}, "indices": 5, "material": 1}}]}}],
+  "materials": [
+    {{"pbrMetallicRoughness": {{"baseColorTexture": {{"index": 0}}}}, {mode}}},
+    {{"pbrMetallicRoughness": {{"baseColorFactor": [0.2, 0.4, 0.8, 0.3]}}, {mode}}}],
+  "textures": [{{"source": 0}}],
+  "images": [{{"uri": "{png}"}}],
+  "accessors": [
+    {{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0,0,0], "max": [1,1,0]}},
+    {{"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC2"}},
+    {{"bufferView": 2, "componentType": 5123, "count": 6, "type": "SCALAR"}},
+    {{"bufferView": 0, "byteOffset": 48, "componentType": 5126, "count": 4, "type": "VEC3", "min": [2,0,0], "max": [3,1,0]}},
+    {{"bufferView": 1, "byteOffset": 32, "componentType": 5126, "count": 4, "type": "VEC2"}},
+    {{"bufferView": 2, "byteOffset": 12, "componentType": 5123, "count": 6, "type": "SCALAR"}}],
+  "bufferViews": [
+    {{"buffer": 0, "byteOffset": 0, "byteLength": 96}},
+    {{"buffer": 0, "byteOffset": 96, "byteLength": 64}},
+    {{"buffer": 0, "byteOffset": 160, "byteLength": 24}}],
+  "buffers": [{{"byteLength": {len}, "uri": "{buffer}"}}]}}"#,
+            len = bin.len()
+        )
+    };
+    // (mode, texel alphas, base colour alpha)
+    for (mode, texels, base) in [
+        (r#""alphaMode": "OPAQUE""#, [255, 255], 255),
+        (r#""alphaMode": "BLEND""#, [64, 200], 77),
+        (r#""alphaMode": "MASK", "alphaCutoff": 0.5"#, [0, 255], 0),
+        (
+            r#""alphaMode": "MASK", "alphaCutoff": 0.2"#,
+            [255, 255],
+            255,
+        ),
+    ] {
+        let options =
+            obj_quads::LoadOptions::DEFAULT.with_face_policy(obj_quads::FacePolicy::MergeTriangles);
+        let (mesh, _) = obj_quads::load_gltf_slice(gltf(mode).as_bytes(), &options).unwrap();
+        let geometry = Geometry::new(&test_support::polygon_mesh(&mesh)).unwrap();
+        let style =
+            Style::from_materials(&mesh, geometry.bounds().centre(), &MaterialOptions::DEFAULT)
+                .unwrap()
+                .style;
+        let textured = (0..mesh.face_count() as u32)
+            .find_map(|f| match style.brush(f) {
+                Some(Brush::Texture(t)) => Some(t.image.clone()),
+                _ => None,
+            })
+            .expect("a textured face");
+        let alphas: Vec<u8> = textured.pixels().iter().map(|p| p.alpha()).collect();
+        assert_eq!(alphas, texels, "{mode}");
+        let solid = (0..mesh.face_count() as u32)
+            .find_map(|f| match style.brush(f) {
+                Some(Brush::Solid(c)) => Some(c[3]),
+                _ => None,
+            })
+            .expect("a plain face");
+        assert_eq!(solid, base, "{mode}");
+    }
+}
