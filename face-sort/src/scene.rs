@@ -20,7 +20,9 @@
 //!    cluster has been drawn unchanged for a few frames.
 //!
 //! Instances are drawn layer by layer ([`Layer`]: background, main, overlay), each layer
-//! ordered as above.
+//! ordered as above. A billboard instance ([`Instance::as_billboard`]) is turned to face
+//! the image plane whenever the view turns, and is then ordered like any other (a stack of
+//! translucent billboards makes a volumetric cloud, exact against the objects inside it).
 //!
 //! The output is an ordinary [`DrawList`] in the scene's centred world coordinates (the
 //! view must be fitted to [`SceneSorter::bounds`]), with faces numbered as in
@@ -49,6 +51,10 @@ pub struct Instance {
     pub transform: DAffine3,
     /// The rendering queue it is drawn in.
     pub layer: Layer,
+    /// A billboard: `transform`'s linear part applies in the camera's frame (local `+z`
+    /// toward the viewer, local `+y` up the screen), so the mesh faces the image plane
+    /// whatever the view; its translation places it in the world.
+    pub billboard: bool,
 }
 
 impl Instance {
@@ -59,7 +65,15 @@ impl Instance {
             mesh,
             transform,
             layer: Layer::Main,
+            billboard: false,
         }
+    }
+
+    /// The same instance as a billboard (see [`billboard`](Self::billboard)).
+    #[must_use]
+    pub fn as_billboard(mut self) -> Self {
+        self.billboard = true;
+        self
     }
 
     /// The same instance in `layer`.
@@ -185,7 +199,12 @@ const SETTLED_FRAMES: u32 = 8;
 /// Orders the faces of a scene of instances (module docs).
 pub struct SceneSorter {
     meshes: Vec<SceneMesh>,
+    /// The instances, billboards with their transform for the last view.
     instances: Vec<Instance>,
+    /// Billboards: instance and the placement its caller gave (camera-frame linear part).
+    billboards: Vec<(usize, DAffine3)>,
+    /// The view rotation the billboards face.
+    billboard_rotation: Option<glam::DMat3>,
     face_offsets: Vec<u32>,
     boxes: Vec<Bounds>,
     bounds: Bounds,
@@ -253,9 +272,17 @@ impl SceneSorter {
                 .map(|&p| i.transform.transform_point3(p))
         }))
         .ok_or(SceneError::Empty)?;
+        let billboards = instances
+            .iter()
+            .enumerate()
+            .filter(|(_, i)| i.billboard)
+            .map(|(k, i)| (k, i.transform))
+            .collect();
         Ok(SceneSorter {
             meshes: scene_meshes,
             instances,
+            billboards,
+            billboard_rotation: None,
             face_offsets,
             boxes,
             bounds,
@@ -300,6 +327,17 @@ impl SceneSorter {
         transform: DAffine3,
     ) -> Result<(), SceneError> {
         check_transform(instance, &transform)?;
+        if let Some(entry) = self.billboards.iter_mut().find(|(k, _)| *k == instance) {
+            entry.1 = transform;
+            // Placed for the current view at the next frame.
+            self.billboard_rotation = None;
+            return Ok(());
+        }
+        self.place(instance, transform)
+    }
+
+    /// Sets an instance's world transform and invalidates what depends on it.
+    fn place(&mut self, instance: usize, transform: DAffine3) -> Result<(), SceneError> {
         let Some(slot) = self.instances.get_mut(instance) else {
             return Err(SceneError::NoSuchMesh {
                 instance,
@@ -399,6 +437,19 @@ impl FaceSorter for SceneSorter {
 
     /// `view` must be fitted to [`bounds`](SceneSorter::bounds) (its centre is the scene's).
     fn sort(&mut self, view: &View, out: &mut DrawList) {
+        if !self.billboards.is_empty() && self.billboard_rotation != Some(view.rotation()) {
+            let facing = view.rotation().transpose();
+            for k in 0..self.billboards.len() {
+                let (i, placement) = self.billboards[k];
+                let world = DAffine3::from_mat3_translation(
+                    facing * placement.matrix3,
+                    placement.translation,
+                );
+                // A rotation of a valid placement stays valid.
+                let _ = self.place(i, world);
+            }
+            self.billboard_rotation = Some(view.rotation());
+        }
         if self.tree_dirty {
             self.build_tree();
         }

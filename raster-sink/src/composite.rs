@@ -18,7 +18,8 @@ pub struct CompositeTruth {
     /// Height in pixels.
     pub height: u32,
     /// Row-major straight RGBA: every fragment at the pixel centre composited far to near
-    /// (source-over, in sRGB values as tiny-skia blends them) over the background.
+    /// (source-over, premultiplied, in sRGB values, each layer rounded to 8 bits, as an
+    /// 8-bit canvas such as tiny-skia's stores it) over the background.
     pub rgba: Vec<[u8; 4]>,
     /// Row-major: at least [`EDGE_MARGIN_PX`] from every projected edge of every drawn piece,
     /// and no two fragments change places within [`EDGE_MARGIN_PX`] of the centre (their
@@ -26,6 +27,18 @@ pub struct CompositeTruth {
     /// [`DEPTH_GAP`]` · L` apart): pixels by an interpenetration line, where a rasteriser's
     /// fill rule decides, are not judged.
     pub unambiguous: Vec<bool>,
+    /// Row-major number of fragments composited at each pixel centre.
+    pub layers: Vec<u16>,
+}
+
+impl CompositeTruth {
+    /// The largest channel difference (sRGB, 0–255) a correct 8-bit compositing of pixel `k`
+    /// may show against [`rgba`](Self::rgba): 2, plus one for every four layers (each layer
+    /// is rounded to 8 bits, and canvases round their blends in their own ways).
+    #[must_use]
+    pub fn tolerance(&self, k: usize) -> u8 {
+        (2 + self.layers[k] / 4).min(255) as u8
+    }
 }
 
 /// Composites, per pixel centre, every piece of `geometry` the view draws, far to near,
@@ -111,6 +124,7 @@ pub fn composite_truth(
     let gap = DEPTH_GAP * view.diagonal();
     let mut rgba = vec![background; n_pixels];
     let mut unambiguous: Vec<bool> = near_edge.iter().map(|&e| !e).collect();
+    let mut layers = vec![0u16; n_pixels];
     let mut start = 0;
     while start < fragments.len() {
         let pixel = fragments[start].0;
@@ -126,9 +140,12 @@ pub fn composite_truth(
             if k > start && fragments[k].3 - fragments[k - 1].4 <= gap {
                 unambiguous[pixel as usize] = false;
             }
-            out = over(premultiply(colour(fragments[k].2)), out);
+            // Each layer lands in 8-bit channels, as a canvas stores it.
+            out =
+                over(premultiply(colour(fragments[k].2)), out).map(|v| (v * 255.0).round() / 255.0);
         }
         rgba[pixel as usize] = demultiply(out);
+        layers[pixel as usize] = (end - start).min(usize::from(u16::MAX)) as u16;
         start = end;
     }
     CompositeTruth {
@@ -136,6 +153,7 @@ pub fn composite_truth(
         height,
         rgba,
         unambiguous,
+        layers,
     }
 }
 

@@ -130,8 +130,9 @@ pub struct RenderArgs {
     pub(crate) allow_outside: bool,
     /// Render the generated demo scene instead of a model: 30 instances of a box, a sphere
     /// and suzanne (rotated, non-uniformly scaled, mirrored, some interlocking), a third of
-    /// them translucent, on a backdrop slab in the background layer, with a marker in the
-    /// overlay layer, ordered by `face_sort::SceneSorter`.
+    /// them translucent, a cloud of 24 translucent billboards, on a backdrop slab in the
+    /// background layer, with a marker in the overlay layer, ordered by
+    /// `face_sort::SceneSorter`.
     #[arg(long, conflicts_with = "model")]
     pub(crate) scene: bool,
     /// Print one JSON object instead of the summary line.

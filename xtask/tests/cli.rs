@@ -483,7 +483,7 @@ fn the_demo_scene_is_exact_through_the_scene_path() {
     ]);
     assert!(result.status.success(), "{}", text(&result.stderr));
     let value: serde_json::Value = serde_json::from_slice(&result.stdout).unwrap();
-    assert_eq!(value["instances"], 32, "{value}");
+    assert_eq!(value["instances"], 56, "{value}");
     assert_eq!(value["violations"], 0, "{value}");
     assert_eq!(value["composite_wrong"], 0, "{value}");
     assert!(out.exists());
