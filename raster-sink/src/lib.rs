@@ -71,6 +71,7 @@ mod grid;
 mod ids;
 mod materials;
 mod overlay;
+mod overlay_truth;
 mod project;
 mod seams;
 mod style;
@@ -90,6 +91,7 @@ pub use materials::{
     FaceMaterials, MaterialOptions, MaterialStyle, load_texture, load_texture_with,
 };
 pub use overlay::draw_overlay;
+pub use overlay_truth::{OverlayError, OverlayTruth, Seen};
 pub use style::{Brush, Style, TextureBrush, UvMap};
 pub use truth::{PixelError, Truth, pixel_error, truth};
 

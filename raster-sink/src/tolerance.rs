@@ -32,3 +32,20 @@ pub const SINGULAR_DET: f64 = 1e-12;
 /// Absolute: magnitudes below this count as zero (the area of a texture's uv axes, a grid
 /// line's pixel footprint before dividing by it).
 pub const UNDERFLOW_ABS: f64 = 1e-300;
+
+/// The truth for lines and points ([`OverlayTruth`](crate::OverlayTruth)): a point is judged
+/// only where no nearer piece's outline is within this many pixels, the same answer holds
+/// this far before and after along its line, and it is this far from the line's ends.
+pub const OVERLAY_JUDGE_PX: f64 = 1.0;
+
+/// The truth for lines and points: lines are sampled this many pixels apart.
+pub const OVERLAY_STEP_PX: f64 = 0.25;
+
+/// The truth for lines and points: a piece hides a point when its plane is nearer the viewer
+/// along the ray by more than this times the model's diagonal `L` (a piece whose plane holds
+/// the point, as the faces a line lies on, does not hide it).
+pub const OVERLAY_DEPTH: f64 = 1e-7;
+
+/// The truth for lines and points: a piece whose normal is this close to perpendicular to the
+/// ray (sine, relative) is edge-on and only makes points near it ambiguous.
+pub const OVERLAY_EDGE_ON: f64 = 1e-12;

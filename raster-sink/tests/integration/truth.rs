@@ -600,3 +600,56 @@ fn billboard_clouds_face_the_viewer_and_composite_exactly() {
     }
     assert!(judged > 20_000, "{judged}");
 }
+
+/// The truth for lines judges drawings of lines among faces: the exact visible parts pass,
+/// lines drawn whole (their hidden parts too) fail.
+#[test]
+fn the_truth_for_lines_tells_a_right_drawing_from_a_wrong_one() {
+    use raster_sink::OverlayTruth;
+    use raster_sink::sprite_compose::{DrawnOverlay, Line, Overlay, Stroke, visible_overlay};
+    let mesh = test_support::models::boxes(&[
+        (DVec3::splat(-1.0), DVec3::splat(1.0)),
+        (DVec3::new(1.5, -0.5, -0.5), DVec3::new(2.5, 0.5, 0.5)),
+    ]);
+    let geometry = Geometry::new(&mesh).unwrap();
+    let line = |a: DVec3, b: DVec3| Line {
+        ends: [a, b],
+        colour: [255, 0, 0, 255],
+        width_px: 1.0,
+        faces: Vec::new(),
+    };
+    let overlay = Overlay {
+        lines: vec![
+            line(DVec3::new(-3.0, 0.2, 0.1), DVec3::new(4.0, 0.2, 0.1)),
+            line(DVec3::new(0.3, -3.0, -0.2), DVec3::new(0.3, 3.0, -0.2)),
+        ],
+        points: Vec::new(),
+    };
+    let view = View::fit(&geometry.bounds(), 200, 200)
+        .with_yaw_pitch_roll(30.0, 20.0, 0.0)
+        .with_perspective(300.0);
+    let truth = OverlayTruth::new(&view, &geometry);
+    let right = truth.compare(&overlay, &visible_overlay(&geometry, &view, &overlay));
+    assert_eq!(right.wrong, 0, "{:?}", right.examples);
+    assert!(right.judged > 300 && right.hidden > 100, "{right:?}");
+    // Every line drawn whole: its hidden parts are wrong.
+    let centre = geometry.bounds().centre();
+    let whole = DrawnOverlay {
+        strokes: overlay
+            .lines
+            .iter()
+            .enumerate()
+            .map(|(n, l)| Stroke {
+                ends: l
+                    .ends
+                    .map(|p| view.project_view_point(view.to_view(p - centre)).unwrap()),
+                colour: l.colour,
+                width_px: l.width_px,
+                line: n,
+            })
+            .collect(),
+        dots: Vec::new(),
+    };
+    let wrong = truth.compare(&overlay, &whole);
+    assert_eq!(wrong.wrong, right.hidden, "{wrong:?}");
+}

@@ -3,7 +3,9 @@
 //! line and point seen or hidden by casting a ray from the viewer (the plot tests' brute
 //! force). Faces in ID colours, lines red, points blue, no anti-aliasing.
 
-use raster_sink::{RasterOptions, Style, Truth, draw_overlay, render_colour, truth};
+use raster_sink::{
+    OverlayTruth, RasterOptions, Seen, Style, Truth, draw_overlay, render_colour, truth,
+};
 use sprite_compose::face_sort::colours::id_colour;
 use sprite_compose::face_sort::glam::{DVec2, DVec3};
 use sprite_compose::face_sort::{CullMode, DrawList, Geometry, PolygonMesh, SorterKind, View};
@@ -11,8 +13,6 @@ use sprite_compose::{
     DrawnOverlay, Line, Overlay, PdfOptions, RecordingCompositor, SpritePainter, SvgOptions,
     visible_overlay, write_pdf, write_svg,
 };
-
-use crate::plot::{Drawn, Verdict, brute_force, drawn_pieces};
 
 const SIZE: u32 = 200;
 const RED: [u8; 4] = [255, 0, 0, 255];
@@ -102,12 +102,12 @@ fn views(geometry: &Geometry) -> Vec<View> {
     ]
 }
 
-/// One view's references: the drawn pieces for the brute force, the truth, and the writer's
-/// picture without the overlay.
+/// One view's references: what a viewer sees of lines and points (raster-sink's
+/// `OverlayTruth`), the faces' truth, and the writer's picture without the overlay.
 struct Judge<'a> {
     view: &'a View,
     geometry: &'a Geometry,
-    drawn: &'a [Drawn],
+    seen: &'a OverlayTruth,
     overlay: &'a Overlay,
     truth: &'a Truth,
     faces: &'a [u8],
@@ -118,13 +118,12 @@ fn expected(judge: &Judge<'_>, c: DVec2, index: usize) -> Option<[u8; 4]> {
     let Judge {
         view,
         geometry,
-        drawn,
+        seen: sight,
         overlay,
         truth,
         faces,
     } = *judge;
     let centre = geometry.bounds().centre();
-    let length = geometry.bounds().diagonal();
     let project = |p: DVec3| view.project_view_point(view.to_view(p - centre));
     // Points, drawn last.
     for point in &overlay.points {
@@ -133,9 +132,9 @@ fn expected(judge: &Judge<'_>, c: DVec2, index: usize) -> Option<[u8; 4]> {
         if d >= point.radius_px + MARGIN_PX {
             continue;
         }
-        match brute_force(view, drawn, point.at - centre, length) {
-            Verdict::Hidden => {}
-            Verdict::Visible if d <= point.radius_px - MARGIN_PX => return Some(point.colour),
+        match sight.seen(point.at) {
+            Seen::Hidden => {}
+            Seen::Visible if d <= point.radius_px - MARGIN_PX => return Some(point.colour),
             _ => return None,
         }
     }
@@ -166,7 +165,7 @@ fn expected(judge: &Judge<'_>, c: DVec2, index: usize) -> Option<[u8; 4]> {
         );
         let seen = |s: f64| {
             let t = s * wa / (s * wa + (1.0 - s) * wb);
-            brute_force(view, drawn, pa.lerp(pb, t), length)
+            sight.seen(pa.lerp(pb, t) + centre)
         };
         let step = 1.0 / ab.length();
         let verdict = seen(s);
@@ -174,8 +173,8 @@ fn expected(judge: &Judge<'_>, c: DVec2, index: usize) -> Option<[u8; 4]> {
             return None;
         }
         match verdict {
-            Verdict::Hidden => {}
-            Verdict::Visible if d <= line.width_px / 2.0 - MARGIN_PX => {
+            Seen::Hidden => {}
+            Seen::Visible if d <= line.width_px / 2.0 - MARGIN_PX => {
                 line_colour = Some(line.colour);
             }
             _ => return None,
@@ -202,11 +201,11 @@ fn compare(
     overlay: &Overlay,
     truth: &Truth,
 ) -> (usize, usize, usize, Vec<String>) {
-    let drawn = drawn_pieces(geometry, view);
+    let sight = OverlayTruth::new(view, geometry);
     let judge = Judge {
         view,
         geometry,
-        drawn: &drawn,
+        seen: &sight,
         overlay,
         truth,
         faces,
@@ -370,8 +369,9 @@ proptest::proptest! {
     #![proptest_config(proptest_config())]
 
     /// Random scenes (non-intersecting, interpenetrating, cyclic; tiny and huge scales) and
-    /// views, and random lines through their bounds: every point of a line that the ray-cast
-    /// brute force sees (judged at 1 px) is drawn, and none it finds hidden.
+    /// views, and random lines through their bounds: every point of a line that the truth
+    /// for lines (raster-sink's ray-cast `OverlayTruth`, judged at 1 px) sees is drawn, and
+    /// none it finds hidden.
     #[test]
     fn a_lines_visible_parts_are_what_the_rays_see(
         scene in sprite_compose::face_sort::strategies::any_scene(),
@@ -390,43 +390,7 @@ proptest::proptest! {
             points: Vec::new(),
         };
         let drawn = visible_overlay(&geometry, &view, &overlay);
-        let pieces = drawn_pieces(&geometry, &view);
-        let centre = bounds.centre();
-        let length = bounds.diagonal();
-        for (n, line) in overlay.lines.iter().enumerate() {
-            let (pa, pb) = (line.ends[0] - centre, line.ends[1] - centre);
-            let project = |p: DVec3| view.project_view_point(view.to_view(p));
-            let (Some(a), Some(b)) = (project(pa), project(pb)) else { continue };
-            let len = a.distance(b);
-            if !(3.0..=1e5).contains(&len) { continue; }
-            let (wa, wb) = (view.w_of_view_point(view.to_view(pa)), view.w_of_view_point(view.to_view(pb)));
-            let seen = |s: f64| {
-                let t = s * wa / (s * wa + (1.0 - s) * wb);
-                brute_force(&view, &pieces, pa.lerp(pb, t), length)
-            };
-            let steps = (len / 0.25).ceil() as usize;
-            for k in 0..steps {
-                let s = (k as f64 + 0.5) / steps as f64;
-                if s * len < 1.0 || (1.0 - s) * len < 1.0 {
-                    continue;
-                }
-                let verdict = seen(s);
-                if verdict == Verdict::Ambiguous || seen(s - 1.0 / len) != verdict || seen(s + 1.0 / len) != verdict {
-                    continue;
-                }
-                let p = a.lerp(b, s);
-                let shown = drawn.strokes.iter().filter(|st| st.line == n).any(|st| {
-                    let [u, v] = st.ends;
-                    let uv = v - u;
-                    let q = ((p - u).dot(uv) / uv.length_squared().max(f64::MIN_POSITIVE)).clamp(0.0, 1.0);
-                    (u + uv * q).distance(p) <= 1e-6 * len.max(1.0)
-                });
-                proptest::prop_assert_eq!(
-                    shown,
-                    verdict == Verdict::Visible,
-                    "line {} at s = {}: brute force {:?}", n, s, verdict
-                );
-            }
-        }
+        let error = OverlayTruth::new(&view, &geometry).compare(&overlay, &drawn);
+        proptest::prop_assert_eq!(error.wrong, 0, "{:?}", error.examples);
     }
 }

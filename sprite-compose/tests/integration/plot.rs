@@ -1,106 +1,15 @@
 //! Plotter edges: the edges drawn and their visible parts, checked against an independent
 //! hidden-line computation that samples every edge densely and casts a ray from the viewer
-//! through each sample against every drawn piece.
+//! through each sample against every drawn piece (raster-sink's `OverlayTruth`, judged at
+//! 1 px).
 
-use sprite_compose::face_sort::glam::{DVec2, DVec3};
-use sprite_compose::face_sort::{
-    CullMode, Geometry, Plane, PolygonMesh, ProjectionScratch, View, Viewer,
-};
+use raster_sink::tolerance::{OVERLAY_JUDGE_PX, OVERLAY_STEP_PX};
+use raster_sink::{OverlayTruth, Seen};
+use sprite_compose::face_sort::glam::DVec3;
+use sprite_compose::face_sort::{CullMode, Geometry, PolygonMesh, View};
 use sprite_compose::{EdgeKind, Plot, PlotOptions, plot_edges};
 
-/// Sample spacing along an edge's projection (pixels).
-const STEP_PX: f64 = 0.25;
-/// A sample is judged only when every piece's projected boundary is at least this far
-/// (pixels) from it, or the piece is clearly not nearer.
-const JUDGE_PX: f64 = 1.0;
-/// Depth gaps within this times the model's diagonal are "on the plane".
-const DEPTH_TOL: f64 = 1e-7;
-
-/// A drawn piece for the brute force: projected corners and plane.
-pub struct Drawn {
-    corners: Vec<DVec2>,
-    plane: Plane,
-}
-
-/// Signed distance (pixels) from `p` to a convex polygon's boundary: positive inside.
-fn signed_distance(poly: &[DVec2], p: DVec2) -> f64 {
-    let n = poly.len();
-    let area: f64 = (0..n).map(|k| poly[k].perp_dot(poly[(k + 1) % n])).sum();
-    let mut inside = f64::INFINITY;
-    let mut outside = f64::INFINITY;
-    let mut is_inside = true;
-    for k in 0..n {
-        let (q, r) = (poly[k], poly[(k + 1) % n]);
-        let e = r - q;
-        let d = area.signum() * e.perp_dot(p - q) / e.length();
-        is_inside &= d > 0.0;
-        inside = inside.min(d);
-        let t = ((p - q).dot(e) / e.length_squared()).clamp(0.0, 1.0);
-        outside = outside.min((q + e * t).distance(p));
-    }
-    if is_inside { inside } else { -outside }
-}
-
-/// What the brute force sees at one point of an edge.
-#[derive(Debug, PartialEq)]
-pub enum Verdict {
-    Visible,
-    Hidden,
-    Ambiguous,
-}
-
-/// Whether centred model point `x` is seen: a ray from the viewer through it against every
-/// drawn piece (point in polygon with a 1 px margin, ray–plane depth).
-pub fn brute_force(view: &View, drawn: &[Drawn], x: DVec3, length: f64) -> Verdict {
-    let Some(p) = view.project_view_point(view.to_view(x)) else {
-        return Verdict::Ambiguous;
-    };
-    let tol = DEPTH_TOL * length;
-    let mut ambiguous = false;
-    for piece in drawn {
-        let inside = signed_distance(&piece.corners, p);
-        if inside <= -JUDGE_PX {
-            continue;
-        }
-        // How much nearer the viewer the piece's plane is than `x`, along the ray.
-        let gap = match view.viewer() {
-            Viewer::Direction(d) => {
-                let nd = piece.plane.normal().dot(d);
-                if nd.abs() < 1e-12 {
-                    ambiguous |= inside > -JUDGE_PX;
-                    continue;
-                }
-                -piece.plane.signed_distance(x) / nd
-            }
-            Viewer::Eye(e) => {
-                let ray = x - e;
-                let nr = piece.plane.normal().dot(ray);
-                if nr.abs() < 1e-12 {
-                    ambiguous |= inside > -JUDGE_PX;
-                    continue;
-                }
-                let u = -piece.plane.signed_distance(e) / nr;
-                (1.0 - u) * ray.length()
-            }
-        };
-        if gap > tol && inside >= JUDGE_PX {
-            return Verdict::Hidden;
-        }
-        // Nearer but near its outline: cannot be judged at 1 px. (A piece whose plane holds
-        // the point, within the tolerance, does not hide it: the faces an edge or an
-        // intersection line lies on.)
-        if gap > tol && inside > -JUDGE_PX {
-            ambiguous = true;
-        }
-    }
-    if ambiguous {
-        Verdict::Ambiguous
-    } else {
-        Verdict::Visible
-    }
-}
-
-/// Counts of the comparison of one plot with the brute force.
+/// Counts of the comparison of one plot with the truth.
 #[derive(Debug, Default)]
 struct Tally {
     visible: usize,
@@ -109,55 +18,32 @@ struct Tally {
     wrong: Vec<String>,
 }
 
-/// The pieces of `geometry` drawn in `view`, projected.
-pub fn drawn_pieces(geometry: &Geometry, view: &View) -> Vec<Drawn> {
-    let set = geometry.pieces();
-    let cull = view.cull_test();
-    let mut scratch = ProjectionScratch::default();
-    let mut drawn = Vec::new();
-    for i in 0..set.len() {
-        let plane = set.plane(i);
-        if !cull.is_drawn(plane, set.corners(i)[0]) {
-            continue;
-        }
-        let mut corners = Vec::new();
-        view.project_polygon(set.corners(i), &mut corners, &mut scratch);
-        if corners.len() >= 3 {
-            drawn.push(Drawn {
-                corners,
-                plane: *plane,
-            });
-        }
-    }
-    drawn
-}
-
 fn check(mesh: &PolygonMesh, view: &View, name: &str) -> (Plot, Tally) {
     let geometry = Geometry::new(mesh).expect("geometry");
     let plot = plot_edges(mesh, &geometry, view, &PlotOptions::DEFAULT);
-    let drawn = drawn_pieces(&geometry, view);
-    let length = geometry.bounds().diagonal();
+    let truth = OverlayTruth::new(view, &geometry);
+    let centre = geometry.bounds().centre();
     let mut tally = Tally::default();
     for (k, edge) in plot.edges.iter().enumerate() {
         let [a, b] = edge.ends;
         let pa = view.project_view_point(view.to_view(a)).expect("in front");
         let pb = view.project_view_point(view.to_view(b)).expect("in front");
-        let n = (pa.distance(pb) / STEP_PX).ceil().max(1.0) as usize;
+        let n = (pa.distance(pb) / OVERLAY_STEP_PX).ceil().max(1.0) as usize;
         for s in 0..n {
             let t = (s as f64 + 0.5) / n as f64;
             // Within a pixel of an end: where other edges meet, and where the plot drops
             // visible parts shorter than PLOT_MIN_LENGTH_PX (sub-pixel intersection lines of
             // faces that barely cross). Not judged.
             let along = pa.distance(pb) * t.min(1.0 - t);
-            if along < JUDGE_PX {
+            if along < OVERLAY_JUDGE_PX {
                 tally.ambiguous += 1;
                 continue;
             }
             let shown = edge.visible.iter().any(|&[t0, t1]| t0 <= t && t <= t1);
-            match brute_force(view, &drawn, a.lerp(b, t), length) {
-                Verdict::Ambiguous => tally.ambiguous += 1,
-                Verdict::Visible if shown => tally.visible += 1,
-                Verdict::Hidden if !shown => tally.hidden += 1,
+            match truth.seen(a.lerp(b, t) + centre) {
+                Seen::Ambiguous => tally.ambiguous += 1,
+                Seen::Visible if shown => tally.visible += 1,
+                Seen::Hidden if !shown => tally.hidden += 1,
                 v => tally.wrong.push(format!(
                     "{name}: edge {k} ({:?}) at t = {t:.4}: brute force {v:?}, plot {}",
                     edge.kind,
