@@ -66,7 +66,7 @@ pub use plan::{Auto, CostModel, CullOnly, Plan, PlanHint, Strategy};
 pub use plane::{Plane, Side, newell_normal};
 pub use polygon::{Box2, clip_convex_2d, signed_area_2d, split_polygon};
 pub use polygon_set::PolygonSet;
-pub use scene::{Instance, Layer, SceneError, SceneSorter, SceneStats};
+pub use scene::{Instance, Layer, MAX_LODS, SceneError, SceneSorter, SceneStats};
 pub use sorter::{FaceSorter, SorterStats};
 pub use topological::Topological;
 pub use view::{

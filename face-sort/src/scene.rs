@@ -20,7 +20,9 @@
 //!    cluster has been drawn unchanged for a few frames.
 //!
 //! Instances are drawn layer by layer ([`Layer`]: background, main, overlay), each layer
-//! ordered as above. A billboard instance ([`Instance::as_billboard`]) is turned to face
+//! ordered as above. An instance may carry coarser meshes for when it is small in the image
+//! ([`Instance::with_lod`]): each frame picks one by the size of its box on screen; its faces
+//! keep one numbering (the largest level's count, unused numbers never drawn). A billboard instance ([`Instance::as_billboard`]) is turned to face
 //! the image plane whenever the view turns, and is then ordered like any other (a stack of
 //! translucent billboards makes a volumetric cloud, exact against the objects inside it).
 //!
@@ -55,7 +57,14 @@ pub struct Instance {
     /// toward the viewer, local `+y` up the screen), so the mesh faces the image plane
     /// whatever the view; its translation places it in the world.
     pub billboard: bool,
+    /// Coarser meshes for when the instance is small in the image: `(mesh, below_px)` uses
+    /// `mesh` while the instance's box spans fewer than `below_px` pixels (its projected
+    /// diagonal); among several, the smallest threshold that applies wins.
+    pub lods: [Option<(usize, f64)>; MAX_LODS],
 }
+
+/// Coarser meshes an instance may carry ([`Instance::with_lod`]).
+pub const MAX_LODS: usize = 4;
 
 impl Instance {
     /// Mesh `mesh` placed by `transform`, in the main layer.
@@ -66,7 +75,18 @@ impl Instance {
             transform,
             layer: Layer::Main,
             billboard: false,
+            lods: [None; MAX_LODS],
         }
+    }
+
+    /// The same instance with one more level of detail: `mesh` while the instance spans
+    /// fewer than `below_px` pixels in the image. Ignored beyond [`MAX_LODS`] levels.
+    #[must_use]
+    pub fn with_lod(mut self, mesh: usize, below_px: f64) -> Self {
+        if let Some(slot) = self.lods.iter_mut().find(|l| l.is_none()) {
+            *slot = Some((mesh, below_px));
+        }
+        self
     }
 
     /// The same instance as a billboard (see [`billboard`](Self::billboard)).
@@ -206,6 +226,10 @@ pub struct SceneSorter {
     /// The view rotation the billboards face.
     billboard_rotation: Option<glam::DMat3>,
     face_offsets: Vec<u32>,
+    /// Per instance: the faces it numbers (its largest level of detail's face count).
+    slots: Vec<u32>,
+    /// Per instance: the mesh drawn now (its own, or a level of detail).
+    active: Vec<usize>,
     boxes: Vec<Bounds>,
     bounds: Bounds,
     /// One coarse tree per layer, in [`Layer::ALL`] order.
@@ -242,6 +266,7 @@ impl SceneSorter {
             })
             .collect::<Result<Vec<_>, SceneError>>()?;
         let mut face_offsets = Vec::with_capacity(instances.len());
+        let mut slots = Vec::with_capacity(instances.len());
         let mut faces = 0u32;
         for (k, instance) in instances.iter().enumerate() {
             let Some(mesh) = scene_meshes.get(instance.mesh) else {
@@ -252,13 +277,23 @@ impl SceneSorter {
                 });
             };
             check_transform(k, &instance.transform)?;
+            let mut slot = mesh.mesh.face_count() as u32;
+            for &(lod, _) in instance.lods.iter().flatten() {
+                let Some(lod_mesh) = scene_meshes.get(lod) else {
+                    return Err(SceneError::NoSuchMesh {
+                        instance: k,
+                        mesh: lod,
+                        meshes: scene_meshes.len(),
+                    });
+                };
+                slot = slot.max(lod_mesh.mesh.face_count() as u32);
+            }
             face_offsets.push(faces);
-            faces = faces
-                .checked_add(mesh.mesh.face_count() as u32)
-                .ok_or(SceneError::Mesh {
-                    mesh: scene_meshes.len(),
-                    source: MeshError::TooLarge,
-                })?;
+            slots.push(slot);
+            faces = faces.checked_add(slot).ok_or(SceneError::Mesh {
+                mesh: scene_meshes.len(),
+                source: MeshError::TooLarge,
+            })?;
         }
         let boxes: Vec<Bounds> = instances
             .iter()
@@ -278,10 +313,13 @@ impl SceneSorter {
             .filter(|(_, i)| i.billboard)
             .map(|(k, i)| (k, i.transform))
             .collect();
+        let active = instances.iter().map(|i| i.mesh).collect();
         Ok(SceneSorter {
             meshes: scene_meshes,
             instances,
             billboards,
+            slots,
+            active,
             billboard_rotation: None,
             face_offsets,
             boxes,
@@ -336,6 +374,36 @@ impl SceneSorter {
         self.place(instance, transform)
     }
 
+    /// Picks each instance's level of detail by the size of its own mesh's box in the image;
+    /// a change invalidates what depends on the instance.
+    fn choose_lods(&mut self, view: &View) {
+        let centre = self.bounds.centre();
+        for i in 0..self.instances.len() {
+            let instance = self.instances[i];
+            if instance.lods.iter().all(Option::is_none) {
+                continue;
+            }
+            let size = projected_size(
+                view,
+                &world_box(&self.meshes[instance.mesh].bounds, &instance.transform),
+                centre,
+            );
+            let chosen = instance
+                .lods
+                .iter()
+                .flatten()
+                .filter(|&&(_, below)| size < below)
+                .min_by(|a, b| a.1.total_cmp(&b.1))
+                .map_or(instance.mesh, |&(mesh, _)| mesh);
+            if chosen != self.active[i] {
+                self.active[i] = chosen;
+                self.boxes[i] = world_box(&self.meshes[chosen].bounds, &instance.transform);
+                self.tree_dirty = true;
+                self.clusters.retain(|members, _| !members.contains(&i));
+            }
+        }
+    }
+
     /// Sets an instance's world transform and invalidates what depends on it.
     fn place(&mut self, instance: usize, transform: DAffine3) -> Result<(), SceneError> {
         let Some(slot) = self.instances.get_mut(instance) else {
@@ -346,7 +414,7 @@ impl SceneSorter {
             });
         };
         slot.transform = transform;
-        self.boxes[instance] = world_box(&self.meshes[slot.mesh].bounds, &transform);
+        self.boxes[instance] = world_box(&self.meshes[self.active[instance]].bounds, &transform);
         self.tree_dirty = true;
         self.clusters
             .retain(|members, _| !members.contains(&instance));
@@ -365,8 +433,13 @@ impl SceneSorter {
     /// flattening that the instance path replaces.
     #[must_use]
     pub fn flattened(&self) -> PolygonMesh {
-        let (positions, faces) =
-            world_faces(&self.meshes, &self.instances, 0..self.instances.len());
+        let (positions, faces) = world_faces(
+            &self.meshes,
+            &self.instances,
+            &self.active,
+            0..self.instances.len(),
+            Some(&self.slots),
+        );
         PolygonMesh::new(positions, faces).expect("instances of valid meshes are a valid mesh")
     }
 
@@ -390,8 +463,7 @@ impl SceneSorter {
     pub fn instance_of_face(&self, face: u32) -> Option<usize> {
         let k = self.face_offsets.partition_point(|&first| first <= face);
         let i = k.checked_sub(1)?;
-        let faces = self.meshes[self.instances[i].mesh].mesh.face_count() as u32;
-        (face - self.face_offsets[i] < faces).then_some(i)
+        (face - self.face_offsets[i] < self.slots[i]).then_some(i)
     }
 
     /// Leaves of layer `layer`'s tree in drawing order (far to near) for a viewer in world
@@ -450,6 +522,7 @@ impl FaceSorter for SceneSorter {
             }
             self.billboard_rotation = Some(view.rotation());
         }
+        self.choose_lods(view);
         if self.tree_dirty {
             self.build_tree();
         }
@@ -502,7 +575,7 @@ impl SceneSorter {
     /// One instance by its mesh's own BSP, the viewer mapped into the mesh's frame.
     fn draw_instance(&mut self, index: usize, cull: &CullTest, centre: DVec3, out: &mut DrawList) {
         let instance = self.instances[index];
-        let mesh = &mut self.meshes[instance.mesh];
+        let mesh = &mut self.meshes[self.active[index]];
         // World-centred → mesh-centred: x_l = T⁻¹(x + c_w) − c_l.
         let to_local = DAffine3::from_translation(-mesh.centre)
             * instance.transform.inverse()
@@ -540,11 +613,16 @@ impl SceneSorter {
     /// new, one BSP over their world faces once it has stayed unchanged.
     fn draw_cluster(&mut self, members: &[usize], view: &View, out: &mut DrawList) {
         if !self.clusters.contains_key(members) {
-            let (positions, faces) =
-                world_faces(&self.meshes, &self.instances, members.iter().copied());
+            let (positions, faces) = world_faces(
+                &self.meshes,
+                &self.instances,
+                &self.active,
+                members.iter().copied(),
+                None,
+            );
             let mut scene_faces = Vec::new();
             for &m in members {
-                let n = self.meshes[self.instances[m].mesh].mesh.face_count() as u32;
+                let n = self.meshes[self.active[m]].mesh.face_count() as u32;
                 scene_faces.extend(self.face_offsets[m]..self.face_offsets[m] + n);
             }
             let mesh = PolygonMesh::new(positions, faces)
@@ -588,16 +666,21 @@ impl SceneSorter {
 }
 
 /// The world positions and faces of some instances (a mirrored one's faces reversed).
+/// `active[k]` is the mesh instance `k` draws; with `pad`, each instance's faces are padded
+/// with degenerate faces (no area: no pieces) up to its slot, so that face numbers match the
+/// draw lists'.
 fn world_faces(
     meshes: &[SceneMesh],
     instances: &[Instance],
+    active: &[usize],
     which: impl Iterator<Item = usize>,
+    pad: Option<&[u32]>,
 ) -> (Vec<DVec3>, Vec<Vec<u32>>) {
     let mut positions = Vec::new();
     let mut faces = Vec::new();
     for k in which {
         let instance = &instances[k];
-        let mesh = &meshes[instance.mesh].mesh;
+        let mesh = &meshes[active[k]].mesh;
         let first = positions.len() as u32;
         positions.extend(
             mesh.positions()
@@ -611,6 +694,11 @@ fn world_faces(
                 f.reverse();
             }
             faces.push(f);
+        }
+        if let Some(slots) = pad {
+            for _ in mesh.face_count() as u32..slots[k] {
+                faces.push(vec![first; 3]);
+            }
         }
     }
     (positions, faces)
@@ -656,6 +744,26 @@ fn box_in_image(view: &View, b: &Bounds, centre: DVec3) -> bool {
         out[3] &= s.y > h;
     }
     !out.iter().any(|&o| o)
+}
+
+/// The diagonal (pixels) of a world box's projection; infinite when a corner is behind the
+/// near plane.
+fn projected_size(view: &View, b: &Bounds, centre: DVec3) -> f64 {
+    let mut lo = glam::DVec2::INFINITY;
+    let mut hi = glam::DVec2::NEG_INFINITY;
+    for k in 0..8 {
+        let p = DVec3::new(
+            if k & 1 == 0 { b.min.x } else { b.max.x },
+            if k & 2 == 0 { b.min.y } else { b.max.y },
+            if k & 4 == 0 { b.min.z } else { b.max.z },
+        );
+        let Some(s) = view.project_view_point(view.to_view(p - centre)) else {
+            return f64::INFINITY;
+        };
+        lo = lo.min(s);
+        hi = hi.max(s);
+    }
+    lo.distance(hi)
 }
 
 /// Builds the coarse tree over `items` (instance indices) into `nodes`; returns its index.

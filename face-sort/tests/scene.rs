@@ -214,3 +214,50 @@ fn bad_scenes_are_typed_errors() {
     assert!(e.to_string().contains("singular"), "{e}");
     assert!(SceneSorter::new(Vec::new(), Vec::new()).is_err());
 }
+
+#[test]
+fn levels_of_detail_follow_the_projected_size() {
+    use face_sort::glam::DQuat;
+    let suzanne = test_support::load_polygon_mesh("suzanne/suzanne.obj");
+    let cube =
+        test_support::models::boxes(&[(DVec3::new(-1.3, -1.0, -0.9), DVec3::new(1.3, 1.0, 0.9))]);
+    let instances: Vec<Instance> = (0..9)
+        .map(|k| {
+            let at = DVec3::new(f64::from(k % 3) * 3.5, 0.0, f64::from(k / 3) * 3.5);
+            Instance::new(
+                0,
+                DAffine3::from_rotation_translation(DQuat::from_rotation_y(f64::from(k)), at),
+            )
+            .with_lod(1, 40.0)
+        })
+        .collect();
+    let mut scene = SceneSorter::new(vec![suzanne, cube], instances).unwrap();
+    let fit = View::fit(&scene.bounds(), 512, 512).with_yaw_pitch_roll(20.0, 30.0, 0.0);
+    let mut list = DrawList::new();
+    // (view, whether the coarse mesh is drawn)
+    for (view, coarse) in [
+        (fit, false),
+        (fit.with_scale(fit.scale() / 8.0), true),
+        (fit, false),
+    ] {
+        scene.sort(&view, &mut list);
+        assert_eq!(oracle::count_violations(&view, &list), 0);
+        let flat = Geometry::new_in_frame(&scene.flattened(), scene.bounds()).unwrap();
+        assert_same_faces(&list, &flat, &view, "lod");
+        for k in 0..9u32 {
+            let faces = faces_of(&list)
+                .into_iter()
+                .filter(|&f| (k * 500..(k + 1) * 500).contains(&f))
+                .collect::<Vec<_>>();
+            if coarse {
+                assert!(
+                    faces.iter().all(|&f| f < k * 500 + 6),
+                    "instance {k}: {faces:?}"
+                );
+                assert!(!faces.is_empty());
+            } else {
+                assert!(faces.len() > 6, "instance {k}: {} faces", faces.len());
+            }
+        }
+    }
+}
