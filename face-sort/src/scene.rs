@@ -61,6 +61,10 @@ pub struct Instance {
     /// `mesh` while the instance's box spans fewer than `below_px` pixels (its projected
     /// diagonal); among several, the smallest threshold that applies wins.
     pub lods: [Option<(usize, f64)>; MAX_LODS],
+    /// A material override for all of the instance's faces: an id the caller's sinks resolve
+    /// to a brush (e.g. raster-sink's `Style`), found back by
+    /// [`SceneSorter::material_of_face`]; `None` keeps the mesh's own materials.
+    pub material: Option<u32>,
 }
 
 /// Coarser meshes an instance may carry ([`Instance::with_lod`]).
@@ -76,7 +80,15 @@ impl Instance {
             layer: Layer::Main,
             billboard: false,
             lods: [None; MAX_LODS],
+            material: None,
         }
+    }
+
+    /// The same instance with a material override (see [`material`](Self::material)).
+    #[must_use]
+    pub fn with_material(mut self, material: u32) -> Self {
+        self.material = Some(material);
+        self
     }
 
     /// The same instance with one more level of detail: `mesh` while the instance spans
@@ -464,6 +476,12 @@ impl SceneSorter {
         let k = self.face_offsets.partition_point(|&first| first <= face);
         let i = k.checked_sub(1)?;
         (face - self.face_offsets[i] < self.slots[i]).then_some(i)
+    }
+
+    /// The material override of the instance that holds scene face `face`, if it has one.
+    #[must_use]
+    pub fn material_of_face(&self, face: u32) -> Option<u32> {
+        self.instances[self.instance_of_face(face)?].material
     }
 
     /// Leaves of layer `layer`'s tree in drawing order (far to near) for a viewer in world

@@ -261,3 +261,24 @@ fn levels_of_detail_follow_the_projected_size() {
         }
     }
 }
+
+#[test]
+fn material_overrides_and_layers_are_found_from_a_face() {
+    let cube = test_support::models::boxes(&[(DVec3::splat(-0.5), DVec3::splat(0.5))]);
+    let at = |x: f64| DAffine3::from_translation(DVec3::new(x, 0.0, 0.0));
+    let scene = SceneSorter::new(
+        vec![cube],
+        vec![
+            Instance::new(0, at(0.0)),
+            Instance::new(0, at(2.0))
+                .with_material(7)
+                .with_layer(face_sort::Layer::Overlay),
+        ],
+    )
+    .unwrap();
+    assert_eq!(scene.material_of_face(3), None);
+    assert_eq!(scene.material_of_face(6), Some(7));
+    assert_eq!(scene.instance_of_face(11), Some(1));
+    assert_eq!(scene.instance_of_face(12), None);
+    assert_eq!(scene.instances()[1].layer, face_sort::Layer::Overlay);
+}

@@ -103,6 +103,12 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
     let start = Instant::now();
     let (meshes, instances, colours) = demo_scene();
     let count = instances.len();
+    // The colour of instance k is material k (an override of the meshes' own materials).
+    let instances: Vec<Instance> = instances
+        .into_iter()
+        .enumerate()
+        .map(|(k, i)| i.with_material(k as u32))
+        .collect();
     let mut scene = SceneSorter::new(meshes, instances)?;
     let build_ms = ms(start);
     // For the view's fit and face count only: billboards are turned to the view by the sort.
@@ -126,11 +132,11 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
             },
         },
     )?;
-    // Each scene face in its instance's colour.
+    // Each scene face in its instance's material (its colour).
     let colour_of = |face: u32| {
         scene
-            .instance_of_face(face)
-            .map_or([255, 0, 255, 255], |i| colours[i])
+            .material_of_face(face)
+            .map_or([255, 0, 255, 255], |m| colours[m as usize])
     };
     let mut style = raster_sink::Style::solid([255, 0, 255, 255]);
     let face_colours: Vec<[u8; 4]> = (0..flat.face_count() as u32).map(colour_of).collect();
