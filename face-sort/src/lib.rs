@@ -47,6 +47,7 @@ mod plane;
 mod polygon;
 mod polygon_set;
 mod scene;
+mod small;
 mod screen_grid;
 mod sorter;
 #[cfg(any(test, feature = "proptest"))]
@@ -67,6 +68,7 @@ pub use plane::{Plane, Side, newell_normal};
 pub use polygon::{Box2, clip_convex_2d, signed_area_2d, split_polygon};
 pub use polygon_set::PolygonSet;
 pub use scene::{Instance, Layer, MAX_LODS, SceneError, SceneSorter, SceneStats};
+pub use small::SmallPieceFilter;
 pub use sorter::{FaceSorter, SorterStats};
 pub use topological::Topological;
 pub use view::{
