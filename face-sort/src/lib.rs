@@ -47,8 +47,8 @@ mod plane;
 mod polygon;
 mod polygon_set;
 mod scene;
-mod small;
 mod screen_grid;
+mod small;
 mod sorter;
 #[cfg(any(test, feature = "proptest"))]
 pub mod strategies;

@@ -183,6 +183,7 @@ impl Plan {
             Strategy::CullOnly => Box::new(CullOnly {
                 pieces: Arc::clone(geometry.pieces()),
                 exits_face_away: self.exits_face_away,
+                order: (0..geometry.pieces().len() as u32).collect(),
             }),
             Strategy::Newell => Box::new(Newell::new(geometry)),
             // A tree over its fragment budget (BspOptions) would cost more than it saves:
@@ -196,12 +197,15 @@ impl Plan {
 }
 
 /// The order of a geometry in convex position (see the [module docs](self)): drawn exit
-/// pieces, then drawn entry pieces, each group in piece order. Built only by a [`Plan`] that
+/// pieces, then drawn entry pieces, each group in piece order, or grouped by brush
+/// ([`FaceSorter::group_by_brush`]). Built only by a [`Plan`] that
 /// proved convex position; exact for every view.
 #[derive(Debug)]
 pub struct CullOnly {
     pieces: Arc<PolygonSet>,
     exits_face_away: bool,
+    /// The pieces in drawing order within each pass: file order, or grouped by brush.
+    order: Vec<u32>,
 }
 
 impl FaceSorter for CullOnly {
@@ -223,23 +227,32 @@ impl FaceSorter for CullOnly {
                 keep_facing
             }
         });
+        let planes = self.pieces.planes();
         if !exits_drawn {
-            for (i, plane) in self.pieces.planes().iter().enumerate() {
-                if cull.is_drawn(plane, self.pieces.corners(i)[0]) {
+            for &i in &self.order {
+                let i = i as usize;
+                if cull.is_drawn(&planes[i], self.pieces.corners(i)[0]) {
                     out.push(i as u32, self.pieces.face(i));
                 }
             }
             return;
         }
         for entry_pass in [false, true] {
-            for (i, plane) in self.pieces.planes().iter().enumerate() {
-                let faces_viewer = cull.viewer.facing(plane) > 0.0;
+            for &i in &self.order {
+                let i = i as usize;
+                let faces_viewer = cull.viewer.facing(&planes[i]) > 0.0;
                 let is_entry = faces_viewer == self.exits_face_away;
-                if is_entry == entry_pass && cull.is_drawn(plane, self.pieces.corners(i)[0]) {
+                if is_entry == entry_pass && cull.is_drawn(&planes[i], self.pieces.corners(i)[0]) {
                     out.push(i as u32, self.pieces.face(i));
                 }
             }
         }
+    }
+
+    fn group_by_brush(&mut self, brush: &dyn Fn(u32) -> u32) -> bool {
+        let pieces = &self.pieces;
+        self.order.sort_by_key(|&i| brush(pieces.face(i as usize)));
+        true
     }
 
     fn stats(&self) -> SorterStats {
@@ -305,6 +318,13 @@ impl Auto {
 impl FaceSorter for Auto {
     fn name(&self) -> &'static str {
         self.inner.name()
+    }
+
+    fn group_by_brush(&mut self, brush: &dyn Fn(u32) -> u32) -> bool {
+        let grouped = self.inner.group_by_brush(brush);
+        // The next frame is drawn in the new order.
+        self.last_view = None;
+        grouped
     }
 
     fn sort(&mut self, view: &View, out: &mut DrawList) {

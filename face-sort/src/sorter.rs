@@ -33,4 +33,13 @@ pub trait FaceSorter: Send {
     fn stats(&self) -> SorterStats {
         SorterStats::default()
     }
+
+    /// Where the order leaves pieces free among themselves (a cull-only order: any order of
+    /// the pieces facing the viewer is exact), draw them grouped by `brush(face)` from now
+    /// on, for backends where a brush change costs. Returns whether this sorter can (only
+    /// cull-only orders can; the others keep their order and return false).
+    fn group_by_brush(&mut self, brush: &dyn Fn(u32) -> u32) -> bool {
+        let _ = brush;
+        false
+    }
 }

@@ -244,3 +244,43 @@ fn newell_leaves_out_pieces_outside_the_image() {
         }
     }
 }
+
+/// Cull-only orders can be grouped by brush (any order of the drawn pieces of a convex mesh
+/// is exact): brush changes drop to the number of brushes per pass, still exact; other
+/// sorters refuse.
+#[test]
+fn cull_only_orders_group_by_brush() {
+    use face_sort::{CullMode, DrawList, FaceSorter, Geometry, SorterKind, View, generate, oracle};
+    let geometry = Geometry::new(&generate::uv_sphere(32, 16)).unwrap();
+    let brush = |face: u32| face % 5;
+    let changes = |list: &DrawList| {
+        list.items()
+            .windows(2)
+            .filter(|w| brush(w[0].face) != brush(w[1].face))
+            .count()
+    };
+    let mut auto = Auto::new(&geometry, PlanHint::ANIMATION);
+    assert_eq!(auto.plan().strategy, Strategy::CullOnly);
+    let base = View::fit(&geometry.bounds(), 256, 256).with_yaw_pitch_roll(30.0, 20.0, 0.0);
+    let mut list = DrawList::new();
+    let mut before = Vec::new();
+    for cull in [CullMode::Back, CullMode::None] {
+        auto.sort(&base.with_cull(cull), &mut list);
+        before.push(changes(&list));
+    }
+    assert!(auto.group_by_brush(&brush));
+    for (k, cull) in [CullMode::Back, CullMode::None].into_iter().enumerate() {
+        let view = base.with_cull(cull);
+        auto.sort(&view, &mut list);
+        assert_eq!(oracle::count_violations(&view, &list), 0);
+        // One run per brush in each pass (exit pieces, then entry pieces).
+        let runs = if cull == CullMode::None {
+            2 * 5 - 1
+        } else {
+            5 - 1
+        };
+        assert!(changes(&list) <= runs, "{} changes", changes(&list));
+        assert!(before[k] > 100, "{before:?}");
+    }
+    assert!(!SorterKind::Bsp.build(&geometry).group_by_brush(&brush));
+}

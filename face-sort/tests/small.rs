@@ -1,8 +1,7 @@
 //! The small-piece filter: drops exactly the items below the area, keeps the others' order.
 
 use face_sort::{
-    Bsp, DrawList, FaceSorter, Geometry, ProjectionScratch, SmallPieceFilter, View,
-    signed_area_2d,
+    Bsp, DrawList, FaceSorter, Geometry, ProjectionScratch, SmallPieceFilter, View, signed_area_2d,
 };
 
 #[test]
@@ -17,7 +16,11 @@ fn small_pieces_go_and_the_rest_keep_their_order() {
     let all: Vec<_> = list.items().to_vec();
     let area = |item| {
         let mut points = Vec::new();
-        view.project_polygon(list.corners(item), &mut points, &mut ProjectionScratch::default());
+        view.project_polygon(
+            list.corners(item),
+            &mut points,
+            &mut ProjectionScratch::default(),
+        );
         signed_area_2d(&points).abs()
     };
     let areas: Vec<f64> = all.iter().map(|&i| area(i)).collect();
@@ -32,8 +35,15 @@ fn small_pieces_go_and_the_rest_keep_their_order() {
         .collect();
     let removed = filter.apply(&view, &mut list, threshold);
     assert_eq!(removed, all.len() - expected.len());
-    assert!(removed > 100 && !expected.is_empty(), "{removed} of {}", all.len());
+    assert!(
+        removed > 100 && !expected.is_empty(),
+        "{removed} of {}",
+        all.len()
+    );
     assert_eq!(list.items(), &expected[..]);
-    assert_eq!(filter.apply(&view, &mut list, f64::INFINITY), expected.len());
+    assert_eq!(
+        filter.apply(&view, &mut list, f64::INFINITY),
+        expected.len()
+    );
     assert!(list.is_empty());
 }
