@@ -113,9 +113,102 @@ pub struct BspTree {
     /// Piece each fragment was cut from.
     fragment_piece: Vec<u32>,
     pieces: Arc<PolygonSet>,
+    /// Per node, a sphere `[x, y, z, r]` (centred model space) around every fragment of its
+    /// subtree, for skipping subtrees outside the image.
+    spheres: Vec<[f64; 4]>,
     build_ms: f64,
     depth: usize,
 }
+
+/// Per node, a sphere around its subtree's fragments: the subtree's box, bottom up (children
+/// follow their parents in `nodes`), then its centre and half diagonal.
+fn subtree_spheres(nodes: &[Node], fragments: &PolygonSet) -> Vec<[f64; 4]> {
+    let mut boxes = vec![(DVec3::INFINITY, DVec3::NEG_INFINITY); nodes.len()];
+    for k in (0..nodes.len()).rev() {
+        let node = &nodes[k];
+        let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
+        for f in node.first..node.first + node.same + node.opposite {
+            for &c in fragments.corners(f as usize) {
+                lo = lo.min(c);
+                hi = hi.max(c);
+            }
+        }
+        for child in [node.front_child, node.back_child] {
+            if child != NONE {
+                let (clo, chi) = boxes[child as usize];
+                lo = lo.min(clo);
+                hi = hi.max(chi);
+            }
+        }
+        boxes[k] = (lo, hi);
+    }
+    boxes
+        .into_iter()
+        .map(|(lo, hi)| {
+            if lo.x > hi.x {
+                return [0.0, 0.0, 0.0, -1.0]; // empty subtree
+            }
+            let c = (lo + hi) * 0.5;
+            [c.x, c.y, c.z, (hi - lo).length() * 0.5]
+        })
+        .collect()
+}
+
+/// Whether a sphere (centred model space) lies entirely outside the image, with a margin of
+/// one pixel; `false` when it reaches the near plane (it may then cover anything).
+fn sphere_outside_image(view: &View, sphere: &[f64; 4]) -> bool {
+    let r = sphere[3];
+    if r < 0.0 {
+        return true;
+    }
+    let v = view.to_view(DVec3::new(sphere[0], sphere[1], sphere[2]));
+    let s = view.scale();
+    let (w, r_px) = match view.projection() {
+        crate::Projection::Orthographic => (1.0, r * s),
+        crate::Projection::Perspective { distance } => {
+            let w = view.w_of_view_point(v);
+            // The sphere's nearest point has w − r·s/d; beyond the near plane it may cover
+            // anything, nearer it is magnified at most by that w.
+            let w_near = w - r * s / distance;
+            if w_near <= crate::tolerance::NEAR_W {
+                return false;
+            }
+            (w, r * s / w_near)
+        }
+    };
+    let half = glam::DVec2::new(f64::from(view.width()), f64::from(view.height())) * 0.5;
+    let p = glam::DVec2::new(half.x + v.x * s / w, half.y - v.y * s / w);
+    let m = r_px + 1.0;
+    p.x + m < 0.0 || p.y + m < 0.0 || p.x - m > 2.0 * half.x || p.y - m > 2.0 * half.y
+}
+
+/// Whether a sphere lies entirely inside the image (orthographic, or in front of the near
+/// plane in perspective), so that no subtree of it can be culled.
+fn sphere_inside_image(view: &View, sphere: &[f64; 4]) -> bool {
+    let r = sphere[3];
+    let v = view.to_view(DVec3::new(sphere[0], sphere[1], sphere[2]));
+    let s = view.scale();
+    let (w, r_px) = match view.projection() {
+        crate::Projection::Orthographic => (1.0, r * s),
+        crate::Projection::Perspective { distance } => {
+            let w = view.w_of_view_point(v);
+            let w_near = w - r * s / distance;
+            if w_near <= crate::tolerance::NEAR_W {
+                return false;
+            }
+            (w, r * s / w_near)
+        }
+    };
+    let half = glam::DVec2::new(f64::from(view.width()), f64::from(view.height())) * 0.5;
+    let p = glam::DVec2::new(half.x + v.x * s / w, half.y - v.y * s / w);
+    p.x - r_px >= 0.0
+        && p.y - r_px >= 0.0
+        && p.x + r_px <= 2.0 * half.x
+        && p.y + r_px <= 2.0 * half.y
+}
+
+/// Marks a culled fragment slot.
+const CULLED: u32 = u32::MAX;
 
 impl BspTree {
     /// Builds the tree over a geometry's pieces, in f64, with the plane tolerance
@@ -195,11 +288,13 @@ impl BspTree {
         let fragment_face = (0..builder.fragments.len())
             .map(|i| builder.fragments.face(i))
             .collect();
+        let spheres = subtree_spheres(&builder.nodes, &builder.fragments);
         Ok(BspTree {
             piece_rows,
             fragment_face,
             plane_rows,
             planes: builder.planes,
+            spheres,
             nodes: builder.nodes,
             fragments: Arc::new(builder.fragments),
             fragment_piece: builder.fragment_piece,
@@ -508,6 +603,8 @@ pub struct Bsp {
     piece_drawn: Vec<bool>,
     piece_facing: Vec<bool>,
     viewer_in_front: Vec<bool>,
+    /// Per node, for the current frame: its subtree lies outside the image.
+    node_culled: Vec<bool>,
 }
 
 impl Bsp {
@@ -556,6 +653,7 @@ impl Bsp {
             piece_drawn: vec![false; tree.pieces.len()],
             piece_facing: vec![false; tree.pieces.len()],
             viewer_in_front: vec![false; tree.nodes.len()],
+            node_culled: vec![false; tree.nodes.len()],
             tree,
         }
     }
@@ -573,7 +671,7 @@ impl FaceSorter for Bsp {
     }
 
     fn sort(&mut self, view: &View, out: &mut DrawList) {
-        self.sort_culled(&view.cull_test(), out);
+        self.sort_in_view(&view.cull_test(), Some(view), out);
     }
 
     fn stats(&self) -> SorterStats {
@@ -598,7 +696,20 @@ impl Bsp {
     /// [`CullTest::transformed`] one tree serves every placement of its geometry (a scene's
     /// instances) without a rebuild.
     pub fn sort_culled(&mut self, cull: &crate::CullTest, out: &mut DrawList) {
+        self.sort_in_view(cull, None, out);
+    }
+
+    /// The order for `cull`'s viewer; with `frustum`, subtrees whose bounding sphere lies
+    /// outside the view's image are skipped (only when the whole tree's does not lie inside
+    /// it: a model entirely in view pays nothing for the test).
+    fn sort_in_view(&mut self, cull: &crate::CullTest, frustum: Option<&View>, out: &mut DrawList) {
         let tree = &*self.tree;
+        // Frustum culling of subtrees, when part of the model may lie outside the image.
+        let frustum = frustum.filter(|view| {
+            tree.spheres
+                .first()
+                .is_some_and(|root| !sphere_inside_image(view, root))
+        });
         let (point, w) = cull.viewer_point();
         let facing =
             |row: &[f64; 4]| row[0] * point.x + row[1] * point.y + row[2] * point.z - w * row[3];
@@ -631,8 +742,36 @@ impl Bsp {
         if let Some(first) = self.base.first_mut() {
             *first = 0;
         }
+        if let Some(view) = frustum {
+            // Parents come before their children: a culled parent culls its subtree.
+            if let Some(root) = self.node_culled.first_mut() {
+                *root = false;
+            }
+            for k in 0..tree.nodes.len() {
+                let culled = self.node_culled[k] || sphere_outside_image(view, &tree.spheres[k]);
+                self.node_culled[k] = culled;
+                let node = &tree.nodes[k];
+                for child in [node.front_child, node.back_child] {
+                    if child != NONE {
+                        self.node_culled[child as usize] = culled;
+                    }
+                }
+            }
+        }
         for (k, node) in tree.nodes.iter().enumerate() {
             let b = self.base[k];
+            if frustum.is_some() && self.node_culled[k] {
+                // The whole subtree is off the image: its slots, contiguous from `b`, are
+                // marked and skipped below; its nodes are not visited for order.
+                let size = node.front_size + node.back_size + node.same + node.opposite;
+                self.order[b as usize..(b + size) as usize].fill(CULLED);
+                for (child, offset) in [(node.front_child, 0), (node.back_child, node.front_size)] {
+                    if child != NONE {
+                        self.base[child as usize] = b + offset;
+                    }
+                }
+                continue;
+            }
             if node.leaf {
                 let range = node.first..node.first + node.same;
                 if only_toward {
@@ -687,13 +826,27 @@ impl Bsp {
             },
         );
         let mut drawn = 0;
-        for &f in &self.order {
-            let f = f as usize;
-            items[drawn] = crate::DrawItem {
-                polygon: f as u32,
-                face: tree.fragment_face[f],
-            };
-            drawn += usize::from(self.piece_drawn[tree.fragment_piece[f] as usize]);
+        if frustum.is_some() {
+            for &f in &self.order {
+                if f == CULLED {
+                    continue;
+                }
+                let f = f as usize;
+                items[drawn] = crate::DrawItem {
+                    polygon: f as u32,
+                    face: tree.fragment_face[f],
+                };
+                drawn += usize::from(self.piece_drawn[tree.fragment_piece[f] as usize]);
+            }
+        } else {
+            for &f in &self.order {
+                let f = f as usize;
+                items[drawn] = crate::DrawItem {
+                    polygon: f as u32,
+                    face: tree.fragment_face[f],
+                };
+                drawn += usize::from(self.piece_drawn[tree.fragment_piece[f] as usize]);
+            }
         }
         items.truncate(drawn);
     }
