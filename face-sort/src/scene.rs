@@ -730,16 +730,20 @@ fn check_transform(instance: usize, t: &DAffine3) -> Result<(), SceneError> {
     Ok(())
 }
 
+/// The eight corners of a box.
+fn box_corners(b: &Bounds) -> [DVec3; 8] {
+    std::array::from_fn(|k| {
+        DVec3::new(
+            if k & 1 == 0 { b.min.x } else { b.max.x },
+            if k & 2 == 0 { b.min.y } else { b.max.y },
+            if k & 4 == 0 { b.min.z } else { b.max.z },
+        )
+    })
+}
+
 /// The world box of a local box under a transform (its eight corners').
 fn world_box(local: &Bounds, t: &DAffine3) -> Bounds {
-    let corners = (0..8).map(|k| {
-        t.transform_point3(DVec3::new(
-            if k & 1 == 0 { local.min.x } else { local.max.x },
-            if k & 2 == 0 { local.min.y } else { local.max.y },
-            if k & 4 == 0 { local.min.z } else { local.max.z },
-        ))
-    });
-    Bounds::from_points(corners).unwrap_or(*local)
+    Bounds::from_points(box_corners(local).map(|p| t.transform_point3(p))).unwrap_or(*local)
 }
 
 /// Whether any of a world box can show in the image: `false` only when all its corners
@@ -747,12 +751,7 @@ fn world_box(local: &Bounds, t: &DAffine3) -> Bounds {
 fn box_in_image(view: &View, b: &Bounds, centre: DVec3) -> bool {
     let (w, h) = (f64::from(view.width()), f64::from(view.height()));
     let mut out = [true; 4];
-    for k in 0..8 {
-        let p = DVec3::new(
-            if k & 1 == 0 { b.min.x } else { b.max.x },
-            if k & 2 == 0 { b.min.y } else { b.max.y },
-            if k & 4 == 0 { b.min.z } else { b.max.z },
-        );
+    for p in box_corners(b) {
         let Some(s) = view.project_view_point(view.to_view(p - centre)) else {
             return true;
         };
@@ -769,12 +768,7 @@ fn box_in_image(view: &View, b: &Bounds, centre: DVec3) -> bool {
 fn projected_size(view: &View, b: &Bounds, centre: DVec3) -> f64 {
     let mut lo = glam::DVec2::INFINITY;
     let mut hi = glam::DVec2::NEG_INFINITY;
-    for k in 0..8 {
-        let p = DVec3::new(
-            if k & 1 == 0 { b.min.x } else { b.max.x },
-            if k & 2 == 0 { b.min.y } else { b.max.y },
-            if k & 4 == 0 { b.min.z } else { b.max.z },
-        );
+    for p in box_corners(b) {
         let Some(s) = view.project_view_point(view.to_view(p - centre)) else {
             return f64::INFINITY;
         };
