@@ -65,6 +65,62 @@ pub fn rasterise(pdf: &[u8], name: &str, zoom: u32) -> resvg::tiny_skia::Pixmap 
     resvg::tiny_skia::Pixmap::load_png(stem.with_extension("png")).expect("pdftoppm's PNG")
 }
 
+/// Every model of the repository (assets/models/SOURCES.md).
+pub const MODELS: [&str; 27] = [
+    "keenan-crane/spot/spot_control_mesh.obj",
+    "keenan-crane/spot/spot_control_mesh_texture.obj",
+    "keenan-crane/spot/spot_quadrangulated.obj",
+    "keenan-crane/spot/spot_triangulated.obj",
+    "keenan-crane/blub/blub_control_mesh.obj",
+    "keenan-crane/blub/blub_quadrangulated.obj",
+    "suzanne/suzanne.obj",
+    "cornell-box/cornell_box.obj",
+    "fandisk-quads/fandisk_quads.converted.obj",
+    "opensubdiv-torus/catmark_torus_creases0.obj",
+    "compas/boxes.obj",
+    "compas/faces.obj",
+    "compas/hypar.obj",
+    "compas/quadmesh.obj",
+    "compas/tubemesh.obj",
+    "combobulate-samples/book.obj",
+    "combobulate-samples/octahedron.obj",
+    "combobulate-samples/tetrahedron.obj",
+    "assimp-obj/box.obj",
+    "assimp-obj/concave_polygon.obj",
+    "gltf/AnimatedMorphCube/AnimatedMorphCube.gltf",
+    "gltf/Box/Box.gltf",
+    "gltf/BoxTextured/BoxTextured.gltf",
+    "gltf/BoxVertexColors/BoxVertexColors.gltf",
+    "gltf/Cube/Cube.gltf",
+    "gltf/MultipleScenes/MultipleScenes.gltf",
+    "gltf/SimpleMeshes/SimpleMeshes.gltf",
+];
+
+/// The page side for a model: models of many small faces need a larger page for pixels
+/// away from every edge.
+pub fn page_size(geometry: &Geometry) -> u32 {
+    if geometry.face_count() > 5_000 {
+        3 * SIZE
+    } else {
+        SIZE
+    }
+}
+
+/// Open models (a room, sheets, single polygons) are seen from both sides.
+pub fn cull_for(model: &str) -> CullMode {
+    let open = [
+        "cornell",
+        "compas/",
+        "combobulate-samples/book",
+        "assimp-obj/concave",
+    ];
+    if open.iter().any(|m| model.starts_with(m)) {
+        CullMode::None
+    } else {
+        CullMode::Back
+    }
+}
+
 /// ID-mode PDFs of a model (hidden parts kept and removed) rasterised by poppler: every
 /// unambiguous pixel must carry the truth's face.
 fn check_model(name: &str, geometry: &Geometry, views: &[View]) {
@@ -135,36 +191,7 @@ fn pdf_ids_through_poppler_are_exact_on_the_models() {
     if !pdftoppm_available() {
         return;
     }
-    // Every model of the repository (assets/models/SOURCES.md).
-    for model in [
-        "keenan-crane/spot/spot_control_mesh.obj",
-        "keenan-crane/spot/spot_control_mesh_texture.obj",
-        "keenan-crane/spot/spot_quadrangulated.obj",
-        "keenan-crane/spot/spot_triangulated.obj",
-        "keenan-crane/blub/blub_control_mesh.obj",
-        "keenan-crane/blub/blub_quadrangulated.obj",
-        "suzanne/suzanne.obj",
-        "cornell-box/cornell_box.obj",
-        "fandisk-quads/fandisk_quads.converted.obj",
-        "opensubdiv-torus/catmark_torus_creases0.obj",
-        "compas/boxes.obj",
-        "compas/faces.obj",
-        "compas/hypar.obj",
-        "compas/quadmesh.obj",
-        "compas/tubemesh.obj",
-        "combobulate-samples/book.obj",
-        "combobulate-samples/octahedron.obj",
-        "combobulate-samples/tetrahedron.obj",
-        "assimp-obj/box.obj",
-        "assimp-obj/concave_polygon.obj",
-        "gltf/AnimatedMorphCube/AnimatedMorphCube.gltf",
-        "gltf/Box/Box.gltf",
-        "gltf/BoxTextured/BoxTextured.gltf",
-        "gltf/BoxVertexColors/BoxVertexColors.gltf",
-        "gltf/Cube/Cube.gltf",
-        "gltf/MultipleScenes/MultipleScenes.gltf",
-        "gltf/SimpleMeshes/SimpleMeshes.gltf",
-    ] {
+    for model in MODELS {
         let geometry = support::geometry(&support::load_obj(model));
         // Models of many small faces need a larger page for pixels away from every edge.
         let size = if geometry.face_count() > 5_000 {
