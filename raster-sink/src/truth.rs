@@ -61,11 +61,45 @@ pub(crate) fn view_plane(view: &View, plane: &Plane) -> (DVec3, f64) {
 pub fn truth(view: &View, geometry: &Geometry) -> Truth {
     let (width, height) = (view.width(), view.height());
     let n_pixels = width as usize * height as usize;
-    let stride = width as usize;
     let mut best = vec![f64::NEG_INFINITY; n_pixels];
     let mut second = vec![f64::NEG_INFINITY; n_pixels];
     let mut ids = vec![0u32; n_pixels];
-    let mut near_edge = vec![false; n_pixels];
+    let near_edge = for_each_fragment(view, geometry, |face, k, depth| {
+        let (z, face_id) = (depth(DVec2::ZERO), face.wrapping_add(1));
+        if z > best[k] || (z == best[k] && face_id < ids[k]) {
+            second[k] = best[k];
+            best[k] = z;
+            ids[k] = face_id;
+        } else if z > second[k] {
+            second[k] = z;
+        }
+    });
+    let gap = DEPTH_GAP * view.diagonal();
+    let unambiguous = (0..n_pixels)
+        .map(|k| ids[k] != 0 && !near_edge[k] && best[k] - second[k] > gap)
+        .collect();
+    Truth {
+        width,
+        height,
+        ids,
+        unambiguous,
+    }
+}
+
+/// Every piece of `geometry` the view draws (its cull mode), filled at pixel centres:
+/// `fragment(face, pixel, depth)` for each covered pixel centre (row-major index), where
+/// `depth(offset)` is the piece's view-space depth (toward the viewer) on the ray through
+/// the centre moved by `offset` pixels, clamped to the piece's own depth range. Returns, per
+/// pixel, whether it lies within [`EDGE_MARGIN_PX`] of a drawn piece's projected edge. The
+/// one rasterisation of the truths ([`truth`], [`composite_truth`](crate::composite_truth)).
+pub(crate) fn for_each_fragment(
+    view: &View,
+    geometry: &Geometry,
+    mut fragment: impl FnMut(u32, usize, &dyn Fn(DVec2) -> f64),
+) -> Vec<bool> {
+    let (width, height) = (view.width(), view.height());
+    let stride = width as usize;
+    let mut near_edge = vec![false; stride * height as usize];
     let caster = PixelRays::new(view);
     let cull = view.cull_test();
     let pieces = geometry.pieces();
@@ -82,7 +116,7 @@ pub fn truth(view: &View, geometry: &Geometry) -> Truth {
         if !cull.is_drawn(plane, corners[0]) || !projector.project(view, corners) {
             continue;
         }
-        let face_id = pieces.face(i).wrapping_add(1);
+        let face = pieces.face(i);
         let (n, offset) = view_plane(view, plane);
         let (mut z_lo, mut z_hi) = (f64::INFINITY, f64::NEG_INFINITY);
         for &c in corners {
@@ -93,23 +127,17 @@ pub fn truth(view: &View, geometry: &Geometry) -> Truth {
         z_hi = z_hi.min(near_z);
         let points = &projector.points;
         for_each_span(points, width, height, |y, x0, x1| {
-            let yc = f64::from(y) + 0.5;
-            let row = y as usize * stride;
             for x in x0..x1 {
-                let z = caster.depth(DVec2::new(f64::from(x) + 0.5, yc), n, offset);
-                let z = if z.is_nan() {
-                    z_hi
-                } else {
-                    z.clamp(z_lo, z_hi)
+                let centre = DVec2::new(f64::from(x) + 0.5, f64::from(y) + 0.5);
+                let depth = |moved: DVec2| {
+                    let z = caster.depth(centre + moved, n, offset);
+                    if z.is_nan() {
+                        z_hi
+                    } else {
+                        z.clamp(z_lo, z_hi)
+                    }
                 };
-                let k = row + x as usize;
-                if z > best[k] || (z == best[k] && face_id < ids[k]) {
-                    second[k] = best[k];
-                    best[k] = z;
-                    ids[k] = face_id;
-                } else if z > second[k] {
-                    second[k] = z;
-                }
+                fragment(face, y as usize * stride + x as usize, &depth);
             }
         });
         let m = points.len();
@@ -124,16 +152,7 @@ pub fn truth(view: &View, geometry: &Geometry) -> Truth {
             );
         }
     }
-    let gap = DEPTH_GAP * view.diagonal();
-    let unambiguous = (0..n_pixels)
-        .map(|k| ids[k] != 0 && !near_edge[k] && best[k] - second[k] > gap)
-        .collect();
-    Truth {
-        width,
-        height,
-        ids,
-        unambiguous,
-    }
+    near_edge
 }
 
 /// The pixel error of a painter's ID image against the truth (CONVENTIONS.md).

@@ -36,8 +36,7 @@ struct SceneSummary {
     #[serde(skip_serializing_if = "Option::is_none")]
     violations: Option<usize>,
     /// With --check: unambiguous pixels of an unshaded, aliased render off the per-pixel
-    /// compositing reference (`raster_sink::composite_truth`) by more than its 8-bit
-    /// rounding tolerance.
+    /// compositing reference (`raster_sink::composite_truth`) by more than 2/255.
     #[serde(skip_serializing_if = "Option::is_none")]
     composite_wrong: Option<usize>,
 }
@@ -193,7 +192,7 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
             &Geometry::new_in_frame(&main_only(&scene, &scene.flattened()), scene.bounds())?,
             |face| face_colours[face as usize],
             background,
-        );
+        )?;
         let flat_image = raster_sink::render_colour(
             &view,
             &main_list,
@@ -203,19 +202,7 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
                 .with_background(background),
         )
         .map_err(|e| anyhow::anyhow!("raster: {e}"))?;
-        let wrong = flat_image
-            .pixels()
-            .iter()
-            .enumerate()
-            .filter(|&(k, p)| {
-                let (got, want) = (p.demultiply(), reference.rgba[k]);
-                reference.unambiguous[k]
-                    && [got.red(), got.green(), got.blue()]
-                        .iter()
-                        .zip(&want[..3])
-                        .any(|(g, w)| g.abs_diff(*w) > reference.tolerance(k))
-            })
-            .count();
+        let wrong = reference.wrong_pixels(&flat_image);
         (Some(violations), Some(wrong))
     } else {
         (None, None)

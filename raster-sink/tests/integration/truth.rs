@@ -364,25 +364,9 @@ fn translucent_scenes_composite_exactly() {
         base.with_yaw_pitch_roll(140.0, 25.0, 0.0)
             .with_perspective(1.2 * ld),
     ] {
-        let reference = composite_truth(&view, &geometry, colour, background);
+        let reference = composite_truth(&view, &geometry, colour, background).unwrap();
         let wrong = |list: &DrawList| {
-            let image = render_colour(&view, list, &style, &options).unwrap();
-            let mut count = 0;
-            for (k, pixel) in image.pixels().iter().enumerate() {
-                if !reference.unambiguous[k] {
-                    continue;
-                }
-                let got = pixel.demultiply();
-                let want = reference.rgba[k];
-                let diff = [got.red(), got.green(), got.blue()]
-                    .iter()
-                    .zip(&want[..3])
-                    .map(|(g, w)| g.abs_diff(*w))
-                    .max()
-                    .unwrap_or(0);
-                count += usize::from(diff > reference.tolerance(k));
-            }
-            count
+            reference.wrong_pixels(&render_colour(&view, list, &style, &options).unwrap())
         };
         let mut list = DrawList::new();
         scene.sort(&view, &mut list);
@@ -580,21 +564,9 @@ fn billboard_clouds_face_the_viewer_and_composite_exactly() {
             0
         );
         let geometry = Geometry::new_in_frame(&scene.flattened(), scene.bounds()).unwrap();
-        let reference = composite_truth(&view, &geometry, colour, background);
+        let reference = composite_truth(&view, &geometry, colour, background).unwrap();
         let image = render_colour(&view, &list, &style, &options).unwrap();
-        let wrong = image
-            .pixels()
-            .iter()
-            .enumerate()
-            .filter(|&(k, p)| {
-                let (got, want) = (p.demultiply(), reference.rgba[k]);
-                reference.unambiguous[k]
-                    && [got.red(), got.green(), got.blue()]
-                        .iter()
-                        .zip(&want[..3])
-                        .any(|(g, w)| g.abs_diff(*w) > reference.tolerance(k))
-            })
-            .count();
+        let wrong = reference.wrong_pixels(&image);
         assert_eq!(wrong, 0, "{view:?}");
         judged += reference.unambiguous.iter().filter(|&&u| u).count();
     }
