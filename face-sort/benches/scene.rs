@@ -73,15 +73,18 @@ fn scene(c: &mut Criterion) {
     }
     // Five instances move every frame.
     let mut frame = 0u32;
+    let mut move_five = |scene: &mut SceneSorter| {
+        frame += 1;
+        for i in (0..100).step_by(20) {
+            let mut t = instances[i].transform;
+            let a = f64::from(frame) * 0.1;
+            t.translation += DVec3::new(a.cos(), 0.0, a.sin());
+            scene.set_transform(i, t).expect("transform");
+        }
+    };
     group.bench_function(BenchmarkId::new("moving", "scene"), |bench| {
         bench.iter(|| {
-            frame += 1;
-            for i in (0..100).step_by(20) {
-                let mut t = instances[i].transform;
-                let a = f64::from(frame) * 0.1;
-                t.translation += DVec3::new(a.cos(), 0.0, a.sin());
-                scene.set_transform(i, t).expect("transform");
-            }
+            move_five(&mut scene);
             scene.sort(&views[0], &mut list);
             black_box(list.len())
         })
@@ -89,13 +92,7 @@ fn scene(c: &mut Criterion) {
     // The flattened path with motion and no tree: rebuild the mesh and its pieces, Newell.
     group.bench_function(BenchmarkId::new("moving", "flattened-newell"), |bench| {
         bench.iter(|| {
-            frame += 1;
-            for i in (0..100).step_by(20) {
-                let mut t = instances[i].transform;
-                let a = f64::from(frame) * 0.1;
-                t.translation += DVec3::new(a.cos(), 0.0, a.sin());
-                scene.set_transform(i, t).expect("transform");
-            }
+            move_five(&mut scene);
             let geometry =
                 Geometry::new_in_frame(&scene.flattened(), scene.bounds()).expect("flattened");
             Newell::new(&geometry).sort(&views[0], &mut list);

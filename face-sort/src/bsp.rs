@@ -154,37 +154,13 @@ fn subtree_spheres(nodes: &[Node], fragments: &PolygonSet) -> Vec<[f64; 4]> {
         .collect()
 }
 
-/// A sphere's (centred model space) projection as a conservative circle: centre and radius
-/// in pixels; `None` when it reaches the near plane (it may then cover anything).
-fn sphere_on_screen(view: &View, sphere: &[f64; 4]) -> Option<(glam::DVec2, f64)> {
-    let r = sphere[3];
-    let v = view.to_view(DVec3::new(sphere[0], sphere[1], sphere[2]));
-    let s = view.scale();
-    let (w, r_px) = match view.projection() {
-        crate::Projection::Orthographic => (1.0, r * s),
-        crate::Projection::Perspective { distance } => {
-            // The sphere's nearest point has w − r·s/d; it is magnified at most by that w.
-            let w = view.w_of_view_point(v);
-            let w_near = w - r * s / distance;
-            if w_near <= crate::tolerance::NEAR_W {
-                return None;
-            }
-            (w, r * s / w_near)
-        }
-    };
-    let half = glam::DVec2::new(f64::from(view.width()), f64::from(view.height())) * 0.5;
-    Some((
-        glam::DVec2::new(half.x + v.x * s / w, half.y - v.y * s / w),
-        r_px,
-    ))
-}
-
 /// Whether a sphere lies entirely outside the image, with a margin of one pixel.
 fn sphere_outside_image(view: &View, sphere: &[f64; 4]) -> bool {
     if sphere[3] < 0.0 {
         return true; // empty subtree
     }
-    let Some((p, r)) = sphere_on_screen(view, sphere) else {
+    let Some((p, r)) = view.project_sphere(DVec3::new(sphere[0], sphere[1], sphere[2]), sphere[3])
+    else {
         return false;
     };
     let (w, h) = (f64::from(view.width()), f64::from(view.height()));
@@ -195,7 +171,8 @@ fn sphere_outside_image(view: &View, sphere: &[f64; 4]) -> bool {
 /// Whether a sphere lies entirely inside the image (and in front of the near plane), so
 /// that no subtree of it can be culled.
 fn sphere_inside_image(view: &View, sphere: &[f64; 4]) -> bool {
-    let Some((p, r)) = sphere_on_screen(view, sphere) else {
+    let Some((p, r)) = view.project_sphere(DVec3::new(sphere[0], sphere[1], sphere[2]), sphere[3])
+    else {
         return false;
     };
     let (w, h) = (f64::from(view.width()), f64::from(view.height()));

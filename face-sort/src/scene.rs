@@ -242,6 +242,8 @@ pub struct SceneSorter {
     slots: Vec<u32>,
     /// Per instance: the mesh drawn now (its own, or a level of detail).
     active: Vec<usize>,
+    /// Per instance: the inverse of its transform (world to local), kept from placement.
+    inverses: Vec<DAffine3>,
     boxes: Vec<Bounds>,
     bounds: Bounds,
     /// One coarse tree per layer, in [`Layer::ALL`] order.
@@ -326,12 +328,14 @@ impl SceneSorter {
             .map(|(k, i)| (k, i.transform))
             .collect();
         let active = instances.iter().map(|i| i.mesh).collect();
+        let inverses = instances.iter().map(|i| i.transform.inverse()).collect();
         Ok(SceneSorter {
             meshes: scene_meshes,
             instances,
             billboards,
             slots,
             active,
+            inverses,
             billboard_rotation: None,
             face_offsets,
             boxes,
@@ -426,6 +430,7 @@ impl SceneSorter {
             });
         };
         slot.transform = transform;
+        self.inverses[instance] = transform.inverse();
         self.boxes[instance] = world_box(&self.meshes[self.active[instance]].bounds, &transform);
         self.tree_dirty = true;
         self.clusters
@@ -596,7 +601,7 @@ impl SceneSorter {
         let mesh = &mut self.meshes[self.active[index]];
         // World-centred → mesh-centred: x_l = T⁻¹(x + c_w) − c_l.
         let to_local = DAffine3::from_translation(-mesh.centre)
-            * instance.transform.inverse()
+            * self.inverses[index]
             * DAffine3::from_translation(centre);
         let to_world = to_local.inverse();
         mesh.bsp

@@ -247,6 +247,39 @@ impl View {
         (w >= NEAR_W).then(|| self.pixel_of(v, w))
     }
 
+    /// Homogeneous pixel coordinates `(x·w, y·w, w)` of a centred model point: linear in the
+    /// point, so along a segment they interpolate linearly (divide by `w` for pixels).
+    #[must_use]
+    pub fn homogeneous_pixel(&self, centred: DVec3) -> DVec3 {
+        let v = self.to_view(centred);
+        let w = self.w_of_view_point(v);
+        let half = DVec2::new(f64::from(self.width), f64::from(self.height)) * 0.5;
+        let q = v * self.scale;
+        DVec3::new(half.x * w + q.x, half.y * w - q.y, w)
+    }
+
+    /// A sphere's (centred model space) projection as a conservative circle: its centre and
+    /// radius in pixels; `None` when the sphere reaches the near plane (it may then cover
+    /// anything).
+    #[must_use]
+    pub fn project_sphere(&self, centre: DVec3, radius: f64) -> Option<(DVec2, f64)> {
+        let v = self.to_view(centre);
+        let s = self.scale;
+        let (w, r_px) = match self.projection {
+            Projection::Orthographic => (1.0, radius * s),
+            Projection::Perspective { distance } => {
+                // The sphere's nearest point has w − r·s/d; it is magnified at most by that w.
+                let w = self.w_of_view_point(v);
+                let w_near = w - radius * s / distance;
+                if w_near <= NEAR_W {
+                    return None;
+                }
+                (w, radius * s / w_near)
+            }
+        };
+        Some((self.pixel_of(v, w), r_px))
+    }
+
     /// Pixel position of view-space point `v` whose `w` is `w`.
     #[inline]
     fn pixel_of(&self, v: DVec3, w: f64) -> DVec2 {

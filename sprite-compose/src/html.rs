@@ -354,21 +354,10 @@ fn seam_strips<'a>(
     if later.is_empty() {
         return Vec::new();
     }
-    // The sprite's plane → pixels, as a 3×3 homography (unit-square coordinates).
-    let full = *root * sprite.transform.matrix;
-    let plane = DMat3::from_cols(
-        DVec3::new(full.x_axis.x, full.x_axis.y, full.x_axis.w),
-        DVec3::new(full.y_axis.x, full.y_axis.y, full.y_axis.w),
-        DVec3::new(full.w_axis.x, full.w_axis.y, full.w_axis.w),
-    );
-    if plane.determinant().abs() <= UNDERFLOW_ABS {
+    let Some((_, to_square)) = square_homography(root, sprite) else {
         return Vec::new();
-    }
-    let to_square = plane.inverse();
-    let back = |p: DVec2| {
-        let h = to_square * DVec3::new(p.x, p.y, 1.0);
-        (h.z.abs() > UNDERFLOW_ABS).then(|| DVec2::new(h.x / h.z, h.y / h.z))
     };
+    let back = |p: DVec2| to_unit_square(&to_square, p);
     let n = projected.len();
     let area: f64 = (0..n)
         .map(|k| projected[k].perp_dot(projected[(k + 1) % n]))
@@ -418,21 +407,33 @@ fn seam_strips<'a>(
     out
 }
 
-/// A textured sprite's clip polygon (unit-square coordinates) with each corner moved
-/// [`HTML_TEXTURE_SEAM_PX`] pixels away from the projected polygon's centre, so that
-/// neighbouring clipped textures overlap instead of leaving anti-aliased hairlines of
-/// background between them. The clip as it is when a corner cannot be mapped back.
-fn dilate_clip(root: &DMat4, sprite: &SceneSprite, clip: &[DVec2]) -> Vec<DVec2> {
+/// The sprite's unit square → pixels as a 3×3 homography, and its inverse; `None` when
+/// singular.
+fn square_homography(root: &DMat4, sprite: &SceneSprite) -> Option<(DMat3, DMat3)> {
     let full = *root * sprite.transform.matrix;
     let plane = DMat3::from_cols(
         DVec3::new(full.x_axis.x, full.x_axis.y, full.x_axis.w),
         DVec3::new(full.y_axis.x, full.y_axis.y, full.y_axis.w),
         DVec3::new(full.w_axis.x, full.w_axis.y, full.w_axis.w),
     );
-    if plane.determinant().abs() <= UNDERFLOW_ABS {
+    (plane.determinant().abs() > UNDERFLOW_ABS).then(|| (plane, plane.inverse()))
+}
+
+/// A pixel mapped back to unit-square coordinates; `None` at infinity.
+fn to_unit_square(to_square: &DMat3, p: DVec2) -> Option<DVec2> {
+    let h = *to_square * DVec3::new(p.x, p.y, 1.0);
+    let s = DVec2::new(h.x / h.z, h.y / h.z);
+    (h.z.abs() > UNDERFLOW_ABS && s.is_finite()).then_some(s)
+}
+
+/// A textured sprite's clip polygon (unit-square coordinates) grown in pixels like the SVG
+/// writer's textured clips ([`dilate`](crate::svg::dilate)), by [`HTML_TEXTURE_SEAM_PX`], so
+/// that neighbouring clipped textures overlap instead of leaving anti-aliased hairlines of
+/// background between them. The clip as it is when a corner cannot be mapped.
+fn dilate_clip(root: &DMat4, sprite: &SceneSprite, clip: &[DVec2]) -> Vec<DVec2> {
+    let Some((plane, to_square)) = square_homography(root, sprite) else {
         return clip.to_vec();
-    }
-    let to_square = plane.inverse();
+    };
     let pixels: Option<Vec<DVec2>> = clip
         .iter()
         .map(|c| {
@@ -440,19 +441,12 @@ fn dilate_clip(root: &DMat4, sprite: &SceneSprite, clip: &[DVec2]) -> Vec<DVec2>
             (h.z > 0.0).then(|| DVec2::new(h.x / h.z, h.y / h.z))
         })
         .collect();
-    let Some(pixels) = pixels else {
-        return clip.to_vec();
-    };
-    let centre = pixels.iter().copied().sum::<DVec2>() / pixels.len() as f64;
-    let moved: Option<Vec<DVec2>> = pixels
-        .iter()
-        .map(|&p| {
-            let q = p + (p - centre).normalize_or_zero() * HTML_TEXTURE_SEAM_PX;
-            let h = to_square * DVec3::new(q.x, q.y, 1.0);
-            let s = DVec2::new(h.x / h.z, h.y / h.z);
-            (h.z.abs() > UNDERFLOW_ABS && s.is_finite()).then_some(s)
-        })
-        .collect();
+    let moved: Option<Vec<DVec2>> = pixels.and_then(|pixels| {
+        crate::svg::dilate(&pixels, HTML_TEXTURE_SEAM_PX)
+            .into_iter()
+            .map(|p| to_unit_square(&to_square, p))
+            .collect()
+    });
     moved.unwrap_or_else(|| clip.to_vec())
 }
 

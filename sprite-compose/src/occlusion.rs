@@ -182,14 +182,7 @@ pub(crate) struct Segment {
 impl Segment {
     /// `None` when the whole edge lies behind the near plane.
     pub(crate) fn new(view: &View, ends: [DVec3; 2]) -> Option<Self> {
-        let half = DVec2::new(f64::from(view.width()), f64::from(view.height())) * 0.5;
-        let homogeneous = |p: DVec3| {
-            let v = view.to_view(p);
-            let w = view.w_of_view_point(v);
-            let q = v * view.scale();
-            DVec3::new(half.x * w + q.x, half.y * w - q.y, w)
-        };
-        let screen = [homogeneous(ends[0]), homogeneous(ends[1])];
+        let screen = ends.map(|p| view.homogeneous_pixel(p));
         // Keep w(t) ≥ NEAR_W.
         let (w0, w1) = (screen[0].z, screen[1].z);
         let mut range = [0.0, 1.0];

@@ -347,7 +347,7 @@ fn points_attribute(polygon: &[DVec2]) -> String {
 }
 
 /// A polygon with each corner moved `by` pixels away from the corners' mean.
-fn dilate(polygon: &[DVec2], by: f64) -> Vec<DVec2> {
+pub(crate) fn dilate(polygon: &[DVec2], by: f64) -> Vec<DVec2> {
     let centre = polygon.iter().copied().sum::<DVec2>() / polygon.len().max(1) as f64;
     polygon
         .iter()

@@ -36,14 +36,20 @@ pub fn load_gltf(
     path: impl AsRef<Path>,
     options: &LoadOptions,
 ) -> Result<(Mesh, LoadReport), LoadError> {
-    let path = path.as_ref();
+    let (bytes, file, folder) = read_file(path.as_ref(), options)?;
+    load_gltf_bytes(&bytes, file, Some(&folder), options)
+}
+
+/// A glTF file's bytes (size-capped), its display name, and its folder (the confinement of
+/// the files it names).
+fn read_file(path: &Path, options: &LoadOptions) -> Result<(Vec<u8>, String, Folder), LoadError> {
     let file = path.display().to_string();
     let bytes = crate::read_file_capped(path, &file, options.max_file_bytes)?;
     let folder = Folder::new(
         path.parent().unwrap_or(Path::new("")),
         options.allow_outside_paths,
     );
-    load_gltf_bytes(&bytes, file, Some(&folder), options)
+    Ok((bytes, file, folder))
 }
 
 /// Loads glTF JSON or GLB bytes from memory. Buffers must be embedded (GLB
@@ -130,13 +136,7 @@ pub fn load_gltf_scene(
     path: impl AsRef<Path>,
     options: &LoadOptions,
 ) -> Result<GltfScene, LoadError> {
-    let path = path.as_ref();
-    let file = path.display().to_string();
-    let bytes = crate::read_file_capped(path, &file, options.max_file_bytes)?;
-    let folder = Folder::new(
-        path.parent().unwrap_or(Path::new("")),
-        options.allow_outside_paths,
-    );
+    let (bytes, file, folder) = read_file(path.as_ref(), options)?;
     load_scene_bytes(&bytes, file, Some(&folder), options)
 }
 

@@ -9,8 +9,8 @@ use std::time::Instant;
 
 use raster_sink::{IdImage, Truth, pixel_error, render_ids, truth};
 use sprite_compose::face_sort::SorterKind;
-use sprite_compose::face_sort::colours::golden_angle_colour;
 use sprite_compose::face_sort::View;
+use sprite_compose::face_sort::colours::golden_angle_colour;
 use sprite_compose::{
     HtmlMode, HtmlOptions, HtmlPieces, RecordingCompositor, SpritePainter, write_html,
 };

@@ -18,6 +18,31 @@ struct Tally {
     wrong: Vec<String>,
 }
 
+impl Tally {
+    fn add(&mut self, other: Tally) {
+        self.visible += other.visible;
+        self.hidden += other.hidden;
+        self.ambiguous += other.ambiguous;
+        self.wrong.extend(other.wrong);
+    }
+
+    /// Prints the totals and asserts that nothing judged was wrong.
+    fn report(&self, name: &str) {
+        println!(
+            "{name}: {} samples visible, {} hidden, {} not judged, {} wrong",
+            self.visible,
+            self.hidden,
+            self.ambiguous,
+            self.wrong.len()
+        );
+        assert!(
+            self.wrong.is_empty(),
+            "{:#?}",
+            &self.wrong[..self.wrong.len().min(20)]
+        );
+    }
+}
+
 fn check(mesh: &PolygonMesh, view: &View, name: &str) -> (Plot, Tally) {
     let geometry = Geometry::new(mesh).expect("geometry");
     let plot = plot_edges(mesh, &geometry, view, &PlotOptions::DEFAULT);
@@ -207,24 +232,10 @@ fn plot_matches_the_brute_force_on_boxy_scenes() {
                     &format!("{name} view {k} {cull:?}"),
                 );
                 assert!(!plot.polylines.is_empty());
-                total.visible += tally.visible;
-                total.hidden += tally.hidden;
-                total.ambiguous += tally.ambiguous;
-                total.wrong.extend(tally.wrong);
+                total.add(tally);
             }
         }
-        println!(
-            "{name}: {} samples visible, {} hidden, {} not judged, {} wrong",
-            total.visible,
-            total.hidden,
-            total.ambiguous,
-            total.wrong.len()
-        );
-        assert!(
-            total.wrong.is_empty(),
-            "{:#?}",
-            &total.wrong[..total.wrong.len().min(20)]
-        );
+        total.report(name);
         // The check must see both verdicts, and judge most samples (the rest lie within a
         // pixel of another piece's outline: thin sides, ends where faces meet).
         assert!(total.visible > 1_000 && total.hidden > 200, "{total:?}");
@@ -269,23 +280,9 @@ fn plot_matches_the_brute_force_on_suzanne() {
     let mut total = Tally::default();
     for (k, view) in views(&geometry).into_iter().enumerate().take(3) {
         let (_, tally) = check(&mesh, &view, &format!("suzanne view {k}"));
-        total.visible += tally.visible;
-        total.hidden += tally.hidden;
-        total.ambiguous += tally.ambiguous;
-        total.wrong.extend(tally.wrong);
+        total.add(tally);
     }
-    println!(
-        "suzanne: {} samples visible, {} hidden, {} not judged, {} wrong",
-        total.visible,
-        total.hidden,
-        total.ambiguous,
-        total.wrong.len()
-    );
-    assert!(
-        total.wrong.is_empty(),
-        "{:#?}",
-        &total.wrong[..total.wrong.len().min(20)]
-    );
+    total.report("suzanne");
     assert!(total.visible > 1_000 && total.hidden > 100, "{total:?}");
 }
 
@@ -322,18 +319,10 @@ fn plot_matches_the_brute_force_on_spot_in_the_demo_view() {
         .with_perspective(512.0);
     let (plot, tally) = check(&mesh, &view, "spot");
     println!(
-        "spot: {} of {} edges visible; samples {} visible, {} hidden, {} not judged, {} wrong",
+        "spot: {} of {} edges visible",
         plot.edges.iter().filter(|e| !e.visible.is_empty()).count(),
-        plot.edges.len(),
-        tally.visible,
-        tally.hidden,
-        tally.ambiguous,
-        tally.wrong.len()
+        plot.edges.len()
     );
-    assert!(
-        tally.wrong.is_empty(),
-        "{:#?}",
-        &tally.wrong[..tally.wrong.len().min(20)]
-    );
+    tally.report("spot");
     assert!(tally.visible > 1_000 && tally.hidden > 100, "{tally:?}");
 }
