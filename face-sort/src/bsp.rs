@@ -159,24 +159,25 @@ fn sphere_outside_image(view: &View, sphere: &[f64; 4]) -> bool {
     if sphere[3] < 0.0 {
         return true; // empty subtree
     }
-    let Some((p, r)) = view.project_sphere(DVec3::new(sphere[0], sphere[1], sphere[2]), sphere[3])
+    let Some((lo, hi)) =
+        view.project_sphere(DVec3::new(sphere[0], sphere[1], sphere[2]), sphere[3])
     else {
         return false;
     };
     let (w, h) = (f64::from(view.width()), f64::from(view.height()));
-    let m = r + 1.0;
-    p.x + m < 0.0 || p.y + m < 0.0 || p.x - m > w || p.y - m > h
+    hi.x + 1.0 < 0.0 || hi.y + 1.0 < 0.0 || lo.x - 1.0 > w || lo.y - 1.0 > h
 }
 
 /// Whether a sphere lies entirely inside the image (and in front of the near plane), so
 /// that no subtree of it can be culled.
 fn sphere_inside_image(view: &View, sphere: &[f64; 4]) -> bool {
-    let Some((p, r)) = view.project_sphere(DVec3::new(sphere[0], sphere[1], sphere[2]), sphere[3])
+    let Some((lo, hi)) =
+        view.project_sphere(DVec3::new(sphere[0], sphere[1], sphere[2]), sphere[3])
     else {
         return false;
     };
     let (w, h) = (f64::from(view.width()), f64::from(view.height()));
-    p.x - r >= 0.0 && p.y - r >= 0.0 && p.x + r <= w && p.y + r <= h
+    lo.x >= 0.0 && lo.y >= 0.0 && hi.x <= w && hi.y <= h
 }
 
 /// Marks a culled fragment slot.

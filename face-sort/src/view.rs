@@ -258,26 +258,26 @@ impl View {
         DVec3::new(half.x * w + q.x, half.y * w - q.y, w)
     }
 
-    /// A sphere's (centred model space) projection as a conservative circle: its centre and
-    /// radius in pixels; `None` when the sphere reaches the near plane (it may then cover
-    /// anything).
+    /// A box (pixels, `(min, max)`) that holds the projection of a sphere (centred model
+    /// space): the projections of the corners of the cube around it, aligned with the view
+    /// (a projection keeps a convex set inside the hull of its corners' images); `None` when
+    /// the cube reaches the near plane (it may then cover anything).
     #[must_use]
-    pub fn project_sphere(&self, centre: DVec3, radius: f64) -> Option<(DVec2, f64)> {
+    pub fn project_sphere(&self, centre: DVec3, radius: f64) -> Option<(DVec2, DVec2)> {
         let v = self.to_view(centre);
-        let s = self.scale;
-        let (w, r_px) = match self.projection {
-            Projection::Orthographic => (1.0, radius * s),
-            Projection::Perspective { distance } => {
-                // The sphere's nearest point has w − r·s/d; it is magnified at most by that w.
-                let w = self.w_of_view_point(v);
-                let w_near = w - radius * s / distance;
-                if w_near <= NEAR_W {
-                    return None;
-                }
-                (w, radius * s / w_near)
+        let (mut lo, mut hi) = (DVec2::INFINITY, DVec2::NEG_INFINITY);
+        for k in 0..8 {
+            let sign = |bit: i32| if k & bit == 0 { -1.0 } else { 1.0 };
+            let corner = v + DVec3::new(sign(1), sign(2), sign(4)) * radius;
+            let w = self.w_of_view_point(corner);
+            if w <= NEAR_W {
+                return None;
             }
-        };
-        Some((self.pixel_of(v, w), r_px))
+            let p = self.pixel_of(corner, w);
+            lo = lo.min(p);
+            hi = hi.max(p);
+        }
+        Some((lo, hi))
     }
 
     /// Pixel position of view-space point `v` whose `w` is `w`.
