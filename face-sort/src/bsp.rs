@@ -154,31 +154,27 @@ fn subtree_spheres(nodes: &[Node], fragments: &PolygonSet) -> Vec<[f64; 4]> {
         .collect()
 }
 
-/// Whether a sphere lies entirely outside the image, with a margin of one pixel.
-fn sphere_outside_image(view: &View, sphere: &[f64; 4]) -> bool {
+/// Where a sphere (centred model space, radius < 0 for an empty subtree) lies against the
+/// image: `Some(false)` entirely outside it (with a margin of one pixel), `Some(true)`
+/// entirely inside it, `None` across its border or reaching the near plane.
+fn sphere_in_image(view: &View, sphere: &[f64; 4]) -> Option<bool> {
     if sphere[3] < 0.0 {
-        return true; // empty subtree
+        return Some(false);
     }
-    let Some((lo, hi)) =
-        view.project_sphere(DVec3::new(sphere[0], sphere[1], sphere[2]), sphere[3])
-    else {
-        return false;
-    };
+    let (lo, hi) = view.project_sphere(DVec3::new(sphere[0], sphere[1], sphere[2]), sphere[3])?;
     let (w, h) = (f64::from(view.width()), f64::from(view.height()));
-    hi.x + 1.0 < 0.0 || hi.y + 1.0 < 0.0 || lo.x - 1.0 > w || lo.y - 1.0 > h
+    if hi.x + 1.0 < 0.0 || hi.y + 1.0 < 0.0 || lo.x - 1.0 > w || lo.y - 1.0 > h {
+        Some(false)
+    } else if lo.x >= 0.0 && lo.y >= 0.0 && hi.x <= w && hi.y <= h {
+        Some(true)
+    } else {
+        None
+    }
 }
 
-/// Whether a sphere lies entirely inside the image (and in front of the near plane), so
-/// that no subtree of it can be culled.
-fn sphere_inside_image(view: &View, sphere: &[f64; 4]) -> bool {
-    let Some((lo, hi)) =
-        view.project_sphere(DVec3::new(sphere[0], sphere[1], sphere[2]), sphere[3])
-    else {
-        return false;
-    };
-    let (w, h) = (f64::from(view.width()), f64::from(view.height()));
-    lo.x >= 0.0 && lo.y >= 0.0 && hi.x <= w && hi.y <= h
-}
+/// Subtrees are culled only when the model's projected bound covers more than this many
+/// times the image's area (a zoomed view), or reaches the near plane.
+const ZOOMED_AREA: f64 = 2.0;
 
 /// Marks a culled fragment slot.
 const CULLED: u32 = u32::MAX;
@@ -578,6 +574,8 @@ pub struct Bsp {
     viewer_in_front: Vec<bool>,
     /// Per node, for the current frame: its subtree lies outside the image.
     node_culled: Vec<bool>,
+    /// Per node, for the current frame: its subtree lies inside the image (no test below).
+    node_inside: Vec<bool>,
 }
 
 impl Bsp {
@@ -627,6 +625,7 @@ impl Bsp {
             piece_facing: vec![false; tree.pieces.len()],
             viewer_in_front: vec![false; tree.nodes.len()],
             node_culled: vec![false; tree.nodes.len()],
+            node_inside: vec![false; tree.nodes.len()],
             tree,
         }
     }
@@ -677,11 +676,21 @@ impl Bsp {
     /// it: a model entirely in view pays nothing for the test).
     fn sort_in_view(&mut self, cull: &crate::CullTest, frustum: Option<&View>, out: &mut DrawList) {
         let tree = &*self.tree;
-        // Frustum culling of subtrees, when part of the model may lie outside the image.
+        // Frustum culling of subtrees, when a good part of the model may lie outside the
+        // image: the model's projected bound covers more than twice the image, or reaches the
+        // near plane. (A fitted view, whose bound just overlaps the border, would pay a pass
+        // over the nodes for next to nothing.)
         let frustum = frustum.filter(|view| {
-            tree.spheres
-                .first()
-                .is_some_and(|root| !sphere_inside_image(view, root))
+            tree.spheres.first().is_some_and(|root| {
+                let image = f64::from(view.width()) * f64::from(view.height());
+                match view.project_sphere(DVec3::new(root[0], root[1], root[2]), root[3]) {
+                    None => true,
+                    Some((lo, hi)) => {
+                        let bound = (hi - lo).max(glam::DVec2::ZERO);
+                        bound.x * bound.y > ZOOMED_AREA * image
+                    }
+                }
+            })
         });
         let (point, w) = cull.viewer_point();
         let facing =
@@ -717,16 +726,25 @@ impl Bsp {
         }
         if let Some(view) = frustum {
             // Parents come before their children: a culled parent culls its subtree.
-            if let Some(root) = self.node_culled.first_mut() {
-                *root = false;
+            // Only subtrees whose sphere straddles the image's border are tested: one inside
+            // holds only subtrees inside, one outside only subtrees outside.
+            if let (Some(culled), Some(inside)) =
+                (self.node_culled.first_mut(), self.node_inside.first_mut())
+            {
+                (*culled, *inside) = (false, false);
             }
             for k in 0..tree.nodes.len() {
-                let culled = self.node_culled[k] || sphere_outside_image(view, &tree.spheres[k]);
-                self.node_culled[k] = culled;
+                let (mut culled, mut inside) = (self.node_culled[k], self.node_inside[k]);
                 let node = &tree.nodes[k];
+                if !culled && !inside {
+                    let side = sphere_in_image(view, &tree.spheres[k]);
+                    (culled, inside) = (side == Some(false), side == Some(true));
+                }
+                self.node_culled[k] = culled;
                 for child in [node.front_child, node.back_child] {
                     if child != NONE {
                         self.node_culled[child as usize] = culled;
+                        self.node_inside[child as usize] = inside;
                     }
                 }
             }
