@@ -488,3 +488,53 @@ fn the_demo_scene_is_exact_through_the_scene_path() {
     assert_eq!(value["composite_wrong"], 0, "{value}");
     assert!(out.exists());
 }
+
+/// `render --plot` writes exactly the library's plot of the same view (`plot_edges`, whose
+/// visible parts sprite-compose's plot tests judge against the truth for lines): on the
+/// nested and interpenetrating boxes of those tests.
+#[test]
+fn render_plot_is_the_librarys_plot() {
+    use face_sort::glam::DVec3;
+    let v = DVec3::new;
+    let mesh = test_support::models::boxes(&[
+        (v(-1.0, -1.0, -1.0), v(1.0, 1.0, 1.0)),
+        (v(0.2, -0.4, -0.4), v(1.6, 0.3, 0.5)),
+        (v(-0.5, -0.5, -0.5), v(0.0, 0.0, 0.0)),
+        (v(-0.8, 1.0, -0.6), v(-0.1, 1.5, 0.2)),
+    ]);
+    let dir = temp_dir("plot-boxes");
+    let obj = dir.join("boxes.obj");
+    std::fs::write(&obj, test_support::to_obj(&mesh, &[])).unwrap();
+    let svg = dir.join("boxes.svg");
+    let out = xtask(&[
+        "render",
+        obj.to_str().unwrap(),
+        "--yaw",
+        "30",
+        "--pitch",
+        "20",
+        "--size",
+        "256x256",
+        "--plot",
+        svg.to_str().unwrap(),
+        "-o",
+        dir.join("boxes.png").to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", text(&out.stderr));
+    let loaded = test_support::polygon_mesh(&test_support::load_model_at(&obj));
+    let geometry = face_sort::Geometry::new(&loaded).unwrap();
+    let view =
+        face_sort::View::fit(&geometry.bounds(), 256, 256).with_yaw_pitch_roll(30.0, 20.0, 0.0);
+    let plot = sprite_compose::plot_edges(
+        &loaded,
+        &geometry,
+        &view,
+        &sprite_compose::PlotOptions::DEFAULT,
+    );
+    assert!(
+        plot.edges
+            .iter()
+            .any(|e| e.kind == sprite_compose::EdgeKind::Silhouette)
+    );
+    assert_eq!(std::fs::read_to_string(&svg).unwrap(), plot.to_svg(1.0));
+}
