@@ -83,6 +83,7 @@ mod event;
 mod serde_impl;
 mod source;
 pub mod tolerance;
+mod two_axes;
 mod verify;
 
 pub use axis::{Axis, Spin};
@@ -90,6 +91,10 @@ pub use build::{BakeOptions, Progress, bake, bake_sampled};
 pub use cells::{AngleRange, Bake, BakeCell, Breakpoint, Delta, Method, Sizes, cell_bytes};
 pub use event::{EventFn, Roots, reduce};
 pub use source::{BspSource, CentroidSource, Event, EventSource};
+pub use two_axes::{
+    Bake2, Bake2Options, Curve, EventCircle, Row, Slab, Verify2Error, Verify2Report, YawPitch,
+    bake_two_axes, verify_two_axes,
+};
 pub use verify::{VerifyError, VerifyReport, verify};
 
 pub use face_sort;
@@ -138,6 +143,12 @@ pub enum BakeError {
         estimated_bytes: usize,
         /// The budget.
         budget: usize,
+    },
+    /// The sorter does not list its sign conditions as rows (two-axis bakes need them).
+    #[error("the {sorter} sorter cannot be baked over two axes")]
+    Unsupported {
+        /// The sorter's name.
+        sorter: &'static str,
     },
     /// A sampled bake with fewer than 2 samples or a tolerance that is not positive.
     #[error(

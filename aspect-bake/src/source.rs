@@ -11,6 +11,7 @@ use crate::BakeError;
 use crate::axis::Spin;
 use crate::event::{EventFn, Roots};
 use crate::tolerance::SAME_ROOT_RAD;
+use crate::two_axes::Row;
 
 /// A sign change of an event function at `theta` (radians).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -47,6 +48,18 @@ pub trait EventSource: Sync {
         max_events: usize,
         out: &mut Vec<Event>,
     ) -> Result<(), BakeError>;
+
+    /// Every sign condition of the sorter as a [`Row`], for two-axis bakes
+    /// ([`crate::bake_two_axes`]). At most `max_events`.
+    ///
+    /// # Errors
+    /// [`BakeError::EventBudget`] beyond `max_events`; [`BakeError::Unsupported`] by default.
+    fn rows(&self, max_events: usize, out: &mut Vec<Row>) -> Result<(), BakeError> {
+        let _ = (max_events, out);
+        Err(BakeError::Unsupported {
+            sorter: self.name(),
+        })
+    }
 }
 
 /// Pushes the sign changes of `f` in `[start, end)`.
@@ -130,6 +143,23 @@ impl EventSource for BspSource {
         }
         Ok(())
     }
+
+    fn rows(&self, max_events: usize, out: &mut Vec<Row>) -> Result<(), BakeError> {
+        let rows = self.tree.node_rows().iter().chain(self.tree.piece_rows());
+        out.extend(rows.map(|&r| Row::Facing(r)));
+        row_budget(out.len(), max_events)
+    }
+}
+
+fn row_budget(rows: usize, max_events: usize) -> Result<(), BakeError> {
+    if rows > max_events {
+        Err(BakeError::EventBudget {
+            events: rows,
+            budget: max_events,
+        })
+    } else {
+        Ok(())
+    }
 }
 
 /// [`Centroid`]'s events: each piece's facing, and the swaps of a kinetic sorted list of
@@ -190,6 +220,24 @@ fn next_down(g: &EventFn, now: f64) -> Option<f64> {
 impl EventSource for CentroidSource {
     fn name(&self) -> &'static str {
         "centroid"
+    }
+
+    /// Every piece's facing and every pair's depth difference: `n²/2` rows (a kinetic list
+    /// does not carry over to two parameters), so the budget matters.
+    fn rows(&self, max_events: usize, out: &mut Vec<Row>) -> Result<(), BakeError> {
+        let n = self.centroids.len();
+        row_budget(n + n * n.saturating_sub(1) / 2, max_events)?;
+        for (i, plane) in self.pieces.planes().iter().enumerate() {
+            let normal = plane.normal();
+            let offset = normal.dot(self.pieces.corners(i)[0]);
+            out.push(Row::Facing([normal.x, normal.y, normal.z, offset]));
+        }
+        for (i, &gi) in self.centroids.iter().enumerate() {
+            for &gj in &self.centroids[i + 1..] {
+                out.push(Row::Depth(gi - gj));
+            }
+        }
+        Ok(())
     }
 
     fn polygons(&self) -> &Arc<PolygonSet> {

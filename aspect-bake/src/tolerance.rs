@@ -25,3 +25,10 @@ pub const ROOT_NOISE: f64 = 1e-13;
 /// How far, in radians, on each side of a breakpoint `verify` evaluates the event function
 /// and the live sorter (less when the neighbouring cells are narrower).
 pub const VERIFY_SIDE_RAD: f64 = 1e-7;
+
+/// Two-axis bakes: a cell continues from one pitch slab into the next only where its gap
+/// between two curves is at least this wide (radians of yaw) at the boundary. A narrower gap
+/// may pinch to a point there, through which a third curve can pass (three curves crossing
+/// at one point, or crossings closer than their rounding), and then the two sides differ.
+/// Too large only costs cells, never exactness.
+pub const CONTINUE_GAP_RAD: f64 = 1e-9;

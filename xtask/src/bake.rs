@@ -88,6 +88,11 @@ pub struct BakeArgs {
     /// Seconds per turn of the HTML page.
     #[arg(long, value_name = "S", default_value_t = 8.0)]
     period: f64,
+    /// With `--axis yaw`: bake over yaw × pitch, pitch in `[LO, HI)` degrees (the base pitch
+    /// is ignored): cells over the two-dimensional domain (aspect-bake's `bake_two_axes`).
+    /// `--verify` and `--json` apply; `--html` and `--method sampled` do not.
+    #[arg(long, value_name = "LO,HI", allow_hyphen_values = true, value_parser = parse_range)]
+    pitch_range: Option<(f64, f64)>,
     /// Stop when the per-cell lists would exceed this many MiB.
     #[arg(long, value_name = "MIB", default_value_t = 1024)]
     budget_mib: usize,
@@ -182,6 +187,9 @@ pub fn run(args: &BakeArgs) -> Result<ExitCode> {
         );
     }
     let prepared = prepare(args)?;
+    if let Some(range) = args.pitch_range {
+        return run_two_axes(args, &prepared, range);
+    }
     let (geometry, spin) = (&prepared.geometry, &prepared.spin);
     let bsp;
     let centroid;
@@ -296,38 +304,7 @@ fn write(path: &std::path::Path, text: &str) -> Result<()> {
 /// to front; an item is the face index when the polygon is the whole face, else the face and
 /// the polygon's corners in model space.
 pub fn bake_json(bake: &Bake, prepared: &Prepared, missed: Option<usize>) -> Value {
-    let pieces = prepared.geometry.pieces();
-    let faces = prepared.mesh.face_count();
-    // A face is whole when it is one piece with all its corners (planar, not cut).
-    let mut piece_of: Vec<Option<usize>> = vec![None; faces];
-    let mut count = vec![0usize; faces];
-    for p in 0..pieces.len() {
-        let f = pieces.face(p) as usize;
-        count[f] += 1;
-        piece_of[f] = Some(p);
-    }
-    let face_len: Vec<usize> = prepared.mesh.faces().map(<[u32]>::len).collect();
-    let centre = prepared.spin.template().centre();
-    let set = &bake.polygons;
-    let items: Vec<Value> = (0..set.len())
-        .map(|i| {
-            let f = set.face(i) as usize;
-            let whole = count[f] == 1
-                && piece_of[f].is_some_and(|p| {
-                    pieces.corners(p) == set.corners(i) && set.corners(i).len() == face_len[f]
-                });
-            if whole {
-                json!(f)
-            } else {
-                let polygon: Vec<[f64; 3]> = set
-                    .corners(i)
-                    .iter()
-                    .map(|&c| (c + centre).to_array())
-                    .collect();
-                json!({"face": f, "polygon": polygon})
-            }
-        })
-        .collect();
+    let items = item_values(&bake.polygons, prepared);
     let cells: Vec<Value> = bake
         .cells
         .iter()
@@ -345,4 +322,146 @@ pub fn bake_json(bake: &Bake, prepared: &Prepared, missed: Option<usize>) -> Val
         "cells": cells,
         "missed": missed,
     })
+}
+
+/// Each polygon of a bake's set as a draw-list item: the face index when the polygon is the
+/// whole face, else the face and the polygon's corners in model space.
+fn item_values(set: &face_sort::PolygonSet, prepared: &Prepared) -> Vec<Value> {
+    let pieces = prepared.geometry.pieces();
+    let faces = prepared.mesh.face_count();
+    // A face is whole when it is one piece with all its corners (planar, not cut).
+    let mut piece_of: Vec<Option<usize>> = vec![None; faces];
+    let mut count = vec![0usize; faces];
+    for p in 0..pieces.len() {
+        let f = pieces.face(p) as usize;
+        count[f] += 1;
+        piece_of[f] = Some(p);
+    }
+    let face_len: Vec<usize> = prepared.mesh.faces().map(<[u32]>::len).collect();
+    let centre = prepared.spin.template().centre();
+    (0..set.len())
+        .map(|i| {
+            let f = set.face(i) as usize;
+            let whole = count[f] == 1
+                && piece_of[f].is_some_and(|p| {
+                    pieces.corners(p) == set.corners(i) && set.corners(i).len() == face_len[f]
+                });
+            if whole {
+                json!(f)
+            } else {
+                let polygon: Vec<[f64; 3]> = set
+                    .corners(i)
+                    .iter()
+                    .map(|&c| (c + centre).to_array())
+                    .collect();
+                json!({"face": f, "polygon": polygon})
+            }
+        })
+        .collect()
+}
+
+fn parse_range(text: &str) -> Result<(f64, f64), String> {
+    let (lo, hi) = text
+        .split_once(',')
+        .ok_or_else(|| format!("expected LO,HI in degrees, got {text:?}"))?;
+    let parse = |v: &str| {
+        v.trim()
+            .parse::<f64>()
+            .map_err(|e| format!("{v:?} is not a number: {e}"))
+    };
+    Ok((parse(lo)?, parse(hi)?))
+}
+
+/// `--axis yaw --pitch-range LO,HI`: the two-axis bake, its summary line, `--verify`, and
+/// `--json` (`{"axes", "sorter", "bake_ms", "yaw": [0, 360], "pitch": [lo, hi], "circles":
+/// [{"normal", "offset"}], "slabs": [{"lo", "hi", "curves": [{"circle", "down"}], "cells"}],
+/// "cells": [{"draw_list"}], "missed_by_1deg_grid"}`): a point's cell is found in the slab
+/// of its pitch, between the curves — circle `normal·d = offset` roots in yaw — around it).
+fn run_two_axes(args: &BakeArgs, prepared: &Prepared, pitch: (f64, f64)) -> Result<ExitCode> {
+    if args.axis != AxisChoice::Yaw {
+        bail!("--pitch-range bakes yaw x pitch: use it with --axis yaw");
+    }
+    if args.html.is_some() || args.method == MethodChoice::Sampled {
+        bail!("--pitch-range does not write --html or bake --method sampled");
+    }
+    let geometry = &prepared.geometry;
+    let bsp;
+    let centroid;
+    let source: &dyn EventSource = match args.sorter {
+        SorterChoice::Bsp => {
+            bsp = BspSource::of(geometry);
+            &bsp
+        }
+        SorterChoice::Centroid => {
+            centroid = CentroidSource::of(geometry);
+            &centroid
+        }
+    };
+    let domain = aspect_bake::YawPitch {
+        template: *prepared.spin.template(),
+        yaw: None,
+        pitch,
+        roll: args.roll,
+    };
+    let options = aspect_bake::Bake2Options {
+        budget_bytes: args.budget_mib.saturating_mul(1 << 20),
+        ..aspect_bake::Bake2Options::default()
+    };
+    let baked = aspect_bake::bake_two_axes(source, &domain, &options)?;
+    let columns = 360;
+    let rows = ((pitch.1 - pitch.0).ceil() as usize).max(1);
+    let missed = baked.missed_by_grid(columns, rows);
+    let mut line = format!(
+        "yaw x pitch [{}, {}) {}: {:.1} ms, {} circles, {} slabs, {} cells, {} B full lists, \
+         a 1-degree grid ({columns} x {rows} samples) misses {missed} cells",
+        pitch.0,
+        pitch.1,
+        baked.sorter,
+        baked.bake_ms,
+        baked.circles.len(),
+        baked.slabs.len(),
+        baked.cells.len(),
+        baked.full_bytes(),
+    );
+    let mut code = ExitCode::SUCCESS;
+    if args.verify {
+        match aspect_bake::verify_two_axes(&baked, source, 2, 0x5EED) {
+            Ok(r) => line.push_str(&format!(
+                ", verified ({} interior points, {} curves)",
+                r.interior_checks, r.curve_checks
+            )),
+            Err(e) => {
+                line.push_str(&format!(", VERIFY FAILED: {e}"));
+                code = ExitCode::FAILURE;
+            }
+        }
+    }
+    if let Some(path) = &args.json {
+        let items = item_values(&baked.polygons, prepared);
+        let value = json!({
+            "axes": ["yaw", "pitch"],
+            "sorter": baked.sorter,
+            "bake_ms": baked.bake_ms,
+            "yaw": [0.0, 360.0],
+            "pitch": [pitch.0, pitch.1],
+            "roll": args.roll,
+            "circles": baked.circles.iter().map(|c| json!({
+                "normal": c.normal.to_array(),
+                "offset": c.offset,
+            })).collect::<Vec<_>>(),
+            "slabs": baked.slabs.iter().map(|s| json!({
+                "lo": s.lo,
+                "hi": s.hi,
+                "curves": s.curves.iter().map(|c| json!({"circle": c.circle, "down": c.down})).collect::<Vec<_>>(),
+                "cells": s.cells,
+            })).collect::<Vec<_>>(),
+            "cells": baked.cells.iter().map(|c| json!({
+                "draw_list": c.iter().map(|&p| &items[p as usize]).collect::<Vec<_>>(),
+            })).collect::<Vec<_>>(),
+            "missed_by_1deg_grid": missed,
+        });
+        write(path, &serde_json::to_string(&value)?)?;
+    }
+    println!("{line}");
+    Ok(code)
 }

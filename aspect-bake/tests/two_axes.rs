@@ -1,0 +1,208 @@
+//! Two-axis bakes (yaw × pitch) checked against the live sorters: the unit cube, the book,
+//! generated scenes (proptest), what a sampled grid misses, budgets.
+
+use aspect_bake::{
+    Bake2, Bake2Options, BakeError, BspSource, CentroidSource, EventSource, YawPitch,
+    bake_two_axes, verify_two_axes,
+};
+use face_sort::glam::DVec3;
+use face_sort::{Geometry, PolygonMesh, View, strategies};
+use proptest::prelude::*;
+
+fn cube() -> Geometry {
+    let mesh = test_support::models::boxes(&[(DVec3::ZERO, DVec3::ONE)]);
+    Geometry::new(&mesh).unwrap()
+}
+
+fn domain(g: &Geometry, persp: Option<f64>, pitch: (f64, f64)) -> YawPitch {
+    let mut template = View::fit(&g.bounds(), 256, 256);
+    if let Some(d) = persp {
+        template = template.with_perspective(d);
+    }
+    YawPitch {
+        template,
+        yaw: None,
+        pitch,
+        roll: 0.0,
+    }
+}
+
+/// Bakes and verifies; checks that random points land in a cell whose list is the live one.
+fn bake_and_verify(source: &dyn EventSource, d: &YawPitch) -> Bake2 {
+    let b = bake_two_axes(source, d, &Bake2Options::default()).unwrap();
+    let report = verify_two_axes(&b, source, 3, 5).unwrap();
+    assert!(report.interior_checks > 0);
+    for slab in &b.slabs {
+        assert_eq!(slab.cells.len(), slab.curves.len() + 1);
+        // Neighbouring gaps of a slab are different cells with different lists.
+        for w in slab.cells.windows(2) {
+            assert_ne!(b.cells[w[0] as usize], b.cells[w[1] as usize]);
+        }
+    }
+    b
+}
+
+#[test]
+fn unit_cube_over_yaw_and_pitch() {
+    let g = cube();
+    for persp in [None, Some(256.0)] {
+        for source in [
+            &BspSource::of(&g) as &dyn EventSource,
+            &CentroidSource::of(&g),
+        ] {
+            let d = domain(&g, persp, (-60.0, 60.0));
+            let b = bake_and_verify(source, &d);
+            assert!(b.cells.len() > 4, "{} cells", b.cells.len());
+        }
+    }
+    // Orthographic BSP of a cube: the event circles are the three great circles x = 0,
+    // y = 0, z = 0 of the sphere of directions; the pitch 0 and the crossings at ±90° yaw
+    // make the slabs.
+    let d = domain(&g, None, (-60.0, 60.0));
+    let b = bake_and_verify(&BspSource::of(&g), &d);
+    let bounds: Vec<f64> = b.slabs.iter().map(|s| s.lo).collect();
+    assert!(bounds.iter().any(|&p| p.abs() < 1e-12), "{bounds:?}");
+}
+
+#[test]
+fn book_over_yaw_and_pitch_orthographic_and_perspective() {
+    let mesh = test_support::load_polygon_mesh("combobulate-samples/book.obj");
+    let g = Geometry::new(&mesh).unwrap();
+    for persp in [None, Some(300.0)] {
+        for source in [
+            &BspSource::of(&g) as &dyn EventSource,
+            &CentroidSource::of(&g),
+        ] {
+            let d = YawPitch {
+                yaw: Some((-170.0, 170.0)),
+                ..domain(&g, persp, (-45.0, 45.0))
+            };
+            let b = bake_and_verify(source, &d);
+            assert!(b.slabs.len() > 1);
+            assert_eq!(b.cell_at(175.0, 0.0), None);
+            assert_eq!(b.cell_at(0.0, 50.0), None);
+        }
+    }
+}
+
+#[test]
+fn spot_control_mesh_verifies_under_bsp() {
+    let mesh = test_support::load_polygon_mesh("keenan-crane/spot/spot_control_mesh.obj");
+    let g = Geometry::new(&mesh).unwrap();
+    let d = domain(&g, None, (10.0, 30.0));
+    let source = BspSource::of(&g);
+    let b = bake_two_axes(&source, &d, &Bake2Options::default()).unwrap();
+    let report = verify_two_axes(&b, &source, 2, 3).unwrap();
+    assert!(report.curve_checks > 0);
+    eprintln!(
+        "spot control mesh, yaw 0-360 x pitch 10-30: {} circles, {} slabs, {} cells, {:.1} MB of lists, {:.0} ms; {report:?}",
+        b.circles.len(),
+        b.slabs.len(),
+        b.cells.len(),
+        b.full_bytes() as f64 / 1e6,
+        b.bake_ms
+    );
+}
+
+/// Two small squares whose normals differ by 0.1°: their edge-on curves run 0.1° apart, a
+/// strip that a 1° sampling grid does not see.
+fn close_pair() -> Geometry {
+    let square = |centre: DVec3, normal: DVec3| {
+        let (u, v) = normal.any_orthonormal_pair();
+        [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
+            .map(|(a, b)| centre + (u * a + v * b) * 0.2)
+            .to_vec()
+    };
+    let tilt = |deg: f64| {
+        let t = f64::to_radians(deg);
+        DVec3::new(t.sin(), 0.0, t.cos())
+    };
+    let quads = [
+        square(DVec3::new(-1.0, 0.0, 0.0), tilt(-0.2)),
+        square(DVec3::new(1.0, 0.0, 0.0), tilt(-0.3)),
+    ];
+    let positions: Vec<DVec3> = quads.iter().flatten().copied().collect();
+    let faces = vec![vec![0, 1, 2, 3], vec![4, 5, 6, 7]];
+    Geometry::new(&PolygonMesh::new(positions, faces).unwrap()).unwrap()
+}
+
+#[test]
+fn a_sampled_grid_misses_thin_cells_the_exact_bake_has() {
+    let g = close_pair();
+    let d = domain(&g, None, (-30.0, 30.0));
+    let b = bake_and_verify(&BspSource::of(&g), &d);
+    // A 1° grid over the domain: 360 × 60 samples.
+    let missed = b.missed_by_grid(360, 60);
+    assert!(missed > 0, "{} cells, none missed", b.cells.len());
+    assert!(missed < b.cells.len());
+}
+
+#[test]
+fn budgets_and_errors() {
+    let g = cube();
+    let d = domain(&g, None, (-30.0, 30.0));
+    let tight = Bake2Options {
+        budget_bytes: 10,
+        ..Bake2Options::default()
+    };
+    assert!(matches!(
+        bake_two_axes(&BspSource::of(&g), &d, &tight),
+        Err(BakeError::SizeBudget { budget: 10, .. })
+    ));
+    let few = Bake2Options {
+        max_events: 5,
+        ..Bake2Options::default()
+    };
+    assert!(matches!(
+        bake_two_axes(&CentroidSource::of(&g), &d, &few),
+        Err(BakeError::EventBudget { budget: 5, .. })
+    ));
+    let bad = YawPitch {
+        pitch: (10.0, -10.0),
+        ..d
+    };
+    assert!(matches!(
+        bake_two_axes(&BspSource::of(&g), &bad, &Bake2Options::default()),
+        Err(BakeError::Range { .. })
+    ));
+}
+
+fn cases() -> u32 {
+    std::env::var("PROPTEST_CASES")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(12)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: cases(), ..ProptestConfig::default() })]
+
+    #[test]
+    fn generated_scenes_verify_over_two_axes(
+        scene in strategies::any_scene(),
+        spec in strategies::view_spec(),
+        pitch_lo in -80.0..60.0f64,
+        span in 5.0..40.0f64,
+        centroid in any::<bool>(),
+    ) {
+        let g = Geometry::new(&scene).unwrap();
+        let d = YawPitch {
+            template: spec.view(&g),
+            yaw: None,
+            pitch: (pitch_lo, pitch_lo + span),
+            roll: spec.roll,
+        };
+        let bsp;
+        let cen;
+        let source: &dyn EventSource = if centroid {
+            cen = CentroidSource::of(&g);
+            &cen
+        } else {
+            bsp = BspSource::of(&g);
+            &bsp
+        };
+        let b = bake_two_axes(source, &d, &Bake2Options::default()).unwrap();
+        let report = verify_two_axes(&b, source, 2, 23);
+        prop_assert!(report.is_ok(), "{:?}", report);
+    }
+}
