@@ -41,6 +41,13 @@
 //! equal lists, and [`verify`] checks the result against the live sorter at random interior
 //! angles and on both sides of every breakpoint.
 //!
+//! # Two axes
+//! [`bake_two_axes`] bakes cells over yaw × pitch: every sign condition is a circle
+//! `n·d = c` on the sphere of view directions, and the cells are a slab decomposition of the
+//! arrangement of their curves in the `(yaw, pitch)` chart, with every critical pitch in
+//! closed form (the derivation is in [`bake_two_axes`]'s module, `two_axes.rs`).
+//! [`verify_two_axes`] checks such a bake like [`verify`].
+//!
 //! # Feature flags
 //! - `serde`: [`Bake`] (and its parts) serialise and deserialise, so a bake saves and
 //!   reloads; the polygon set is written as polygons and rebuilt on load.
