@@ -60,7 +60,7 @@ pub struct EventCircle {
     pub offset: f64,
 }
 
-/// What a sorter's sign conditions are made of, for [`EventSource::circles`].
+/// What a sorter's sign conditions are made of, for [`EventSource::rows`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Row {
     /// A plane row `[n, offset]` whose sign against the viewer decides a facing or a BSP side:

@@ -134,3 +134,31 @@ fn sampled_baseline_reports_missed_events_and_perspective_pitch_bakes_verify() {
     assert_eq!(v["axis"], "pitch");
     assert!(!breakpoints(&v).is_empty());
 }
+
+#[test]
+fn pitch_range_bakes_two_axes_and_writes_their_cells() {
+    let v = bake_json(&["--axis", "yaw", "--pitch-range", "-40,40"], "two-axes");
+    assert_eq!(v["axes"], serde_json::json!(["yaw", "pitch"]));
+    let cells = v["cells"].as_array().unwrap().len();
+    let slabs = v["slabs"].as_array().unwrap();
+    assert!(cells > 4 && !slabs.is_empty());
+    // Every slab names a cell per gap between its curves, and the slabs tile the range.
+    for s in slabs {
+        let gaps = s["cells"].as_array().unwrap();
+        assert_eq!(gaps.len(), s["curves"].as_array().unwrap().len() + 1);
+        assert!(gaps.iter().all(|c| (c.as_u64().unwrap() as usize) < cells));
+    }
+    assert_eq!(slabs[0]["lo"].as_f64().unwrap(), -40.0);
+    assert!((slabs[slabs.len() - 1]["hi"].as_f64().unwrap() - 40.0).abs() < 1e-9);
+    // A cube's draw lists hold at most three faces, named by index (whole faces).
+    for c in v["cells"].as_array().unwrap() {
+        let list = c["draw_list"].as_array().unwrap();
+        assert!(!list.is_empty() && list.len() <= 3);
+        assert!(list.iter().all(Value::is_u64));
+    }
+    let (_, model) = cube("two-axes-pitch");
+    let model = model.to_str().unwrap();
+    let out = xtask(&["bake", model, "--axis", "pitch", "--pitch-range", "0,10"]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--axis yaw"));
+}
