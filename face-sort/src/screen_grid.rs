@@ -47,9 +47,10 @@ impl ScreenGrid {
         if !(b.min.x <= b.max.x && b.min.y <= b.max.y) {
             return None;
         }
-        let lo = ((b.min - self.origin) * self.inverse_cell).floor();
-        let hi = ((b.max - self.origin) * self.inverse_cell).floor();
-        let clamp = |v: f64, n: usize| v.clamp(0.0, (n - 1) as f64) as usize;
+        let lo = (b.min - self.origin) * self.inverse_cell;
+        let hi = (b.max - self.origin) * self.inverse_cell;
+        // Truncation is the floor for the non-negative values kept (casts saturate; NaN is 0).
+        let clamp = |v: f64, n: usize| (v.max(0.0) as usize).min(n - 1);
         Some((
             clamp(lo.x, self.columns),
             clamp(hi.x, self.columns),
@@ -72,8 +73,14 @@ impl ScreenGrid {
         }
     }
 
-    /// Calls `f` once for every item inserted in a cell that `b` touches.
-    pub(crate) fn for_each_candidate(&mut self, b: &Box2, mut f: impl FnMut(u32)) {
+    /// Calls `f` once for every item inserted in a cell that `b` touches and for which `live`
+    /// holds.
+    pub(crate) fn for_each_candidate(
+        &mut self,
+        b: &Box2,
+        live: impl Fn(u32) -> bool,
+        mut f: impl FnMut(u32),
+    ) {
         let Some((x0, x1, y0, y1)) = self.range(b) else {
             return;
         };
@@ -82,13 +89,17 @@ impl ScreenGrid {
             self.stamp.iter_mut().for_each(|s| *s = 0);
             self.query = 1;
         }
-        for y in y0..=y1 {
-            for x in x0..=x1 {
-                for &item in &self.cells[y * self.columns + x] {
-                    let seen = &mut self.stamp[item as usize];
-                    if *seen != self.query {
-                        *seen = self.query;
-                        f(item);
+        let query = self.query;
+        let stamp = &mut self.stamp;
+        for row in self.cells.chunks_mut(self.columns).take(y1 + 1).skip(y0) {
+            for cell in &row[x0..=x1] {
+                for &item in cell {
+                    if live(item) {
+                        let seen = &mut stamp[item as usize];
+                        if *seen != query {
+                            *seen = query;
+                            f(item);
+                        }
                     }
                 }
             }
@@ -122,7 +133,7 @@ mod tests {
         }
         for (i, query) in boxes.iter().enumerate() {
             let mut found = Vec::new();
-            grid.for_each_candidate(query, |j| found.push(j));
+            grid.for_each_candidate(query, |_| true, |j| found.push(j));
             let mut unique = found.clone();
             unique.sort_unstable();
             unique.dedup();
