@@ -6,6 +6,9 @@ use glam::DVec2;
 use crate::polygon::Box2;
 use crate::tolerance::UNDERFLOW_ABS;
 
+/// Most cells along either side of the grid.
+const MAX_SIDE: usize = 256;
+
 /// Buckets of item indices by the grid cells their boxes touch.
 ///
 /// # Guarantees
@@ -25,18 +28,21 @@ pub(crate) struct ScreenGrid {
 
 impl ScreenGrid {
     /// Empties the grid and sizes it for about `items` boxes inside `bounds`: about one item
-    /// per cell, at most 256 × 256 cells. Keeps every buffer's capacity.
+    /// per cell, square cells (a wide band of boxes gets more columns than rows), at most
+    /// 256 × 256 cells. Keeps every buffer's capacity.
     pub(crate) fn reset(&mut self, bounds: Box2, items: usize) {
-        let side = ((items as f64).sqrt().ceil() as usize).clamp(1, 256);
         let size = (bounds.max - bounds.min).max(DVec2::splat(UNDERFLOW_ABS));
+        let cell = (size.x * size.y / items.max(1) as f64).sqrt();
+        let count = |extent: f64| ((extent / cell).ceil() as usize).clamp(1, MAX_SIDE);
+        let (columns, rows) = (count(size.x), count(size.y));
         self.origin = bounds.min;
-        self.columns = side;
-        self.rows = side;
-        self.inverse_cell = DVec2::splat(side as f64) / size;
-        if self.cells.len() < side * side {
-            self.cells.resize_with(side * side, Vec::new);
+        self.columns = columns;
+        self.rows = rows;
+        self.inverse_cell = DVec2::new(columns as f64 / size.x, rows as f64 / size.y);
+        if self.cells.len() < columns * rows {
+            self.cells.resize_with(columns * rows, Vec::new);
         }
-        for cell in &mut self.cells[..side * side] {
+        for cell in &mut self.cells[..columns * rows] {
             cell.clear();
         }
         self.stamp.clear();
