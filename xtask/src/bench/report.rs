@@ -88,22 +88,32 @@ pub(super) fn markdown(
          (yaws × pitches) is measured; **frame** is the median cull+order time over all timed \
          frames, **× centroid** its ratio to the centroid baseline in the same run, **build** \
          the one-time cost, **items** the mean polygons drawn per view (fragments included), \
+         **items × centroid** their ratio to the centroid's (both rounded as shown), \
          **pixel error** wrong ÷ unambiguous pixels against the z-buffer truth at \
          {resolution}×{resolution} (CONVENTIONS.md), **violations** the oracle's order \
          violations summed over views. plane-split is rebuilt every frame (as WebRender does).\n"
     );
     let _ = writeln!(
         s,
-        "| scene | proj | faces | pieces | sorter | frame | × centroid | build | items | pixel error | violations | note |"
+        "| scene | proj | faces | pieces | sorter | frame | × centroid | build | items | items × centroid | pixel error | violations | note |"
     );
     let _ = writeln!(
         s,
-        "|---|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---|"
+        "|---|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---|"
     );
     for r in rows {
+        let items = r.fragments.round();
+        let centroid_items = rows
+            .iter()
+            .find(|c| c.sorter == "centroid" && c.scene == r.scene && c.projection == r.projection)
+            .map(|c| c.fragments.round());
+        let items_ratio = match centroid_items {
+            Some(c) if c > 0.0 => format!("{:.2}", items / c),
+            _ => "—".to_owned(),
+        };
         let _ = writeln!(
             s,
-            "| {} | {} | {} | {} | {} | {} | {} | {:.2} ms | {:.0} | {} | {} | {} |",
+            "| {} | {} | {} | {} | {} | {} | {} | {:.2} ms | {:.0} | {} | {} | {} | {} |",
             r.scene,
             r.projection,
             r.faces,
@@ -117,6 +127,7 @@ pub(super) fn markdown(
             },
             r.build_ms,
             r.fragments,
+            items_ratio,
             fmt_error(r.pixel_error),
             if r.views == 0 {
                 "—".to_owned()
@@ -129,15 +140,21 @@ pub(super) fn markdown(
     if !scaling.is_empty() {
         let _ = writeln!(
             s,
-            "\n## Scaling (generated planar torus, orthographic 512², two views)\n\n| faces | sorter | build | frame | items | note |\n|---:|---|---:|---:|---:|---|"
+            "\n## Scaling (generated planar torus, orthographic 512², two views)\n\n**build / face** is the build time shown divided by the faces (every face of the planar torus is one piece).\n\n| faces | sorter | build | build / face | frame | items | note |\n|---:|---|---:|---:|---:|---:|---|"
         );
         for r in scaling {
+            let build = r.build_ms.map(|b| format!("{b:.1}"));
+            let per_face = build.as_ref().map_or("—".to_owned(), |b| {
+                let us = b.parse::<f64>().unwrap_or(f64::NAN) * 1e3 / r.faces.max(1) as f64;
+                format!("{us:.2} µs")
+            });
             let _ = writeln!(
                 s,
-                "| {} | {} | {} | {} | {} | {} |",
+                "| {} | {} | {} | {} | {} | {} | {} |",
                 r.faces,
                 r.sorter,
-                r.build_ms.map_or("—".to_owned(), |b| format!("{b:.1} ms")),
+                build.map_or("—".to_owned(), |b| format!("{b} ms")),
+                per_face,
                 r.frame_us.map_or("—".to_owned(), fmt_time),
                 r.fragments.map_or("—".to_owned(), |f| format!("{f:.0}")),
                 r.note
@@ -150,8 +167,9 @@ pub(super) fn markdown(
 /// The console summary: per sorter, geometric-mean ratio to centroid, mean pixel error,
 /// violations.
 pub(super) fn summary(rows: &[Row]) -> String {
-    let mut s =
-        String::from("sorter        ×centroid (geo-mean)  mean pixel error  violations  rows\n");
+    let mut s = String::from(
+        "sorter        ×centroid (geo-mean)  items ×centroid (geo-mean)  mean pixel error  violations  rows\n",
+    );
     let mut seen: Vec<&str> = Vec::new();
     for r in rows {
         let name = r.sorter.as_str();
@@ -169,12 +187,24 @@ pub(super) fn summary(rows: &[Row]) -> String {
             .filter(|r| r.is_finite() && *r > 0.0)
             .collect();
         let geo = (ratios.iter().map(|r| r.ln()).sum::<f64>() / ratios.len().max(1) as f64).exp();
+        let item_ratios: Vec<f64> = mine
+            .iter()
+            .filter_map(|r| {
+                let c = rows.iter().find(|c| {
+                    c.sorter == "centroid" && c.scene == r.scene && c.projection == r.projection
+                })?;
+                (c.fragments > 0.0).then(|| r.fragments / c.fragments)
+            })
+            .collect();
+        let items_geo = (item_ratios.iter().map(|r| r.ln()).sum::<f64>()
+            / item_ratios.len().max(1) as f64)
+            .exp();
         let errors: Vec<f64> = mine.iter().filter_map(|r| r.pixel_error).collect();
         let mean_error = errors.iter().sum::<f64>() / errors.len().max(1) as f64;
         let violations: usize = mine.iter().map(|r| r.violations).sum();
         let _ = writeln!(
             s,
-            "{name:<13} {geo:>20.2} {:>17} {violations:>11} {:>5}",
+            "{name:<13} {geo:>20.2} {items_geo:>27.2} {:>17} {violations:>11} {:>5}",
             if errors.is_empty() {
                 "n/a".to_owned()
             } else {
@@ -307,12 +337,13 @@ fn parse_row(cells: &[&str]) -> Result<Row> {
         ratio,
         build,
         items,
+        _items_ratio,
         error,
         violations,
         note,
     ] = cells
     else {
-        bail!("{} cells, the table has 12", cells.len());
+        bail!("{} cells, the table has 13", cells.len());
     };
     let build = build
         .strip_suffix(" ms")
@@ -343,8 +374,8 @@ fn parse_row(cells: &[&str]) -> Result<Row> {
 }
 
 fn parse_scaling_row(cells: &[&str]) -> Result<ScalingRow> {
-    let [faces, sorter, build, frame, items, note] = cells else {
-        bail!("{} cells, the scaling table has 6", cells.len());
+    let [faces, sorter, build, _per_face, frame, items, note] = cells else {
+        bail!("{} cells, the scaling table has 7", cells.len());
     };
     let optional = |cell: &str| cell != "—";
     Ok(ScalingRow {
@@ -424,6 +455,26 @@ mod tests {
     #[test]
     fn the_written_format_passes_its_check() {
         check_format(&sample()).unwrap();
+    }
+
+    #[test]
+    fn items_are_compared_with_the_centroid_row_of_the_same_scene_and_projection() {
+        let rows = [
+            row("centroid", 75.7, Some(0.0)),
+            Row {
+                fragments: 5442.4,
+                ..row("bsp", 92.0, Some(0.0))
+            },
+            Row {
+                projection: "persp".to_owned(),
+                ..row("bsp", 92.0, Some(0.0))
+            },
+        ];
+        let text = markdown("cargo xtask bench", &rows, &[], 256);
+        // 5442 / 2927 = 1.859…; no centroid row in perspective.
+        assert!(text.contains("| 5442 | 1.86 |"), "{text}");
+        assert!(text.contains("| 2927 | — |"), "{text}");
+        check_format(&text).unwrap();
     }
 
     #[test]
