@@ -518,7 +518,9 @@ pub fn bake_two_axes(
     }
     bounds.push((phi, false));
     // Curves of each slab at its middle pitch, and the cells' middle points.
-    let mut slabs: Vec<(f64, f64, Vec<(f64, Curve)>, bool)> = Vec::new();
+    // (low pitch, high pitch, curves with their yaw at the middle, continues from below)
+    type SlabCurves = (f64, f64, Vec<(f64, Curve)>, bool);
+    let mut slabs: Vec<SlabCurves> = Vec::new();
     for w in bounds.windows(2) {
         let mid = 0.5 * (w[0].0 + w[1].0);
         let mut curves: Vec<(f64, Curve)> = Vec::new();

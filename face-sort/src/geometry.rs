@@ -23,6 +23,10 @@ pub struct Geometry {
     face_count: usize,
     non_planar_faces: usize,
     dropped_pieces: usize,
+    /// Per piece, its connected part (faces sharing a mesh vertex are connected), numbered
+    /// densely from 0 in piece order.
+    piece_part: Arc<[u32]>,
+    part_count: usize,
 }
 
 impl Geometry {
@@ -95,12 +99,15 @@ impl Geometry {
         if pieces.is_empty() {
             return Err(MeshError::Empty);
         }
+        let (piece_part, part_count) = parts_of(mesh, &pieces);
         Ok(Geometry {
             pieces: Arc::new(pieces),
             bounds,
             face_count: mesh.face_count(),
             non_planar_faces,
             dropped_pieces,
+            piece_part: piece_part.into(),
+            part_count,
         })
     }
 
@@ -133,6 +140,55 @@ impl Geometry {
     pub fn dropped_pieces(&self) -> usize {
         self.dropped_pieces
     }
+
+    /// Connected parts of the mesh (faces that share a vertex index are in one part).
+    #[must_use]
+    pub fn part_count(&self) -> usize {
+        self.part_count
+    }
+
+    /// Per piece, its part (`0..part_count()`, numbered in piece order).
+    #[must_use]
+    pub fn piece_parts(&self) -> &[u32] {
+        &self.piece_part
+    }
+}
+
+/// Each piece's connected part, by union of the vertex indices of each face (one pass over
+/// the mesh's corners), and the number of parts that have pieces.
+fn parts_of(mesh: &PolygonMesh, pieces: &PolygonSet) -> (Vec<u32>, usize) {
+    fn root(parent: &mut [u32], mut i: u32) -> u32 {
+        while parent[i as usize] != i {
+            parent[i as usize] = parent[parent[i as usize] as usize];
+            i = parent[i as usize];
+        }
+        i
+    }
+    let mut parent: Vec<u32> = (0..mesh.positions().len() as u32).collect();
+    for face in mesh.faces() {
+        let first = root(&mut parent, face[0]);
+        for &v in &face[1..] {
+            let r = root(&mut parent, v);
+            if r != first {
+                let (lo, hi) = (first.min(r), first.max(r));
+                parent[hi as usize] = lo;
+            }
+        }
+    }
+    let faces: Vec<u32> = mesh.faces().map(|f| f[0]).collect();
+    let mut number = vec![u32::MAX; parent.len()];
+    let mut count = 0;
+    let parts = (0..pieces.len())
+        .map(|i| {
+            let r = root(&mut parent, faces[pieces.face(i) as usize]) as usize;
+            if number[r] == u32::MAX {
+                number[r] = count;
+                count += 1;
+            }
+            number[r]
+        })
+        .collect();
+    (parts, count as usize)
 }
 
 fn largest_distance(corners: &[DVec3]) -> f64 {

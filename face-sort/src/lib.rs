@@ -63,7 +63,7 @@ pub use error::{BspError, MeshError};
 pub use geometry::Geometry;
 pub use mesh::{Bounds, MAX_FACE_CORNERS, PolygonMesh};
 pub use newell::Newell;
-pub use plan::{Auto, CostModel, CullOnly, Plan, PlanHint, Strategy};
+pub use plan::{Auto, ConvexParts, CostModel, CullOnly, Plan, PlanHint, Strategy};
 pub use plane::{Plane, Side, newell_normal};
 pub use polygon::{Box2, clip_convex_2d, signed_area_2d, split_polygon};
 pub use polygon_set::PolygonSet;

@@ -14,6 +14,15 @@
 //!   pieces are drawn, so this is culling alone: no sort, no fragments. The proof is exact up
 //!   to [`PLANE_SIDE`] and costs one support query per piece against a bounding-volume
 //!   hierarchy of the vertices.
+//! - **Separate convex parts → [`ConvexParts`].** A mesh made of several connected parts
+//!   (pieces sharing no vertex), each in convex position, whose bounding boxes an
+//!   axis-aligned tree of planes separates (every box entirely on one side of each plane):
+//!   across such a plane nothing on the side away from the viewer can cover anything on the
+//!   viewer's side (along a ray from the viewer the plane's coordinate changes monotonically),
+//!   so the tree, walked far side first, orders the parts as wholes, and inside each part the
+//!   convex-position argument above needs no sort. Per frame: a walk over the part tree and
+//!   one culling pass; no fragments. Boxes that overlap (interlocking or nested parts) leave
+//!   the choice to the next rule.
 //! - **Otherwise the cheaper exact sorter for the frames the caller will draw.** [`Newell`]
 //!   needs no build and draws almost no extra items; [`Bsp`] pays a build once and then
 //!   traverses cheaply. [`PlanHint::frames`] says how many frames the build is spread over:
@@ -56,6 +65,9 @@ pub enum Strategy {
     /// [`CullOnly`]: the geometry is in convex position; culling (exit pieces, then entry
     /// pieces) is the whole order.
     CullOnly,
+    /// [`ConvexParts`]: separate parts, each in convex position, separated by axis-aligned
+    /// planes; ordered as wholes by those planes, culling alone inside each.
+    ConvexParts,
     /// [`Newell`]: no build; cheapest for few frames.
     Newell,
     /// [`Bsp`]: a build amortised over many frames.
@@ -68,6 +80,7 @@ impl Strategy {
     pub fn name(self) -> &'static str {
         match self {
             Strategy::CullOnly => "cull-only",
+            Strategy::ConvexParts => "convex-parts",
             Strategy::Newell => "newell",
             Strategy::Bsp => "bsp",
         }
@@ -106,7 +119,7 @@ impl CostModel {
         let n = pieces.max(1) as f64;
         let frames = frames.max(1) as f64;
         match strategy {
-            Strategy::CullOnly => 0.0,
+            Strategy::CullOnly | Strategy::ConvexParts => 0.0,
             Strategy::Newell => frames * self.newell_frame_per_piece * n,
             Strategy::Bsp => {
                 self.bsp_build_per_piece_level * n * n.log2().max(1.0)
@@ -126,6 +139,8 @@ pub struct Plan {
     /// For [`Strategy::CullOnly`]: whether exit pieces are the back-facing ones (outward
     /// normals) rather than the front-facing ones (inward normals).
     exits_face_away: bool,
+    /// For [`Strategy::ConvexParts`]: the parts and the planes between them.
+    parts: Option<Arc<PartTree>>,
 }
 
 impl Plan {
@@ -148,6 +163,20 @@ impl Plan {
                     pieces.len()
                 ),
                 exits_face_away,
+                parts: None,
+            };
+        }
+        if let Some(tree) = PartTree::analyse(geometry) {
+            return Plan {
+                strategy: Strategy::ConvexParts,
+                reason: format!(
+                    "{} separate parts in convex position, split by {} axis-aligned planes ({} pieces) → parts ordered as wholes, cull only inside: no sort, no fragments",
+                    tree.parts.len(),
+                    tree.parts.len() - 1,
+                    pieces.len()
+                ),
+                exits_face_away: true,
+                parts: Some(Arc::new(tree)),
             };
         }
         let n = pieces.len();
@@ -173,6 +202,7 @@ impl Plan {
                 dearer * 1e-6
             ),
             exits_face_away: true,
+            parts: None,
         }
     }
 
@@ -184,6 +214,11 @@ impl Plan {
                 pieces: Arc::clone(geometry.pieces()),
                 exits_face_away: self.exits_face_away,
                 order: (0..geometry.pieces().len() as u32).collect(),
+            }),
+            Strategy::ConvexParts => Box::new(ConvexParts {
+                pieces: Arc::clone(geometry.pieces()),
+                tree: Arc::clone(self.parts.as_ref().expect("a parts plan holds its parts")),
+                stack: Vec::new(),
             }),
             Strategy::Newell => Box::new(Newell::new(geometry)),
             // A tree over its fragment budget (BspOptions) would cost more than it saves:
@@ -350,6 +385,186 @@ impl FaceSorter for Auto {
 
     fn stats(&self) -> SorterStats {
         self.inner.stats()
+    }
+}
+
+/// One part of a [`PartTree`]: its pieces and which way its normals point.
+#[derive(Clone, Debug, PartialEq)]
+struct Part {
+    pieces: Vec<u32>,
+    exits_face_away: bool,
+}
+
+/// A node of the part tree: a leaf part, or an axis-aligned plane `x[axis] = at` with every
+/// part of `low` at or below it and every part of `high` at or above it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum PartNode {
+    Leaf(u32),
+    Split {
+        axis: usize,
+        at: f64,
+        low: u32,
+        high: u32,
+    },
+}
+
+/// Separate convex parts and the axis-aligned planes between them (see the module docs).
+#[derive(Clone, Debug, PartialEq)]
+struct PartTree {
+    parts: Vec<Part>,
+    nodes: Vec<PartNode>,
+}
+
+impl PartTree {
+    /// The parts of `geometry` (connected by shared vertices), if there are at least two,
+    /// each is in convex position and axis-aligned planes separate all their boxes.
+    fn analyse(geometry: &Geometry) -> Option<PartTree> {
+        if geometry.part_count() < 2 {
+            return None;
+        }
+        let (pieces, diagonal) = (geometry.pieces(), geometry.bounds().diagonal());
+        let mut groups: Vec<Vec<u32>> = vec![Vec::new(); geometry.part_count()];
+        for (i, &part) in geometry.piece_parts().iter().enumerate() {
+            groups[part as usize].push(i as u32);
+        }
+        let mut parts = Vec::with_capacity(groups.len());
+        let mut boxes = Vec::with_capacity(groups.len());
+        for group in groups {
+            let mut set = PolygonSet::new();
+            let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
+            for &i in &group {
+                let corners = pieces.corners(i as usize);
+                for &c in corners {
+                    lo = lo.min(c);
+                    hi = hi.max(c);
+                }
+                set.push(corners, pieces.face(i as usize), *pieces.plane(i as usize));
+            }
+            let exits_face_away = convex_position(&set, diagonal)?;
+            parts.push(Part {
+                pieces: group,
+                exits_face_away,
+            });
+            boxes.push((lo, hi));
+        }
+        let mut nodes = Vec::with_capacity(2 * parts.len());
+        let all: Vec<u32> = (0..parts.len() as u32).collect();
+        split_parts(&boxes, all, &mut nodes)?;
+        Some(PartTree { parts, nodes })
+    }
+}
+
+/// Builds the subtree over `members` into `nodes` and returns its index; `None` when some
+/// set of two or more boxes has no axis-aligned plane between them.
+fn split_parts(
+    boxes: &[(DVec3, DVec3)],
+    mut members: Vec<u32>,
+    nodes: &mut Vec<PartNode>,
+) -> Option<u32> {
+    let index = nodes.len() as u32;
+    if members.len() == 1 {
+        nodes.push(PartNode::Leaf(members[0]));
+        return Some(index);
+    }
+    // The most balanced plane over the three axes: members sorted by their boxes' low
+    // ends, a cut after position k where every box before ends at or below every box after.
+    // (axis, cut position, plane, balance)
+    let mut best: Option<(usize, usize, f64, usize)> = None;
+    let by_low_end = |members: &mut Vec<u32>, axis: usize| {
+        members.sort_by(|&a, &b| boxes[a as usize].0[axis].total_cmp(&boxes[b as usize].0[axis]));
+    };
+    for axis in 0..3 {
+        by_low_end(&mut members, axis);
+        let mut reach = f64::NEG_INFINITY;
+        for k in 1..members.len() {
+            reach = reach.max(boxes[members[k - 1] as usize].1[axis]);
+            let next = boxes[members[k] as usize].0[axis];
+            if reach <= next {
+                let balance = k.min(members.len() - k);
+                if best.is_none_or(|(.., b)| balance > b) {
+                    best = Some((axis, k, 0.5 * (reach + next), balance));
+                }
+            }
+        }
+    }
+    let (axis, k, at, _) = best?;
+    nodes.push(PartNode::Leaf(0));
+    // The first `k` by low end lie at or below `at`, the others at or above.
+    by_low_end(&mut members, axis);
+    let high = members.split_off(k);
+    let low = members;
+    let low = split_parts(boxes, low, nodes)?;
+    let high = split_parts(boxes, high, nodes)?;
+    nodes[index as usize] = PartNode::Split {
+        axis,
+        at,
+        low,
+        high,
+    };
+    Some(index)
+}
+
+/// The order of separate convex parts ([`Strategy::ConvexParts`]): the part tree walked far
+/// side first, each part drawn like [`CullOnly`]. Exact for every view; no fragments.
+#[derive(Debug)]
+pub struct ConvexParts {
+    pieces: Arc<PolygonSet>,
+    tree: Arc<PartTree>,
+    /// Nodes still to visit (kept between frames: no allocation once grown).
+    stack: Vec<u32>,
+}
+
+impl FaceSorter for ConvexParts {
+    fn name(&self) -> &'static str {
+        "convex-parts"
+    }
+
+    fn sort(&mut self, view: &View, out: &mut DrawList) {
+        let cull = view.cull_test();
+        let (point, w) = cull.viewer_point();
+        out.begin(&self.pieces);
+        let planes = self.pieces.planes();
+        self.stack.clear();
+        self.stack.push(0);
+        while let Some(k) = self.stack.pop() {
+            match self.tree.nodes[k as usize] {
+                PartNode::Split {
+                    axis,
+                    at,
+                    low,
+                    high,
+                } => {
+                    // The far side first: pushed last, popped first.
+                    if point[axis] - w * at >= 0.0 {
+                        self.stack.extend([high, low]);
+                    } else {
+                        self.stack.extend([low, high]);
+                    }
+                }
+                PartNode::Leaf(p) => {
+                    let part = &self.tree.parts[p as usize];
+                    for entry_pass in [false, true] {
+                        for &i in &part.pieces {
+                            let i = i as usize;
+                            let faces_viewer = cull.viewer.facing(&planes[i]) > 0.0;
+                            let is_entry = faces_viewer == part.exits_face_away;
+                            if is_entry == entry_pass
+                                && cull.is_drawn(&planes[i], self.pieces.corners(i)[0])
+                            {
+                                out.push(i as u32, self.pieces.face(i));
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    fn stats(&self) -> SorterStats {
+        SorterStats {
+            polygons: self.pieces.len(),
+            ..SorterStats::default()
+        }
     }
 }
 

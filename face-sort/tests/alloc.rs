@@ -10,7 +10,7 @@ use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use common::{asset, read_obj};
-use face_sort::{DrawList, Geometry, SorterKind, View};
+use face_sort::{DrawList, Geometry, Plan, PlanHint, SorterKind, View};
 
 struct Counting;
 
@@ -50,8 +50,18 @@ fn sorting_again_allocates_nothing() {
             }
         })
         .collect();
-    for kind in SorterKind::ALL {
-        let mut sorter = kind.build(&geometry);
+    // Every sorter, and the planner's choices for this model and for one of its boxes (parts
+    // ordered as wholes, cull only).
+    let one_box = Geometry::new(&face_sort::generate::uv_sphere(8, 4)).unwrap();
+    let planned = [
+        Plan::analyse(&geometry, PlanHint::ONE_FRAME).build(&geometry),
+        Plan::analyse(&one_box, PlanHint::ONE_FRAME).build(&one_box),
+    ];
+    let sorters = SorterKind::ALL
+        .iter()
+        .map(|kind| kind.build(&geometry))
+        .chain(planned);
+    for mut sorter in sorters {
         let mut list = DrawList::new();
         // Warm-up: buffers grow to the largest frame (Newell's splits vary by view).
         for view in &views {
@@ -66,7 +76,7 @@ fn sorting_again_allocates_nothing() {
             after - before,
             0,
             "{} allocated in steady state",
-            kind.name()
+            sorter.name()
         );
     }
 }
