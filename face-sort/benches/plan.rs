@@ -1,5 +1,6 @@
-//! The planner's convex case: `Auto` (cull only) beside culling alone, `Centroid` and `Bsp`
-//! on a closed convex UV sphere of 8,192 faces, per frame, in the same run.
+//! The planner's convex cases, per frame, in the same run: `Auto` (cull only) beside culling
+//! alone, `Centroid` and `Bsp` on a closed convex UV sphere of 8,192 faces; and `Auto`
+//! (convex parts) beside `Centroid`, `Bsp` and `Newell` on 64 separate spheres of 512 faces.
 //!
 //! `cargo bench -p face-sort --bench plan -- --warm-up-time 0.5 --measurement-time 1 --sample-size 20`
 
@@ -55,5 +56,53 @@ fn convex(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, convex);
+/// 64 spheres of 512 faces on a 4 × 4 × 4 grid: separate convex parts.
+fn parts(c: &mut Criterion) {
+    let sphere = generate::uv_sphere(32, 16);
+    let mut positions = Vec::new();
+    let mut faces: Vec<Vec<u32>> = Vec::new();
+    for k in 0..64 {
+        let offset = face_sort::glam::DVec3::new(
+            f64::from(k % 4) * 3.0,
+            f64::from((k / 4) % 4) * 3.0,
+            f64::from(k / 16) * 3.0,
+        );
+        let base = positions.len() as u32;
+        positions.extend(sphere.positions().iter().map(|p| *p + offset));
+        faces.extend(
+            sphere
+                .faces()
+                .map(|f| f.iter().map(|i| i + base).collect::<Vec<_>>()),
+        );
+    }
+    let mesh = face_sort::PolygonMesh::new(positions, faces).unwrap();
+    let geometry = Geometry::new(&mesh).unwrap();
+    let base = View::fit(&geometry.bounds(), 512, 512);
+    let views: Vec<View> = (0..8)
+        .map(|k| base.with_yaw_pitch_roll(f64::from(k) * 45.0 + 10.0, 20.0, 0.0))
+        .collect();
+    let mut group = c.benchmark_group("parts/64-spheres");
+    let auto = Auto::new(&geometry, PlanHint::ANIMATION);
+    assert_eq!(auto.plan().strategy, Strategy::ConvexParts);
+    let mut sorters: Vec<(&str, Box<dyn FaceSorter>)> = vec![
+        ("auto", Box::new(auto)),
+        ("centroid", SorterKind::Centroid.build(&geometry)),
+        ("bsp", SorterKind::Bsp.build(&geometry)),
+        ("newell", SorterKind::Newell.build(&geometry)),
+    ];
+    for (name, sorter) in &mut sorters {
+        let mut list = DrawList::new();
+        let mut k = 0;
+        group.bench_function(BenchmarkId::from_parameter(name), |b| {
+            b.iter(|| {
+                k = (k + 1) % views.len();
+                sorter.sort(&views[k], &mut list);
+                black_box(list.len())
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, convex, parts);
 criterion_main!(benches);

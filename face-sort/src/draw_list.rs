@@ -27,7 +27,13 @@ pub struct DrawList {
     shared: Option<Arc<PolygonSet>>,
     frame: PolygonSet,
     items: Vec<DrawItem>,
+    /// A number that no other content of any list has had, set by [`seal`](Self::seal); 0
+    /// once the content changes.
+    seal: u64,
 }
+
+/// The last number handed out by [`DrawList::seal`].
+static SEALS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
 
 impl DrawList {
     /// An empty list.
@@ -37,6 +43,7 @@ impl DrawList {
             shared: None,
             frame: PolygonSet::new(),
             items: Vec::new(),
+            seal: 0,
         }
     }
 
@@ -102,24 +109,41 @@ impl DrawList {
         }
         self.frame.clear();
         self.items.clear();
+        self.seal = 0;
     }
 
     /// Appends an item.
     #[inline]
     pub fn push(&mut self, polygon: u32, face: u32) {
         self.items.push(DrawItem { polygon, face });
+        self.seal = 0;
     }
 
     /// Adds a per-frame polygon (a fragment cut this frame) and returns its polygon index
     /// (not yet an item: call [`push`](Self::push) to draw it).
     pub fn add_frame_polygon(&mut self, corners: &[DVec3], face: u32, plane: Plane) -> u32 {
         let shared_len = self.shared.as_ref().map_or(0, |s| s.len()) as u32;
+        self.seal = 0;
         shared_len + self.frame.push(corners, face, plane)
     }
 
     /// The items, mutable, for sorters that fill them in place.
     pub fn items_mut(&mut self) -> &mut Vec<DrawItem> {
+        self.seal = 0;
         &mut self.items
+    }
+
+    /// Marks the current content with a number that no other content of any list has had
+    /// (a clone keeps it, with the same content), and returns it: a caller that finds the
+    /// same number later knows the list is unchanged without comparing it.
+    pub(crate) fn seal(&mut self) -> u64 {
+        self.seal = SEALS.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+        self.seal
+    }
+
+    /// The number of the last [`seal`](Self::seal), if the content has not changed since.
+    pub(crate) fn sealed(&self) -> Option<u64> {
+        (self.seal != 0).then_some(self.seal)
     }
 
     /// The shared set of the current frame.

@@ -35,8 +35,8 @@ use glam::DVec3;
 
 use crate::tolerance::PLANE_SIDE;
 use crate::{
-    Bsp, BspFallback, BspOptions, DrawItem, DrawList, FaceSorter, Geometry, Newell, PolygonSet,
-    SorterStats, View,
+    Bsp, BspFallback, BspOptions, DrawList, FaceSorter, Geometry, Newell, PolygonSet, SorterStats,
+    View,
 };
 
 /// What the caller will do with the sorter, for the planner's cost model.
@@ -213,7 +213,7 @@ impl Plan {
             Strategy::CullOnly => Box::new(CullOnly {
                 pieces: Arc::clone(geometry.pieces()),
                 exits_face_away: self.exits_face_away,
-                order: (0..geometry.pieces().len() as u32).collect(),
+                grouped: None,
             }),
             Strategy::ConvexParts => Box::new(ConvexParts {
                 pieces: Arc::clone(geometry.pieces()),
@@ -239,8 +239,9 @@ impl Plan {
 pub struct CullOnly {
     pieces: Arc<PolygonSet>,
     exits_face_away: bool,
-    /// The pieces in drawing order within each pass: file order, or grouped by brush.
-    order: Vec<u32>,
+    /// The pieces in drawing order within each pass when grouped by brush; `None` is piece
+    /// order.
+    grouped: Option<Vec<u32>>,
 }
 
 impl FaceSorter for CullOnly {
@@ -263,9 +264,20 @@ impl FaceSorter for CullOnly {
             }
         });
         let planes = self.pieces.planes();
+        if !exits_drawn && self.grouped.is_none() {
+            // One pass in piece order: the floor any order costs.
+            for (i, plane) in planes.iter().enumerate() {
+                if cull.is_drawn(plane, self.pieces.corners(i)[0]) {
+                    out.push(i as u32, self.pieces.face(i));
+                }
+            }
+            return;
+        }
+        let n = self.pieces.len() as u32;
+        let order = self.grouped.as_deref();
+        let pieces = || (0..n as usize).map(|k| order.map_or(k, |o| o[k] as usize));
         if !exits_drawn {
-            for &i in &self.order {
-                let i = i as usize;
+            for i in pieces() {
                 if cull.is_drawn(&planes[i], self.pieces.corners(i)[0]) {
                     out.push(i as u32, self.pieces.face(i));
                 }
@@ -273,8 +285,7 @@ impl FaceSorter for CullOnly {
             return;
         }
         for entry_pass in [false, true] {
-            for &i in &self.order {
-                let i = i as usize;
+            for i in pieces() {
                 let faces_viewer = cull.viewer.facing(&planes[i]) > 0.0;
                 let is_entry = faces_viewer == self.exits_face_away;
                 if is_entry == entry_pass && cull.is_drawn(&planes[i], self.pieces.corners(i)[0]) {
@@ -286,7 +297,9 @@ impl FaceSorter for CullOnly {
 
     fn group_by_brush(&mut self, brush: &dyn Fn(u32) -> u32) -> bool {
         let pieces = &self.pieces;
-        self.order.sort_by_key(|&i| brush(pieces.face(i as usize)));
+        let mut order: Vec<u32> = (0..pieces.len() as u32).collect();
+        order.sort_by_key(|&i| brush(pieces.face(i as usize)));
+        self.grouped = Some(order);
         true
     }
 
@@ -302,15 +315,14 @@ impl FaceSorter for CullOnly {
 /// plan names. The default of the command line.
 ///
 /// **Same view, no work:** when `sort` is called with the view of its previous call and a list
-/// that still holds what that call wrote (same polygons, same items, compared in one pass),
-/// it returns at once; [`skipped_frames`](Self::skipped_frames) counts those calls.
+/// that still holds what that call wrote (the list is sealed after each sort and any change
+/// breaks the seal: no comparison, no copy), it returns at once;
+/// [`skipped_frames`](Self::skipped_frames) counts those calls.
 pub struct Auto {
     plan: Plan,
     inner: Box<dyn FaceSorter>,
     last_view: Option<View>,
-    last_shared: Option<Arc<PolygonSet>>,
-    last_items: Vec<DrawItem>,
-    last_frame_polygons: usize,
+    last_seal: Option<u64>,
     skipped: u64,
 }
 
@@ -330,9 +342,7 @@ impl Auto {
             plan,
             inner,
             last_view: None,
-            last_shared: None,
-            last_items: Vec::new(),
-            last_frame_polygons: 0,
+            last_seal: None,
             skipped: 0,
         }
     }
@@ -363,24 +373,16 @@ impl FaceSorter for Auto {
     }
 
     fn sort(&mut self, view: &View, out: &mut DrawList) {
-        let same_polygons = match (out.shared(), &self.last_shared) {
-            (Some(now), Some(last)) => Arc::ptr_eq(now, last),
-            _ => false,
-        };
         if self.last_view.as_ref() == Some(view)
-            && same_polygons
-            && out.frame_fragments() == self.last_frame_polygons
-            && out.items() == self.last_items.as_slice()
+            && out.sealed().is_some()
+            && out.sealed() == self.last_seal
         {
             self.skipped += 1;
             return;
         }
         self.inner.sort(view, out);
         self.last_view = Some(*view);
-        self.last_shared = out.shared().cloned();
-        self.last_frame_polygons = out.frame_fragments();
-        self.last_items.clear();
-        self.last_items.extend_from_slice(out.items());
+        self.last_seal = Some(out.seal());
     }
 
     fn stats(&self) -> SorterStats {

@@ -10,6 +10,7 @@
 //! - `stress` runs the exact sorters on moved, scaled, coplanar, degenerate and edge-on cases
 //!   and reports violations, pixel error, fragments and NaN counts (docs/ROBUSTNESS.md).
 //! - `ci` runs what CI runs (`.ci/run`): fmt, clippy, tests, packaging.
+//! - `oneshot` times one exact picture against the centroid's, whole process.
 //!
 //! See `xtask/README.md` for examples.
 
@@ -18,6 +19,7 @@ mod bench;
 mod ci;
 mod fuzz;
 mod fuzz_loaders;
+mod oneshot;
 mod peer;
 mod progress;
 mod raster;
@@ -39,7 +41,7 @@ struct Cli {
     command: Command,
 }
 
-/// Every subcommand. A later issue adds `bake` (aspect bakes) here.
+/// Every subcommand.
 #[derive(Debug, Subcommand)]
 enum Command {
     /// Render a model (or the built-in demo scene) to a PNG or an ID image.
@@ -56,6 +58,9 @@ enum Command {
     Fuzz(fuzz::FuzzArgs),
     /// Run what CI runs (.ci/run): cargo fmt --check, clippy -D warnings, tests, packaging.
     Ci(ci::CiArgs),
+    /// Time one exact picture (`render --sorter auto`) against the centroid's, whole process,
+    /// median of alternating runs.
+    Oneshot(oneshot::OneshotArgs),
     /// Numerical stress: every exact sorter on transformed models and degenerate scenes;
     /// violations, pixel error, fragments, NaN counts, time (docs/ROBUSTNESS.md).
     Stress(stress::StressArgs),
@@ -83,6 +88,7 @@ fn main() -> ExitCode {
         Command::Bench(args) => bench::run(&args),
         Command::Fuzz(args) => fuzz::run(&args),
         Command::Ci(args) => ci::run(&args),
+        Command::Oneshot(args) => oneshot::run(&args),
         Command::Stress(args) => stress::run(&args),
     });
     match result {

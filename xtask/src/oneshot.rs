@@ -1,0 +1,71 @@
+//! `cargo xtask oneshot`: one exact picture against the centroid's, whole process.
+
+use std::path::PathBuf;
+use std::process::{Command, ExitCode, Stdio};
+use std::time::Instant;
+
+use anyhow::{Context, Result, bail};
+use clap::Args;
+
+/// Options of `oneshot`.
+#[derive(Debug, Args)]
+pub struct OneshotArgs {
+    /// Model to render.
+    model: PathBuf,
+    /// Timed runs of each sorter (after two warm-up runs each), alternating.
+    #[arg(long, default_value_t = 10)]
+    runs: usize,
+    /// Image size.
+    #[arg(long, value_name = "WxH", default_value = "1024x1024")]
+    size: String,
+}
+
+/// Runs `render MODEL --sorter auto` and `--sorter centroid` alternately as separate
+/// processes (load, order, raster, PNG: what a user waits for) and prints the median wall
+/// times and their ratio.
+pub fn run(args: &OneshotArgs) -> Result<ExitCode> {
+    if args.runs == 0 {
+        bail!("--runs must be at least 1");
+    }
+    let exe = std::env::current_exe().context("locating xtask")?;
+    let out = crate::target_dir().join("oneshot.png");
+    let mut times: [Vec<f64>; 2] = [Vec::new(), Vec::new()];
+    let sorters = ["auto", "centroid"];
+    for round in 0..args.runs + 2 {
+        for (k, sorter) in sorters.iter().enumerate() {
+            let start = Instant::now();
+            let status = Command::new(&exe)
+                .arg("render")
+                .arg(&args.model)
+                .args(["--sorter", sorter, "--size", &args.size, "-o"])
+                .arg(&out)
+                .stdout(Stdio::null())
+                .status()
+                .context("running render")?;
+            if !status.success() {
+                bail!("render --sorter {sorter} failed ({status})");
+            }
+            if round >= 2 {
+                times[k].push(start.elapsed().as_secs_f64() * 1e3);
+            }
+        }
+    }
+    let median = |v: &mut Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        let n = v.len();
+        if n % 2 == 1 {
+            v[n / 2]
+        } else {
+            0.5 * (v[n / 2 - 1] + v[n / 2])
+        }
+    };
+    let (auto, centroid) = (median(&mut times[0]), median(&mut times[1]));
+    println!(
+        "{}: auto {auto:.1} ms, centroid {centroid:.1} ms, ratio {:.3} (medians of {} alternating runs after 2 warm-up runs, {})",
+        args.model.display(),
+        auto / centroid,
+        args.runs,
+        args.size
+    );
+    Ok(ExitCode::SUCCESS)
+}
