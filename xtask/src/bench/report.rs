@@ -101,12 +101,15 @@ pub(super) fn markdown(
         s,
         "|---|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---|"
     );
+    // Items as the table shows them (formatting rounds half to even), so that the ratio
+    // read back from the table is the one written.
+    let shown = |v: f64| format!("{v:.0}").parse::<f64>().unwrap_or(f64::NAN);
     for r in rows {
-        let items = r.fragments.round();
+        let items = shown(r.fragments);
         let centroid_items = rows
             .iter()
             .find(|c| c.sorter == "centroid" && c.scene == r.scene && c.projection == r.projection)
-            .map(|c| c.fragments.round());
+            .map(|c| shown(c.fragments));
         let items_ratio = match centroid_items {
             Some(c) if c > 0.0 => format!("{:.2}", items / c),
             _ => "—".to_owned(),
@@ -474,6 +477,21 @@ mod tests {
         // 5442 / 2927 = 1.859…; no centroid row in perspective.
         assert!(text.contains("| 5442 | 1.86 |"), "{text}");
         assert!(text.contains("| 2927 | — |"), "{text}");
+        check_format(&text).unwrap();
+        // Halves: 638.5 is shown as 638 (formatting rounds half to even) and the ratio uses
+        // what is shown, so that it reads back the same.
+        let rows = [
+            Row {
+                fragments: 638.5,
+                ..row("centroid", 7.0, Some(0.0))
+            },
+            Row {
+                fragments: 4128.5,
+                ..row("plane-split", 1150.0, Some(0.0))
+            },
+        ];
+        let text = markdown("cargo xtask bench", &rows, &[], 256);
+        assert!(text.contains("| 4128 | 6.47 |"), "{text}");
         check_format(&text).unwrap();
     }
 
