@@ -205,6 +205,10 @@ pub struct Slab {
     pub hi: f64,
     /// The curves that bound cells, in increasing yaw from the window's start.
     pub curves: Vec<Curve>,
+    /// Each curve's yaw (degrees) at the slab's middle pitch: which turn of the circle a root
+    /// found at another pitch of the slab belongs to (near the window's start, rounding can
+    /// put it a period away).
+    pub mid_yaws: Vec<f64>,
     /// The cell of each gap: `cells[k]` lies between `curves[k − 1]` and `curves[k]` (the
     /// window's ends for the first and last). A cell spans gaps of several slabs.
     pub cells: Vec<u32>,
@@ -252,12 +256,19 @@ impl Default for Bake2Options {
 }
 
 impl Bake2 {
-    fn yaw_of(&self, curve: Curve, pitch: f64, window: (f64, f64, bool)) -> f64 {
+    /// The yaw (radians) of curve `k` of slab `s` at `pitch` (radians).
+    fn yaw_of(&self, s: usize, k: usize, pitch: f64, window: (f64, f64, bool)) -> f64 {
+        let slab = &self.slabs[s];
+        let curve = slab.curves[k];
         let chart = Chart::of(
             &self.circles[curve.circle as usize],
             self.domain.roll.to_radians(),
         );
-        curve_yaw(&chart, curve.down, pitch, window.0)
+        let y = curve_yaw(&chart, curve.down, pitch, window.0);
+        // The turn nearest the curve's yaw at the slab's middle, kept in the window.
+        let mid = slab.mid_yaws[k].to_radians();
+        let y = y + TAU * ((mid - y) / TAU).round();
+        y.clamp(window.0, window.0 + TAU)
     }
 
     /// The yaw bounds (radians) of cell `k` of slab `s` at pitch `p` (radians).
@@ -267,12 +278,12 @@ impl Bake2 {
         let lo = if k == 0 {
             window.0
         } else {
-            self.yaw_of(slab.curves[k - 1], p, window)
+            self.yaw_of(s, k - 1, p, window)
         };
         let hi = if k == slab.curves.len() {
             window.1
         } else {
-            self.yaw_of(slab.curves[k], p, window)
+            self.yaw_of(s, k, p, window)
         };
         (lo, hi)
     }
@@ -297,9 +308,16 @@ impl Bake2 {
         let s = self.slabs.partition_point(|slab| slab.lo <= pitch) - 1;
         let slab = &self.slabs[s];
         let p = pitch.to_radians();
-        let k = slab
-            .curves
-            .partition_point(|&c| self.yaw_of(c, p, window) <= y);
+        // The first curve past `y` (curves are in yaw order across the slab).
+        let (mut k, mut end) = (0, slab.curves.len());
+        while k < end {
+            let m = usize::midpoint(k, end);
+            if self.yaw_of(s, m, p, window) <= y {
+                k = m + 1;
+            } else {
+                end = m;
+            }
+        }
         Some(slab.cells[k] as usize)
     }
 
@@ -637,11 +655,13 @@ pub fn bake_two_axes(
     for ((lo, hi, curves, _), ids) in slabs.into_iter().zip(gap_cells) {
         // Curves between two gaps of one cell bound nothing: dropped.
         let mut kept = Vec::new();
+        let mut mid_yaws = Vec::new();
         let mut cell_of_gap = vec![dense[ids[0] as usize]];
-        for (k, &(_, curve)) in curves.iter().enumerate() {
+        for (k, &(yaw, curve)) in curves.iter().enumerate() {
             let next = dense[ids[k + 1] as usize];
             if next != cell_of_gap[cell_of_gap.len() - 1] {
                 kept.push(curve);
+                mid_yaws.push(yaw.to_degrees());
                 cell_of_gap.push(next);
             }
         }
@@ -649,6 +669,7 @@ pub fn bake_two_axes(
             lo: lo.to_degrees(),
             hi: hi.to_degrees(),
             curves: kept,
+            mid_yaws,
             cells: cell_of_gap,
         });
     }

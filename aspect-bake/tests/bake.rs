@@ -288,7 +288,14 @@ fn cases() -> u32 {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: cases(), ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig {
+        cases: cases(),
+        // The scene strategies reject generated polygons whose corners are too close; the
+        // allowance grows with the cases so that PROPTEST_CASES can be raised at will.
+        max_local_rejects: 65_536.max(cases().saturating_mul(16)),
+        max_global_rejects: 1_024.max(cases().saturating_mul(4)),
+        ..ProptestConfig::default()
+    })]
 
     #[test]
     fn generated_scenes_and_axes_verify(

@@ -374,7 +374,8 @@ fn parse_range(text: &str) -> Result<(f64, f64), String> {
 
 /// `--axis yaw --pitch-range LO,HI`: the two-axis bake, its summary line, `--verify`, and
 /// `--json` (`{"axes", "sorter", "bake_ms", "yaw": [0, 360], "pitch": [lo, hi], "circles":
-/// [{"normal", "offset"}], "slabs": [{"lo", "hi", "curves": [{"circle", "down"}], "cells"}],
+/// [{"normal", "offset"}], "slabs": [{"lo", "hi", "curves": [{"circle", "down", "mid_yaw"}],
+/// "cells"}],
 /// "cells": [{"draw_list"}], "missed_by_1deg_grid"}`): a point's cell is found in the slab
 /// of its pitch, between the curves — circle `normal·d = offset` roots in yaw — around it).
 fn run_two_axes(args: &BakeArgs, prepared: &Prepared, pitch: (f64, f64)) -> Result<ExitCode> {
@@ -452,7 +453,7 @@ fn run_two_axes(args: &BakeArgs, prepared: &Prepared, pitch: (f64, f64)) -> Resu
             "slabs": baked.slabs.iter().map(|s| json!({
                 "lo": s.lo,
                 "hi": s.hi,
-                "curves": s.curves.iter().map(|c| json!({"circle": c.circle, "down": c.down})).collect::<Vec<_>>(),
+                "curves": s.curves.iter().zip(&s.mid_yaws).map(|(c, y)| json!({"circle": c.circle, "down": c.down, "mid_yaw": y})).collect::<Vec<_>>(),
                 "cells": s.cells,
             })).collect::<Vec<_>>(),
             "cells": baked.cells.iter().map(|c| json!({
