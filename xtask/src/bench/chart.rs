@@ -5,7 +5,7 @@
 use anyhow::{Result, anyhow};
 use plotters::prelude::*;
 
-use super::Row;
+use super::{Row, ScalingRow};
 
 /// One colour per sorter, in order of first appearance.
 const COLOURS: [RGBColor; 6] = [
@@ -109,6 +109,100 @@ pub(super) fn chart_svg(rows: &[Row]) -> Result<String> {
             ("sans-serif", 12),
         ))
         .map_err(|e| err(&e))?;
+        root.present().map_err(|e| err(&e))?;
+    }
+    Ok(svg)
+}
+
+/// The scaling series on log-log axes: build time per face (solid) and per-frame time (dashed
+/// marks) against faces, one colour per sorter; skipped measurements are absent.
+pub(super) fn scaling_svg(rows: &[ScalingRow]) -> Result<String> {
+    let mut sorters: Vec<&str> = Vec::new();
+    for r in rows {
+        if !sorters.contains(&r.sorter.as_str()) {
+            sorters.push(&r.sorter);
+        }
+    }
+    let build_us = |r: &ScalingRow| {
+        r.build_ms
+            .filter(|&b| b > 0.0)
+            .map(|b| (r.faces as f64, b * 1e3 / r.faces.max(1) as f64))
+    };
+    let frame_us = |r: &ScalingRow| {
+        r.frame_us
+            .filter(|&f| f > 0.0)
+            .map(|f| (r.faces as f64, f / r.faces.max(1) as f64))
+    };
+    let values: Vec<(f64, f64)> = rows
+        .iter()
+        .flat_map(|r| [build_us(r), frame_us(r)])
+        .flatten()
+        .collect();
+    let decade_below = |v: f64| 10f64.powf(v.log10().floor());
+    let decade_above = |v: f64| 10f64.powf(v.log10().ceil());
+    let (fx0, fx1) = values
+        .iter()
+        .fold((f64::INFINITY, 0.0f64), |(a, b), &(x, _)| (a.min(x), b.max(x)));
+    let (fy0, fy1) = values
+        .iter()
+        .fold((f64::INFINITY, 0.0f64), |(a, b), &(_, y)| (a.min(y), b.max(y)));
+    if values.is_empty() {
+        return Err(anyhow!("scaling chart: no measurement"));
+    }
+    let (x0, x1) = (decade_below(fx0), decade_above(fx1).max(decade_below(fx0) * 10.0));
+    let (y0, y1) = (decade_below(fy0), decade_above(fy1).max(decade_below(fy0) * 10.0));
+    let colour = |sorter: &str| {
+        COLOURS[sorters.iter().position(|&n| n == sorter).unwrap_or(0) % COLOURS.len()]
+    };
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (760, 460)).into_drawing_area();
+        let err = |e: &dyn std::fmt::Display| anyhow!("scaling chart: {e}");
+        root.fill(&WHITE).map_err(|e| err(&e))?;
+        let mut chart = ChartBuilder::on(&root)
+            .caption(
+                "Generated planar torus: build per face (lines) and frame per face (crosses)",
+                ("sans-serif", 14),
+            )
+            .margin(12)
+            .x_label_area_size(40)
+            .y_label_area_size(60)
+            .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
+            .map_err(|e| err(&e))?;
+        chart
+            .configure_mesh()
+            .x_desc("faces (log scale)")
+            .y_desc("µs per face (log scale)")
+            .x_label_formatter(&|v| trim_number(*v))
+            .y_label_formatter(&|v| trim_number(*v))
+            .draw()
+            .map_err(|e| err(&e))?;
+        for &name in &sorters {
+            let c = colour(name);
+            let mine: Vec<&ScalingRow> = rows.iter().filter(|r| r.sorter == name).collect();
+            let builds: Vec<(f64, f64)> = mine.iter().filter_map(|r| build_us(r)).collect();
+            if !builds.is_empty() {
+                chart
+                    .draw_series(LineSeries::new(builds.clone(), c.stroke_width(2)))
+                    .map_err(|e| err(&e))?
+                    .label(format!("{name} build"))
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 16, y)], c));
+                chart
+                    .draw_series(builds.iter().map(|&p| Circle::new(p, 3, c.filled())))
+                    .map_err(|e| err(&e))?;
+            }
+            let frames: Vec<(f64, f64)> = mine.iter().filter_map(|r| frame_us(r)).collect();
+            chart
+                .draw_series(frames.iter().map(|&p| Cross::new(p, 5, c.stroke_width(2))))
+                .map_err(|e| err(&e))?;
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .background_style(WHITE.mix(0.9))
+            .border_style(BLACK)
+            .draw()
+            .map_err(|e| err(&e))?;
         root.present().map_err(|e| err(&e))?;
     }
     Ok(svg)

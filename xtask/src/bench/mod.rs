@@ -137,7 +137,9 @@ pub fn run(args: &BenchArgs) -> Result<ExitCode> {
             per_view: Duration::from_millis(150),
             scaling: &[1_000, 10_000, 100_000, 1_000_000],
             peer_pieces: 20_000,
-            scaling_limit: Duration::from_secs(60),
+            // Long enough for the BSP build of the million-face torus (minutes): the point of
+            // the full run is the growth curve to 1M faces.
+            scaling_limit: Duration::from_secs(600),
         }
     } else {
         Budget {
@@ -196,11 +198,22 @@ pub fn run(args: &BenchArgs) -> Result<ExitCode> {
     write(&out.join("report.md"), &table)?;
     let chart = chart::chart_svg(&rows)?;
     write(&out.join("chart.svg"), &chart)?;
+    let scaling_chart = if scaling.is_empty() {
+        None
+    } else {
+        Some(chart::scaling_svg(&scaling)?)
+    };
+    if let Some(svg) = &scaling_chart {
+        write(&out.join("scaling.svg"), svg)?;
+    }
     if args.docs {
         let docs = crate::workspace_root().join("docs");
         std::fs::create_dir_all(&docs)?;
         write(&docs.join("bench.md"), &table)?;
         write(&docs.join("bench.svg"), &chart)?;
+        if let Some(svg) = &scaling_chart {
+            write(&docs.join("bench-scaling.svg"), svg)?;
+        }
     }
     println!("{}", report::summary(&rows));
     println!(

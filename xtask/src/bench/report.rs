@@ -143,7 +143,7 @@ pub(super) fn markdown(
     if !scaling.is_empty() {
         let _ = writeln!(
             s,
-            "\n## Scaling (generated planar torus, orthographic 512², two views)\n\n**build / face** is the build time shown divided by the faces (every face of the planar torus is one piece).\n\n| faces | sorter | build | build / face | frame | items | note |\n|---:|---|---:|---:|---:|---:|---|"
+            "\n## Scaling (generated planar torus, orthographic 512², two views)\n\n**build / face** is the build time shown divided by the faces (every face of the planar torus is one piece). Chart (log-log, written by the runs that measure the series): [bench-scaling.svg](bench-scaling.svg).\n\n| faces | sorter | build | build / face | frame | items | note |\n|---:|---|---:|---:|---:|---:|---|"
         );
         for r in scaling {
             let build = r.build_ms.map(|b| format!("{b:.1}"));
