@@ -123,15 +123,16 @@ pub(super) fn scaling_svg(rows: &[ScalingRow]) -> Result<String> {
             sorters.push(&r.sorter);
         }
     }
+    // Below a nanosecond per face a build is a constructor, not a build: not drawn.
     let build_us = |r: &ScalingRow| {
         r.build_ms
-            .filter(|&b| b > 0.0)
             .map(|b| (r.faces as f64, b * 1e3 / r.faces.max(1) as f64))
+            .filter(|&(_, us)| us >= 1e-3)
     };
     let frame_us = |r: &ScalingRow| {
         r.frame_us
-            .filter(|&f| f > 0.0)
             .map(|f| (r.faces as f64, f / r.faces.max(1) as f64))
+            .filter(|&(_, us)| us >= 1e-3)
     };
     let values: Vec<(f64, f64)> = rows
         .iter()
@@ -142,15 +143,23 @@ pub(super) fn scaling_svg(rows: &[ScalingRow]) -> Result<String> {
     let decade_above = |v: f64| 10f64.powf(v.log10().ceil());
     let (fx0, fx1) = values
         .iter()
-        .fold((f64::INFINITY, 0.0f64), |(a, b), &(x, _)| (a.min(x), b.max(x)));
+        .fold((f64::INFINITY, 0.0f64), |(a, b), &(x, _)| {
+            (a.min(x), b.max(x))
+        });
     let (fy0, fy1) = values
         .iter()
-        .fold((f64::INFINITY, 0.0f64), |(a, b), &(_, y)| (a.min(y), b.max(y)));
+        .fold((f64::INFINITY, 0.0f64), |(a, b), &(_, y)| {
+            (a.min(y), b.max(y))
+        });
     if values.is_empty() {
         return Err(anyhow!("scaling chart: no measurement"));
     }
-    let (x0, x1) = (decade_below(fx0), decade_above(fx1).max(decade_below(fx0) * 10.0));
-    let (y0, y1) = (decade_below(fy0), decade_above(fy1).max(decade_below(fy0) * 10.0));
+    let (x0, x1) = (fx0 / 1.5, fx1 * 1.5);
+    // Three empty decades on top for the legend.
+    let (y0, y1) = (
+        decade_below(fy0),
+        decade_above(fy1).max(decade_below(fy0) * 10.0) * 1e3,
+    );
     let colour = |sorter: &str| {
         COLOURS[sorters.iter().position(|&n| n == sorter).unwrap_or(0) % COLOURS.len()]
     };
@@ -192,13 +201,17 @@ pub(super) fn scaling_svg(rows: &[ScalingRow]) -> Result<String> {
                     .map_err(|e| err(&e))?;
             }
             let frames: Vec<(f64, f64)> = mine.iter().filter_map(|r| frame_us(r)).collect();
-            chart
-                .draw_series(frames.iter().map(|&p| Cross::new(p, 5, c.stroke_width(2))))
-                .map_err(|e| err(&e))?;
+            if !frames.is_empty() {
+                chart
+                    .draw_series(frames.iter().map(|&p| Cross::new(p, 5, c.stroke_width(2))))
+                    .map_err(|e| err(&e))?
+                    .label(format!("{name} frame"))
+                    .legend(move |(x, y)| Cross::new((x + 8, y), 4, c.stroke_width(2)));
+            }
         }
         chart
             .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
+            .position(SeriesLabelPosition::UpperLeft)
             .background_style(WHITE.mix(0.9))
             .border_style(BLACK)
             .draw()

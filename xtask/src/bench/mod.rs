@@ -107,6 +107,18 @@ pub fn run(args: &BenchArgs) -> Result<ExitCode> {
             docs.join("bench.svg").display(),
             rows.len()
         );
+        let scaling = report::parse_scaling(&text)?;
+        if !scaling.is_empty() {
+            write(
+                &docs.join("bench-scaling.svg"),
+                &chart::scaling_svg(&scaling)?,
+            )?;
+            println!(
+                "redrew {} from {} scaling rows",
+                docs.join("bench-scaling.svg").display(),
+                scaling.len()
+            );
+        }
         return Ok(ExitCode::SUCCESS);
     }
     let budget = if args.smoke {

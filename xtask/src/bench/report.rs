@@ -253,6 +253,11 @@ pub(super) fn parse_rows(text: &str) -> Result<Vec<Row>> {
     Ok(parse(text)?.rows)
 }
 
+/// The scaling rows of a report (docs/bench.md), as [`markdown`] wrote them.
+pub(super) fn parse_scaling(text: &str) -> Result<Vec<ScalingRow>> {
+    Ok(parse(text)?.scaling)
+}
+
 /// What a report table holds.
 struct Parsed {
     command: String,
