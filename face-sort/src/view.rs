@@ -258,26 +258,45 @@ impl View {
         DVec3::new(half.x * w + q.x, half.y * w - q.y, w)
     }
 
-    /// A box (pixels, `(min, max)`) that holds the projection of a sphere (centred model
-    /// space): the projections of the corners of the cube around it, aligned with the view
-    /// (a projection keeps a convex set inside the hull of its corners' images); `None` when
-    /// the cube reaches the near plane (it may then cover anything).
+    /// The bounding box (pixels, `(min, max)`) of the projection of a sphere (centred model
+    /// space), exact up to rounding; `None` when the sphere reaches the near plane (it may
+    /// then cover anything).
+    ///
+    /// Orthographic: the centre's pixel ± the radius in pixels. Perspective: along each image
+    /// axis the extremes are where a plane through the eye, containing the other image axis'
+    /// direction, touches the sphere; in the plane of that axis and the view direction they
+    /// are the two tangents from the eye to a circle of the same radius, at angles
+    /// `atan2(x, d − z) ± asin(r / h)` from the view direction (`h` the eye's distance from the
+    /// centre in that plane), at pixel offsets `d · tan(angle)`.
     #[must_use]
     pub fn project_sphere(&self, centre: DVec3, radius: f64) -> Option<(DVec2, DVec2)> {
-        let v = self.to_view(centre);
-        let (mut lo, mut hi) = (DVec2::INFINITY, DVec2::NEG_INFINITY);
-        for k in 0..8 {
-            let sign = |bit: i32| if k & bit == 0 { -1.0 } else { 1.0 };
-            let corner = v + DVec3::new(sign(1), sign(2), sign(4)) * radius;
-            let w = self.w_of_view_point(corner);
-            if w <= NEAR_W {
-                return None;
+        let half = DVec2::new(f64::from(self.width), f64::from(self.height)) * 0.5;
+        let u = self.to_view(centre) * self.scale;
+        let r = radius * self.scale;
+        match self.projection {
+            Projection::Orthographic => {
+                let c = DVec2::new(half.x + u.x, half.y - u.y);
+                Some((c - DVec2::splat(r), c + DVec2::splat(r)))
             }
-            let p = self.pixel_of(corner, w);
-            lo = lo.min(p);
-            hi = hi.max(p);
+            Projection::Perspective { distance } => {
+                if u.z + r >= distance * (1.0 - NEAR_W) {
+                    return None;
+                }
+                // In front of the near plane: d − z > r, so both tangents point forward.
+                let dz = distance - u.z;
+                let extent = |across: f64| {
+                    let a = across.atan2(dz);
+                    let b = (r / across.hypot(dz)).asin();
+                    (distance * (a - b).tan(), distance * (a + b).tan())
+                };
+                let (x0, x1) = extent(u.x);
+                let (y0, y1) = extent(u.y);
+                Some((
+                    DVec2::new(half.x + x0, half.y - y1),
+                    DVec2::new(half.x + x1, half.y - y0),
+                ))
+            }
         }
-        Some((lo, hi))
     }
 
     /// Pixel position of view-space point `v` whose `w` is `w`.
@@ -553,5 +572,78 @@ impl PixelRays {
                 e * (1.0 - t)
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The box holds every projected point of the sphere and is tight: points of a dense
+    /// sampling reach each side within a small fraction of a pixel.
+    #[test]
+    fn a_sphere_projects_inside_its_box_and_touches_each_side() {
+        let bounds = Bounds {
+            min: DVec3::splat(-1.0),
+            max: DVec3::splat(1.0),
+        };
+        let base = View::fit(&bounds, 200, 150);
+        for (yaw, pitch, persp, centre, radius) in [
+            (0.0, 0.0, None, DVec3::new(0.3, -0.2, 0.1), 0.4),
+            (30.0, 20.0, Some(200.0), DVec3::ZERO, 0.8),
+            (75.0, -40.0, Some(120.0), DVec3::new(0.5, 0.4, -0.3), 0.3),
+            (200.0, 10.0, Some(400.0), DVec3::new(-0.6, 0.1, 0.2), 0.5),
+        ] {
+            let mut view = base.with_yaw_pitch_roll(yaw, pitch, 0.0);
+            if let Some(d) = persp {
+                view = view.with_perspective(d);
+            }
+            let (lo, hi) = view
+                .project_sphere(centre, radius)
+                .expect("in front of the eye");
+            let (mut seen_lo, mut seen_hi) = (DVec2::INFINITY, DVec2::NEG_INFINITY);
+            let n = 400;
+            for i in 0..=n {
+                let theta = std::f64::consts::PI * f64::from(i) / f64::from(n);
+                for j in 0..2 * n {
+                    let phi = std::f64::consts::PI * f64::from(j) / f64::from(n);
+                    let dir = DVec3::new(
+                        theta.sin() * phi.cos(),
+                        theta.cos(),
+                        theta.sin() * phi.sin(),
+                    );
+                    let p = view
+                        .project_view_point(view.to_view(centre + dir * radius))
+                        .expect("in front");
+                    assert!(
+                        p.cmpge(lo - DVec2::splat(1e-9)).all()
+                            && p.cmple(hi + DVec2::splat(1e-9)).all(),
+                        "{p} outside {lo} {hi}"
+                    );
+                    seen_lo = seen_lo.min(p);
+                    seen_hi = seen_hi.max(p);
+                }
+            }
+            assert!(
+                (seen_lo - lo).abs().max_element() < 0.05,
+                "{seen_lo} vs {lo}"
+            );
+            assert!(
+                (seen_hi - hi).abs().max_element() < 0.05,
+                "{seen_hi} vs {hi}"
+            );
+        }
+    }
+
+    #[test]
+    fn a_sphere_reaching_the_near_plane_has_no_box() {
+        let bounds = Bounds {
+            min: DVec3::splat(-1.0),
+            max: DVec3::splat(1.0),
+        };
+        let view = View::fit(&bounds, 100, 100).with_perspective(60.0);
+        // The eye is 60 / 26 ≈ 2.3 model units from the centre.
+        assert!(view.project_sphere(DVec3::ZERO, 3.0).is_none());
+        assert!(view.project_sphere(DVec3::ZERO, 2.0).is_some());
     }
 }
