@@ -576,6 +576,9 @@ pub struct Bsp {
     node_culled: Vec<bool>,
     /// Per node, for the current frame: its subtree lies inside the image (no test below).
     node_inside: Vec<bool>,
+    /// Every fragment's item in paint order, drawn or not (the branch-free compaction's
+    /// target, one slot per fragment, kept between frames); the drawn prefix is copied out.
+    scratch: Vec<crate::DrawItem>,
 }
 
 impl Bsp {
@@ -626,6 +629,13 @@ impl Bsp {
             viewer_in_front: vec![false; tree.nodes.len()],
             node_culled: vec![false; tree.nodes.len()],
             node_inside: vec![false; tree.nodes.len()],
+            scratch: vec![
+                crate::DrawItem {
+                    polygon: 0,
+                    face: 0,
+                };
+                tree.fragments.len()
+            ],
             tree,
         }
     }
@@ -795,27 +805,29 @@ impl Bsp {
                 self.base[second_child as usize] = b + first_size + node.same + node.opposite;
             }
             // Within the plane, polygons facing away from the viewer go first.
-            let same = node.first..node.first + node.same;
-            let opposite = node.first + node.same..node.first + node.same + node.opposite;
-            let (a, c) = if in_front {
-                (opposite, same)
+            let (same, opposite) = (node.same as usize, node.opposite as usize);
+            let first = node.first;
+            let slots = &mut self.order[own..own + same + opposite];
+            let (away, toward) = if in_front {
+                slots.split_at_mut(opposite)
             } else {
-                (same, opposite)
+                slots.split_at_mut(same)
             };
-            for (slot, f) in self.order[own..].iter_mut().zip(a.chain(c)) {
+            let (away_first, toward_first) = if in_front {
+                (first + node.same, first)
+            } else {
+                (first, first + node.same)
+            };
+            for (slot, f) in away.iter_mut().zip(away_first..) {
+                *slot = f;
+            }
+            for (slot, f) in toward.iter_mut().zip(toward_first..) {
                 *slot = f;
             }
         }
         out.begin(&tree.fragments);
         // Branch-free compaction: write every fragment, advance past the drawn ones only.
-        let items = out.items_mut();
-        items.resize(
-            self.order.len(),
-            crate::DrawItem {
-                polygon: 0,
-                face: 0,
-            },
-        );
+        let items = &mut self.scratch;
         let mut drawn = 0;
         if frustum.is_some() {
             for &f in &self.order {
@@ -839,6 +851,6 @@ impl Bsp {
                 drawn += usize::from(self.piece_drawn[tree.fragment_piece[f] as usize]);
             }
         }
-        items.truncate(drawn);
+        out.items_mut().extend_from_slice(&items[..drawn]);
     }
 }
