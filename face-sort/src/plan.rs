@@ -250,49 +250,10 @@ impl FaceSorter for CullOnly {
     }
 
     fn sort(&mut self, view: &View, out: &mut DrawList) {
-        let cull = view.cull_test();
         out.begin(&self.pieces);
-        // Exit pieces (behind) first, then entry pieces. When the cull rule never keeps exit
-        // pieces (back-face culling of outward normals, no margin), one culling pass is the
-        // whole order. A piece exactly edge-on projects to nothing and is never drawn
-        // (CONVENTIONS.md), so it may go in either pass.
-        let exits_drawn = cull.facing_rule().is_none_or(|(keep_facing, keep_away)| {
-            if self.exits_face_away {
-                keep_away
-            } else {
-                keep_facing
-            }
-        });
-        let planes = self.pieces.planes();
-        if !exits_drawn && self.grouped.is_none() {
-            // One pass in piece order: the floor any order costs.
-            for (i, plane) in planes.iter().enumerate() {
-                if cull.is_drawn(plane, self.pieces.corners(i)[0]) {
-                    out.push(i as u32, self.pieces.face(i));
-                }
-            }
-            return;
-        }
-        let n = self.pieces.len() as u32;
+        let cull = view.cull_test();
         let order = self.grouped.as_deref();
-        let pieces = || (0..n as usize).map(|k| order.map_or(k, |o| o[k] as usize));
-        if !exits_drawn {
-            for i in pieces() {
-                if cull.is_drawn(&planes[i], self.pieces.corners(i)[0]) {
-                    out.push(i as u32, self.pieces.face(i));
-                }
-            }
-            return;
-        }
-        for entry_pass in [false, true] {
-            for i in pieces() {
-                let faces_viewer = cull.viewer.facing(&planes[i]) > 0.0;
-                let is_entry = faces_viewer == self.exits_face_away;
-                if is_entry == entry_pass && cull.is_drawn(&planes[i], self.pieces.corners(i)[0]) {
-                    out.push(i as u32, self.pieces.face(i));
-                }
-            }
-        }
+        draw_convex(&self.pieces, &cull, self.exits_face_away, order, out);
     }
 
     fn group_by_brush(&mut self, brush: &dyn Fn(u32) -> u32) -> bool {
@@ -433,15 +394,14 @@ impl PartTree {
         let mut boxes = Vec::with_capacity(groups.len());
         for group in groups {
             let mut set = PolygonSet::new();
-            let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
             for &i in &group {
-                let corners = pieces.corners(i as usize);
-                for &c in corners {
-                    lo = lo.min(c);
-                    hi = hi.max(c);
-                }
-                set.push(corners, pieces.face(i as usize), *pieces.plane(i as usize));
+                let i = i as usize;
+                set.push(pieces.corners(i), pieces.face(i), *pieces.plane(i));
             }
+            let all_corners = group.iter().flat_map(|&i| pieces.corners(i as usize));
+            let b = crate::Bounds::from_points(all_corners.copied())
+                .expect("a part has pieces, a piece has corners");
+            let (lo, hi) = (b.min, b.max);
             let exits_face_away = convex_position(&set, diagonal)?;
             parts.push(Part {
                 pieces: group,
@@ -525,7 +485,6 @@ impl FaceSorter for ConvexParts {
         let cull = view.cull_test();
         let (point, w) = cull.viewer_point();
         out.begin(&self.pieces);
-        let planes = self.pieces.planes();
         self.stack.clear();
         self.stack.push(0);
         while let Some(k) = self.stack.pop() {
@@ -545,18 +504,8 @@ impl FaceSorter for ConvexParts {
                 }
                 PartNode::Leaf(p) => {
                     let part = &self.tree.parts[p as usize];
-                    for entry_pass in [false, true] {
-                        for &i in &part.pieces {
-                            let i = i as usize;
-                            let faces_viewer = cull.viewer.facing(&planes[i]) > 0.0;
-                            let is_entry = faces_viewer == part.exits_face_away;
-                            if is_entry == entry_pass
-                                && cull.is_drawn(&planes[i], self.pieces.corners(i)[0])
-                            {
-                                out.push(i as u32, self.pieces.face(i));
-                            }
-                        }
-                    }
+                    let order = Some(part.pieces.as_slice());
+                    draw_convex(&self.pieces, &cull, part.exits_face_away, order, out);
                 }
             }
         }
@@ -566,6 +515,61 @@ impl FaceSorter for ConvexParts {
         SorterStats {
             polygons: self.pieces.len(),
             ..SorterStats::default()
+        }
+    }
+}
+
+/// Draws the pieces of `set` named by `order` (all, in set order, for `None`) of a body in
+/// convex position (see the module docs): exit pieces first, then entry pieces. When the cull
+/// rule never keeps exit pieces (back-face culling of outward normals, no margin) that is one
+/// culling pass. A piece exactly edge-on projects to nothing and is never drawn
+/// (CONVENTIONS.md), so it may go in either pass.
+fn draw_convex(
+    set: &PolygonSet,
+    cull: &crate::CullTest,
+    exits_face_away: bool,
+    order: Option<&[u32]>,
+    out: &mut DrawList,
+) {
+    let planes = set.planes();
+    match order {
+        None => draw_pieces(set, cull, exits_face_away, planes.iter().enumerate(), out),
+        Some(order) => {
+            let pieces = order.iter().map(|&i| (i as usize, &planes[i as usize]));
+            draw_pieces(set, cull, exits_face_away, pieces, out);
+        }
+    }
+}
+
+/// [`draw_convex`] over `(index, plane)` pairs.
+fn draw_pieces<'a>(
+    set: &PolygonSet,
+    cull: &crate::CullTest,
+    exits_face_away: bool,
+    pieces: impl Iterator<Item = (usize, &'a crate::Plane)> + Clone,
+    out: &mut DrawList,
+) {
+    let exits_drawn = cull.facing_rule().is_none_or(|(keep_facing, keep_away)| {
+        if exits_face_away {
+            keep_away
+        } else {
+            keep_facing
+        }
+    });
+    if !exits_drawn {
+        for (i, plane) in pieces {
+            if cull.is_drawn(plane, set.corners(i)[0]) {
+                out.push(i as u32, set.face(i));
+            }
+        }
+        return;
+    }
+    for entry_pass in [false, true] {
+        for (i, plane) in pieces.clone() {
+            let is_entry = (cull.viewer.facing(plane) > 0.0) == exits_face_away;
+            if is_entry == entry_pass && cull.is_drawn(plane, set.corners(i)[0]) {
+                out.push(i as u32, set.face(i));
+            }
         }
     }
 }
