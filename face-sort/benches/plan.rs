@@ -11,21 +11,21 @@ use face_sort::{
     Auto, DrawList, FaceSorter, Geometry, PlanHint, SorterKind, Strategy, View, generate,
 };
 
-fn convex(c: &mut Criterion) {
-    let geometry = Geometry::new(&generate::uv_sphere(128, 64)).unwrap();
+/// Eight views around the geometry, 512², pitch 20°.
+fn views(geometry: &Geometry) -> Vec<View> {
     let base = View::fit(&geometry.bounds(), 512, 512);
-    let views: Vec<View> = (0..8)
+    (0..8)
         .map(|k| base.with_yaw_pitch_roll(f64::from(k) * 45.0 + 10.0, 20.0, 0.0))
-        .collect();
-    let mut group = c.benchmark_group("convex/sphere-8k");
-    let auto = Auto::new(&geometry, PlanHint::ANIMATION);
-    assert_eq!(auto.plan().strategy, Strategy::CullOnly);
-    let mut sorters: Vec<(&str, Box<dyn FaceSorter>)> = vec![
-        ("auto", Box::new(auto)),
-        ("centroid", SorterKind::Centroid.build(&geometry)),
-        ("bsp", SorterKind::Bsp.build(&geometry)),
-    ];
-    for (name, sorter) in &mut sorters {
+        .collect()
+}
+
+/// One benchmark per sorter, cycling through `views`.
+fn time_sorters(
+    group: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
+    sorters: &mut [(&str, Box<dyn FaceSorter>)],
+    views: &[View],
+) {
+    for (name, sorter) in sorters {
         let mut list = DrawList::new();
         let mut k = 0;
         group.bench_function(BenchmarkId::from_parameter(name), |b| {
@@ -36,6 +36,20 @@ fn convex(c: &mut Criterion) {
             })
         });
     }
+}
+
+fn convex(c: &mut Criterion) {
+    let geometry = Geometry::new(&generate::uv_sphere(128, 64)).unwrap();
+    let views = views(&geometry);
+    let mut group = c.benchmark_group("convex/sphere-8k");
+    let auto = Auto::new(&geometry, PlanHint::ANIMATION);
+    assert_eq!(auto.plan().strategy, Strategy::CullOnly);
+    let mut sorters: Vec<(&str, Box<dyn FaceSorter>)> = vec![
+        ("auto", Box::new(auto)),
+        ("centroid", SorterKind::Centroid.build(&geometry)),
+        ("bsp", SorterKind::Bsp.build(&geometry)),
+    ];
+    time_sorters(&mut group, &mut sorters, &views);
     // Culling alone: the floor any order costs.
     let pieces = geometry.pieces();
     let mut list = DrawList::new();
@@ -77,10 +91,7 @@ fn parts(c: &mut Criterion) {
     }
     let mesh = face_sort::PolygonMesh::new(positions, faces).unwrap();
     let geometry = Geometry::new(&mesh).unwrap();
-    let base = View::fit(&geometry.bounds(), 512, 512);
-    let views: Vec<View> = (0..8)
-        .map(|k| base.with_yaw_pitch_roll(f64::from(k) * 45.0 + 10.0, 20.0, 0.0))
-        .collect();
+    let views = views(&geometry);
     let mut group = c.benchmark_group("parts/64-spheres");
     let auto = Auto::new(&geometry, PlanHint::ANIMATION);
     assert_eq!(auto.plan().strategy, Strategy::ConvexParts);
@@ -90,17 +101,7 @@ fn parts(c: &mut Criterion) {
         ("bsp", SorterKind::Bsp.build(&geometry)),
         ("newell", SorterKind::Newell.build(&geometry)),
     ];
-    for (name, sorter) in &mut sorters {
-        let mut list = DrawList::new();
-        let mut k = 0;
-        group.bench_function(BenchmarkId::from_parameter(name), |b| {
-            b.iter(|| {
-                k = (k + 1) % views.len();
-                sorter.sort(&views[k], &mut list);
-                black_box(list.len())
-            })
-        });
-    }
+    time_sorters(&mut group, &mut sorters, &views);
     group.finish();
 }
 

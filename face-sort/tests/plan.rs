@@ -287,29 +287,7 @@ fn cull_only_orders_group_by_brush() {
 
 /// A mesh of axis-aligned boxes, outward faces.
 fn boxes(list: &[(DVec3, DVec3)]) -> Geometry {
-    let mut positions = Vec::new();
-    let mut faces: Vec<Vec<u32>> = Vec::new();
-    for &(lo, hi) in list {
-        let b = positions.len() as u32;
-        for k in 0..8u32 {
-            positions.push(DVec3::new(
-                if k & 1 == 0 { lo.x } else { hi.x },
-                if k & 2 == 0 { lo.y } else { hi.y },
-                if k & 4 == 0 { lo.z } else { hi.z },
-            ));
-        }
-        for f in [
-            [0, 2, 3, 1],
-            [4, 5, 7, 6],
-            [0, 4, 6, 2],
-            [1, 3, 7, 5],
-            [0, 1, 5, 4],
-            [2, 6, 7, 3],
-        ] {
-            faces.push(f.iter().map(|i| b + i).collect());
-        }
-    }
-    Geometry::new(&PolygonMesh::new(positions, faces).unwrap()).unwrap()
+    Geometry::new(&test_support::models::boxes(list)).unwrap()
 }
 
 #[test]
