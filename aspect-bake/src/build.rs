@@ -3,7 +3,7 @@
 use std::f64::consts::TAU;
 use std::time::Instant;
 
-use face_sort::DrawList;
+use face_sort::{DrawList, View};
 use rayon::prelude::*;
 
 use crate::BakeError;
@@ -93,19 +93,24 @@ fn domain_range(start: f64, end: f64, periodic: bool) -> AngleRange {
     }
 }
 
-/// Draw lists (polygon indices) of the live sorter at each angle, on all cores.
-pub(crate) fn lists_at(source: &dyn EventSource, spin: &Spin, thetas: &[f64]) -> Vec<Vec<u32>> {
+/// Draw lists (polygon indices) of the live sorter at each point, `view` placing the point, on
+/// all cores (one sorter per chunk of points).
+pub(crate) fn lists_at<T: Sync>(
+    source: &dyn EventSource,
+    points: &[T],
+    view: impl Fn(&T) -> View + Sync,
+) -> Vec<Vec<u32>> {
     let threads = rayon::current_num_threads().max(1);
-    let chunk = thetas.len().div_ceil(threads * 4).max(1);
-    thetas
+    let chunk = points.len().div_ceil(threads * 4).max(1);
+    points
         .par_chunks(chunk)
         .flat_map_iter(|chunk| {
             let mut sorter = source.sorter();
             let mut list = DrawList::new();
             chunk
                 .iter()
-                .map(|&t| {
-                    sorter.sort(&spin.view_at(t), &mut list);
+                .map(|point| {
+                    sorter.sort(&view(point), &mut list);
                     list.items().iter().map(|i| i.polygon).collect::<Vec<u32>>()
                 })
                 .collect::<Vec<_>>()
@@ -256,7 +261,10 @@ pub fn bake(
     let total = intervals.len();
     for (b, block) in intervals.chunks(BLOCK).enumerate() {
         let mids: Vec<f64> = block.iter().map(|i| 0.5 * (i.0 + i.1)).collect();
-        for (i, order) in block.iter().zip(lists_at(source, spin, &mids)) {
+        for (i, order) in block
+            .iter()
+            .zip(lists_at(source, &mids, |&t| spin.view_at(t)))
+        {
             merger.push(i.0, i.1, order, i.2);
         }
         merger.check((b * BLOCK + block.len()).min(total), total)?;
@@ -305,7 +313,7 @@ pub fn bake_sampled(
         (end - start) / (samples - 1) as f64
     };
     let thetas: Vec<f64> = (0..samples).map(|k| start + step * k as f64).collect();
-    let lists = lists_at(source, spin, &thetas);
+    let lists = lists_at(source, &thetas, |&t| spin.view_at(t));
     // Brackets (left angle, right angle) whose lists differ, the last wrapping round.
     let pairs = if periodic { samples } else { samples - 1 };
     let changes: Vec<usize> = (0..pairs)

@@ -77,10 +77,10 @@ fn push_roots(f: EventFn, start: f64, end: f64, out: &mut Vec<Event>) {
     }
 }
 
-fn budget(out: &[Event], max_events: usize) -> Result<(), BakeError> {
-    if out.len() > max_events {
+fn budget(events: usize, max_events: usize) -> Result<(), BakeError> {
+    if events > max_events {
         Err(BakeError::EventBudget {
-            events: out.len(),
+            events,
             budget: max_events,
         })
     } else {
@@ -139,7 +139,7 @@ impl EventSource for BspSource {
     ) -> Result<(), BakeError> {
         for row in self.tree.node_rows().iter().chain(self.tree.piece_rows()) {
             push_roots(spin.facing_fn(row), start, end, out);
-            budget(out, max_events)?;
+            budget(out.len(), max_events)?;
         }
         Ok(())
     }
@@ -147,18 +147,7 @@ impl EventSource for BspSource {
     fn rows(&self, max_events: usize, out: &mut Vec<Row>) -> Result<(), BakeError> {
         let rows = self.tree.node_rows().iter().chain(self.tree.piece_rows());
         out.extend(rows.map(|&r| Row::Facing(r)));
-        row_budget(out.len(), max_events)
-    }
-}
-
-fn row_budget(rows: usize, max_events: usize) -> Result<(), BakeError> {
-    if rows > max_events {
-        Err(BakeError::EventBudget {
-            events: rows,
-            budget: max_events,
-        })
-    } else {
-        Ok(())
+        budget(out.len(), max_events)
     }
 }
 
@@ -188,6 +177,17 @@ impl CentroidSource {
             pieces,
             centroids,
         }
+    }
+}
+
+impl CentroidSource {
+    /// Each piece's facing row: [`Centroid`] culls with `n·(e − v₀)` (perspective) or `n·d`,
+    /// the row `[n, n·v₀]`.
+    fn facing_rows(&self) -> impl Iterator<Item = [f64; 4]> + '_ {
+        self.pieces.planes().iter().enumerate().map(|(i, plane)| {
+            let n = plane.normal();
+            [n.x, n.y, n.z, n.dot(self.pieces.corners(i)[0])]
+        })
     }
 }
 
@@ -226,12 +226,8 @@ impl EventSource for CentroidSource {
     /// does not carry over to two parameters), so the budget matters.
     fn rows(&self, max_events: usize, out: &mut Vec<Row>) -> Result<(), BakeError> {
         let n = self.centroids.len();
-        row_budget(n + n * n.saturating_sub(1) / 2, max_events)?;
-        for (i, plane) in self.pieces.planes().iter().enumerate() {
-            let normal = plane.normal();
-            let offset = normal.dot(self.pieces.corners(i)[0]);
-            out.push(Row::Facing([normal.x, normal.y, normal.z, offset]));
-        }
+        budget(n + n * n.saturating_sub(1) / 2, max_events)?;
+        out.extend(self.facing_rows().map(Row::Facing));
         for (i, &gi) in self.centroids.iter().enumerate() {
             for &gj in &self.centroids[i + 1..] {
                 out.push(Row::Depth(gi - gj));
@@ -256,13 +252,10 @@ impl EventSource for CentroidSource {
         max_events: usize,
         out: &mut Vec<Event>,
     ) -> Result<(), BakeError> {
-        // Facing: Centroid culls with n·(e − v₀) (perspective) or n·d: the row [n, n·v₀].
-        for (i, plane) in self.pieces.planes().iter().enumerate() {
-            let n = plane.normal();
-            let row = [n.x, n.y, n.z, n.dot(self.pieces.corners(i)[0])];
+        for row in self.facing_rows() {
             push_roots(spin.facing_fn(&row), start, end, out);
         }
-        budget(out, max_events)?;
+        budget(out.len(), max_events)?;
         let keys: Vec<EventFn> = self.centroids.iter().map(|&c| spin.depth_fn(c)).collect();
         let slope = |f: &EventFn, t: f64| -f.a * t.sin() + f.b * t.cos();
         let mut order: Vec<u32> = (0..keys.len() as u32).collect();
@@ -299,7 +292,7 @@ impl EventSource for CentroidSource {
                 theta: t.max(start),
                 function: g,
             });
-            budget(out, max_events)?;
+            budget(out.len(), max_events)?;
             let first = p.saturating_sub(1);
             for (q, st) in stamp
                 .iter_mut()

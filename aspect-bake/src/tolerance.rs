@@ -32,3 +32,20 @@ pub const VERIFY_SIDE_RAD: f64 = 1e-7;
 /// at one point, or crossings closer than their rounding), and then the two sides differ.
 /// Too large only costs cells, never exactness.
 pub const CONTINUE_GAP_RAD: f64 = 1e-9;
+
+/// Two-axis bakes: a crossing of two event circles whose direction has `|cos yaw|` at most this
+/// lies on the chart's pole lines (yaw ±90°), where every pitch gives the same view: it cuts
+/// no pitch slab.
+pub const CHART_POLE: f64 = 1e-12;
+
+/// Two-axis bakes: circles whose normals make an angle with a sine at most this are parallel
+/// and have no isolated crossing.
+pub const PARALLEL_SIN: f64 = 1e-12;
+
+/// Two-axis `verify_two_axes`: a gap narrower than this (radians of yaw) at the sampled pitch
+/// is not sampled inside (no f64 angle there is clearly between its curves).
+pub const VERIFY_MIN_GAP_RAD: f64 = 1e-9;
+
+/// Two-axis `verify_two_axes`: a curve whose neighbouring gaps leave less than this (radians
+/// of yaw) on either side is not checked for a sign change.
+pub const VERIFY_MIN_SIDE_RAD: f64 = 1e-12;

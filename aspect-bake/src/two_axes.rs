@@ -43,12 +43,15 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 use crate::BakeError;
+use crate::build::lists_at;
 use crate::cells::cell_bytes;
 use crate::event::{EventFn, Roots, reduce};
 use crate::source::EventSource;
 use crate::tolerance::{
-    CONTINUE_GAP_RAD, IDENTICALLY_ZERO, ROOT_NOISE, SAME_ROOT_RAD, VERIFY_SIDE_RAD,
+    CHART_POLE, CONTINUE_GAP_RAD, IDENTICALLY_ZERO, PARALLEL_SIN, ROOT_NOISE, SAME_ROOT_RAD,
+    VERIFY_MIN_GAP_RAD, VERIFY_MIN_SIDE_RAD, VERIFY_SIDE_RAD,
 };
+use crate::verify::unit;
 
 /// The event set `{d : normal·d = offset}` of one sign condition, `d` the unit vector toward
 /// the viewer in centred model space.
@@ -264,11 +267,13 @@ impl Bake2 {
             &self.circles[curve.circle as usize],
             self.domain.roll.to_radians(),
         );
-        let y = curve_yaw(&chart, curve.down, pitch, window.0);
-        // The turn nearest the curve's yaw at the slab's middle, kept in the window.
-        let mid = slab.mid_yaws[k].to_radians();
-        let y = y + TAU * ((mid - y) / TAU).round();
-        y.clamp(window.0, window.0 + TAU)
+        curve_yaw_near(
+            &chart,
+            curve.down,
+            pitch,
+            window.0,
+            slab.mid_yaws[k].to_radians(),
+        )
     }
 
     /// The yaw bounds (radians) of cell `k` of slab `s` at pitch `p` (radians).
@@ -369,6 +374,15 @@ fn curve_yaw(chart: &Chart, down: bool, p: f64, start: f64) -> f64 {
     reduce(t, start)
 }
 
+/// [`curve_yaw`] on the turn nearest `near` (the curve's yaw at its slab's middle), kept in
+/// the window `[start, start + 2π]`: inside a slab a curve never crosses the window's start,
+/// but near it rounding can put a root a period away.
+fn curve_yaw_near(chart: &Chart, down: bool, p: f64, start: f64, near: f64) -> f64 {
+    let y = curve_yaw(chart, down, p, start);
+    let y = y + TAU * ((near - y) / TAU).round();
+    y.clamp(start, start + TAU)
+}
+
 /// The pitches (radians) where the structure of the yaw curves changes, in `[lo, hi)`, each
 /// with whether a circle is zero along the whole pitch line there (then no cell continues
 /// across it: a horizontal line of the chart is part of that circle's event set).
@@ -433,7 +447,7 @@ fn critical_pitches(
                 let (u, v) = (d.x * sr + d.y * cr, d.z);
                 let y = sy.asin();
                 let cy = y.cos();
-                if cy <= 1e-12 {
+                if cy <= CHART_POLE {
                     // Looking along the yaw axis: every pitch is the same view.
                     continue;
                 }
@@ -466,7 +480,7 @@ fn circle_crossings(a: &EventCircle, b: &EventCircle) -> Vec<DVec3> {
     let cross = n1.cross(n2);
     let cc = cross.length_squared();
     let scale = n1.length_squared() * n2.length_squared();
-    if cc <= 1e-24 * scale {
+    if cc <= PARALLEL_SIN * PARALLEL_SIN * scale {
         return Vec::new();
     }
     // d = α n₁ + β n₂ + γ n₁×n₂ with the Gram system for α, β.
@@ -481,20 +495,6 @@ fn circle_crossings(a: &EventCircle, b: &EventCircle) -> Vec<DVec3> {
     }
     let gamma = (rest / cc).sqrt();
     vec![base + cross * gamma, base - cross * gamma]
-}
-
-/// Draw lists of the live sorter at `(yaw, pitch)` pairs (radians), on all cores.
-fn lists_at(source: &dyn EventSource, domain: &YawPitch, points: &[(f64, f64)]) -> Vec<Vec<u32>> {
-    points
-        .par_iter()
-        .map_init(
-            || (source.sorter(), DrawList::new()),
-            |(sorter, list), &(y, p)| {
-                sorter.sort(&domain.view_at(y.to_degrees(), p.to_degrees()), list);
-                list.items().iter().map(|i| i.polygon).collect()
-            },
-        )
-        .collect()
 }
 
 /// The exact two-axis bake of `source` over `domain`: slabs between consecutive critical
@@ -584,8 +584,8 @@ pub fn bake_two_axes(
             // point there may have a third curve pass through the point (a crossing of three).
             let open = || {
                 let at = |c: Option<(f64, Curve)>, end: f64| {
-                    c.map_or(end, |(_, c)| {
-                        curve_yaw(&charts[c.circle as usize], c.down, *lo, ylo)
+                    c.map_or(end, |(mid, c)| {
+                        curve_yaw_near(&charts[c.circle as usize], c.down, *lo, ylo, mid)
                     })
                 };
                 at(right, yhi) - at(left, ylo) > CONTINUE_GAP_RAD
@@ -609,7 +609,8 @@ pub fn bake_two_axes(
     let mut lists: Vec<Vec<u32>> = Vec::with_capacity(total_cells);
     let mut bytes = 0;
     for block in points.chunks(4096) {
-        for list in lists_at(source, domain, block) {
+        let view = |&(y, p): &(f64, f64)| domain.view_at(y.to_degrees(), p.to_degrees());
+        for list in lists_at(source, block, view) {
             bytes += cell_bytes(list.len());
             lists.push(list);
         }
@@ -724,15 +725,6 @@ pub enum Verify2Error {
     },
 }
 
-/// SplitMix64, as in `verify`.
-fn unit(state: &mut u64) -> f64 {
-    *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-    let mut z = *state;
-    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-    ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-}
-
 /// Checks a two-axis bake against the live sorter, cell by cell: at `per_cell` random points
 /// strictly inside each cell (a random gap of the cell, a random pitch of its slab, then a
 /// random yaw between the gap's curves at that pitch) the live list is the cell's and
@@ -779,7 +771,7 @@ pub fn verify_two_axes(
                 for _ in 0..per_cell {
                     let (s, k, p) = pick(&mut state);
                     let (lo, hi) = bake.gap(s, k, p);
-                    if hi - lo <= 1e-9 {
+                    if hi - lo <= VERIFY_MIN_GAP_RAD {
                         continue;
                     }
                     let y = lo + (hi - lo) * (0.001 + 0.998 * unit(&mut state));
@@ -806,7 +798,7 @@ pub fn verify_two_axes(
                 let (lo, y) = bake.gap(s, k, p);
                 let (_, hi) = bake.gap(s, k + 1, p);
                 let side = VERIFY_SIDE_RAD.min(0.25 * (y - lo).min(hi - y));
-                if side <= 1e-12 {
+                if side <= VERIFY_MIN_SIDE_RAD {
                     return Ok(report);
                 }
                 let chart = Chart::of(&bake.circles[curve.circle as usize], roll);

@@ -46,7 +46,7 @@ pub enum VerifyError {
 }
 
 /// SplitMix64: a few random interior angles per cell, reproducible from a seed.
-fn unit(state: &mut u64) -> f64 {
+pub(crate) fn unit(state: &mut u64) -> f64 {
     *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
     let mut z = *state;
     z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);

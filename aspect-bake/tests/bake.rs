@@ -2,18 +2,16 @@
 //! scenes and axes (proptest), real models orthographic and perspective, the sampling
 //! baseline's misses, budgets, the delta timeline and the serde round trip.
 
+mod common;
+
 use aspect_bake::{
     Axis, Bake, BakeError, BakeOptions, BspSource, CentroidSource, Delta, EventSource, Spin, bake,
     bake_sampled, verify,
 };
+use common::{close_pair, cube};
 use face_sort::glam::DVec3;
-use face_sort::{Geometry, PolygonMesh, View, strategies};
+use face_sort::{Geometry, View, strategies};
 use proptest::prelude::*;
-
-fn cube() -> Geometry {
-    let mesh = test_support::models::boxes(&[(DVec3::ZERO, DVec3::ONE)]);
-    Geometry::new(&mesh).unwrap()
-}
 
 fn yaw_spin(geometry: &Geometry, persp: Option<f64>) -> Spin {
     let mut view = View::fit(&geometry.bounds(), 256, 256);
@@ -101,29 +99,6 @@ fn cell_at_finds_the_cell_and_the_delta_timeline_rebuilds_every_list() {
     let sizes = b.sizes();
     assert!(sizes.delta_bytes > 0 && sizes.full_bytes > 0);
     assert_eq!(Delta::between(&[1, 2], &[2, 1]).bytes(), 16 + 8);
-}
-
-/// Two small squares facing almost the same way, their normals 0.1° apart: their facing
-/// events lie 0.1° apart, closer than the 0.5° step of 720 samples.
-fn close_pair() -> Geometry {
-    let square = |centre: DVec3, normal: DVec3| {
-        let (u, v) = normal.any_orthonormal_pair();
-        [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
-            .map(|(a, b)| centre + (u * a + v * b) * 0.2)
-            .to_vec()
-    };
-    let tilt = |deg: f64| {
-        let t = f64::to_radians(deg);
-        DVec3::new(t.sin(), 0.0, t.cos())
-    };
-    // Facing n·(−sin θ, 0, cos θ) = cos(θ + a) for n = (sin a, 0, cos a): zero at 90° − a.
-    let quads = [
-        square(DVec3::new(-1.0, 0.0, 0.0), tilt(-0.2)),
-        square(DVec3::new(1.0, 0.0, 0.0), tilt(-0.3)),
-    ];
-    let positions: Vec<DVec3> = quads.iter().flatten().copied().collect();
-    let faces = vec![vec![0, 1, 2, 3], vec![4, 5, 6, 7]];
-    Geometry::new(&PolygonMesh::new(positions, faces).unwrap()).unwrap()
 }
 
 #[test]
@@ -280,22 +255,8 @@ fn axis_strategy() -> impl Strategy<Value = (u8, DVec3)> {
     )
 }
 
-fn cases() -> u32 {
-    std::env::var("PROPTEST_CASES")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(24)
-}
-
 proptest! {
-    #![proptest_config(ProptestConfig {
-        cases: cases(),
-        // The scene strategies reject generated polygons whose corners are too close; the
-        // allowance grows with the cases so that PROPTEST_CASES can be raised at will.
-        max_local_rejects: 65_536.max(cases().saturating_mul(16)),
-        max_global_rejects: 1_024.max(cases().saturating_mul(4)),
-        ..ProptestConfig::default()
-    })]
+    #![proptest_config(common::proptest_config(24))]
 
     #[test]
     fn generated_scenes_and_axes_verify(

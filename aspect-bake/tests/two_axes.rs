@@ -1,18 +1,16 @@
 //! Two-axis bakes (yaw × pitch) checked against the live sorters: the unit cube, the book,
 //! generated scenes (proptest), what a sampled grid misses, budgets.
 
+mod common;
+
 use aspect_bake::{
     Bake2, Bake2Options, BakeError, BspSource, CentroidSource, EventSource, YawPitch,
     bake_two_axes, verify_two_axes,
 };
+use common::{close_pair, cube};
 use face_sort::glam::DVec3;
 use face_sort::{Geometry, PolygonMesh, View, strategies};
 use proptest::prelude::*;
-
-fn cube() -> Geometry {
-    let mesh = test_support::models::boxes(&[(DVec3::ZERO, DVec3::ONE)]);
-    Geometry::new(&mesh).unwrap()
-}
 
 fn domain(g: &Geometry, persp: Option<f64>, pitch: (f64, f64)) -> YawPitch {
     let mut template = View::fit(&g.bounds(), 256, 256);
@@ -104,28 +102,6 @@ fn spot_control_mesh_verifies_under_bsp() {
     );
 }
 
-/// Two small squares whose normals differ by 0.1°: their edge-on curves run 0.1° apart, a
-/// strip that a 1° sampling grid does not see.
-fn close_pair() -> Geometry {
-    let square = |centre: DVec3, normal: DVec3| {
-        let (u, v) = normal.any_orthonormal_pair();
-        [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
-            .map(|(a, b)| centre + (u * a + v * b) * 0.2)
-            .to_vec()
-    };
-    let tilt = |deg: f64| {
-        let t = f64::to_radians(deg);
-        DVec3::new(t.sin(), 0.0, t.cos())
-    };
-    let quads = [
-        square(DVec3::new(-1.0, 0.0, 0.0), tilt(-0.2)),
-        square(DVec3::new(1.0, 0.0, 0.0), tilt(-0.3)),
-    ];
-    let positions: Vec<DVec3> = quads.iter().flatten().copied().collect();
-    let faces = vec![vec![0, 1, 2, 3], vec![4, 5, 6, 7]];
-    Geometry::new(&PolygonMesh::new(positions, faces).unwrap()).unwrap()
-}
-
 #[test]
 fn a_sampled_grid_misses_thin_cells_the_exact_bake_has() {
     let g = close_pair();
@@ -167,22 +143,8 @@ fn budgets_and_errors() {
     ));
 }
 
-fn cases() -> u32 {
-    std::env::var("PROPTEST_CASES")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(12)
-}
-
 proptest! {
-    #![proptest_config(ProptestConfig {
-        cases: cases(),
-        // The scene strategies reject generated polygons whose corners are too close; the
-        // allowance grows with the cases so that PROPTEST_CASES can be raised at will.
-        max_local_rejects: 65_536.max(cases().saturating_mul(16)),
-        max_global_rejects: 1_024.max(cases().saturating_mul(4)),
-        ..ProptestConfig::default()
-    })]
+    #![proptest_config(common::proptest_config(12))]
 
     #[test]
     fn generated_scenes_verify_over_two_axes(
