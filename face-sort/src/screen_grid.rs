@@ -97,7 +97,7 @@ impl ScreenGrid {
         }
         let query = self.query;
         let stamp = &mut self.stamp;
-        for row in self.cells.chunks_mut(self.columns).take(y1 + 1).skip(y0) {
+        for row in self.cells.chunks(self.columns).take(y1 + 1).skip(y0) {
             for cell in &row[x0..=x1] {
                 for &item in cell {
                     if live(item) {

@@ -191,18 +191,8 @@ pub fn run(args: &BakeArgs) -> Result<ExitCode> {
         return run_two_axes(args, &prepared, range);
     }
     let (geometry, spin) = (&prepared.geometry, &prepared.spin);
-    let bsp;
-    let centroid;
-    let source: &dyn EventSource = match args.sorter {
-        SorterChoice::Bsp => {
-            bsp = BspSource::of(geometry);
-            &bsp
-        }
-        SorterChoice::Centroid => {
-            centroid = CentroidSource::of(geometry);
-            &centroid
-        }
-    };
+    let source = event_source(args.sorter, geometry);
+    let source = source.as_ref();
     let bar = progress::bar(0, "bake");
     let report = |p: Progress| {
         bar.set_length(p.total as u64);
@@ -282,6 +272,14 @@ impl BakeArgs {
             AxisChoice::Pitch => "pitch",
             AxisChoice::Roll => "roll",
         }
+    }
+}
+
+/// The event source of `--sorter`.
+fn event_source(sorter: SorterChoice, geometry: &Geometry) -> Box<dyn EventSource> {
+    match sorter {
+        SorterChoice::Bsp => Box::new(BspSource::of(geometry)),
+        SorterChoice::Centroid => Box::new(CentroidSource::of(geometry)),
     }
 }
 
@@ -386,18 +384,8 @@ fn run_two_axes(args: &BakeArgs, prepared: &Prepared, pitch: (f64, f64)) -> Resu
         bail!("--pitch-range does not write --html or bake --method sampled");
     }
     let geometry = &prepared.geometry;
-    let bsp;
-    let centroid;
-    let source: &dyn EventSource = match args.sorter {
-        SorterChoice::Bsp => {
-            bsp = BspSource::of(geometry);
-            &bsp
-        }
-        SorterChoice::Centroid => {
-            centroid = CentroidSource::of(geometry);
-            &centroid
-        }
-    };
+    let source = event_source(args.sorter, geometry);
+    let source = source.as_ref();
     let domain = aspect_bake::YawPitch {
         template: *prepared.spin.template(),
         yaw: None,

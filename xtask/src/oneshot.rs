@@ -7,6 +7,8 @@ use std::time::Instant;
 use anyhow::{Context, Result, bail};
 use clap::Args;
 
+use crate::bench::median;
+
 /// Options of `oneshot`.
 #[derive(Debug, Args)]
 pub struct OneshotArgs {
@@ -50,16 +52,8 @@ pub fn run(args: &OneshotArgs) -> Result<ExitCode> {
             }
         }
     }
-    let median = |v: &mut Vec<f64>| {
-        v.sort_by(f64::total_cmp);
-        let n = v.len();
-        if n % 2 == 1 {
-            v[n / 2]
-        } else {
-            0.5 * (v[n / 2 - 1] + v[n / 2])
-        }
-    };
-    let (auto, centroid) = (median(&mut times[0]), median(&mut times[1]));
+    let [auto, centroid] = &mut times;
+    let (auto, centroid) = (median(auto), median(centroid));
     println!(
         "{}: auto {auto:.1} ms, centroid {centroid:.1} ms, ratio {:.3} (medians of {} alternating runs after 2 warm-up runs, {})",
         args.model.display(),

@@ -21,6 +21,7 @@ use serde::Serialize;
 use crate::progress;
 use crate::scenes::{self, Scene};
 pub use report::{Row, ScalingRow};
+pub(crate) use timing::median;
 
 /// Options of `bench`.
 #[derive(Debug, Args)]

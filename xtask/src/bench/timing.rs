@@ -44,7 +44,7 @@ pub(super) fn time_frames(budget: &Budget, times: &mut Vec<f64>, mut frame: impl
 }
 
 /// The median (NaN for none); sorts `values`.
-pub(super) fn median(values: &mut [f64]) -> f64 {
+pub(crate) fn median(values: &mut [f64]) -> f64 {
     if values.is_empty() {
         return f64::NAN;
     }
