@@ -277,15 +277,8 @@ proptest! {
             },
         };
         let spin = Spin::new(base, axis).unwrap();
-        let bsp;
-        let cen;
-        let source: &dyn EventSource = if centroid {
-            cen = CentroidSource::of(&g);
-            &cen
-        } else {
-            bsp = BspSource::of(&g);
-            &bsp
-        };
+        let source = common::source(&g, centroid);
+        let source = source.as_ref();
         let b = bake(source, &spin, &BakeOptions::DEFAULT).unwrap();
         let report = verify(&b, source, &spin, 3, 17);
         prop_assert!(report.is_ok(), "{:?}", report);

@@ -161,15 +161,8 @@ proptest! {
             pitch: (pitch_lo, pitch_lo + span),
             roll: spec.roll,
         };
-        let bsp;
-        let cen;
-        let source: &dyn EventSource = if centroid {
-            cen = CentroidSource::of(&g);
-            &cen
-        } else {
-            bsp = BspSource::of(&g);
-            &bsp
-        };
+        let source = common::source(&g, centroid);
+        let source = source.as_ref();
         let b = bake_two_axes(source, &d, &Bake2Options::default()).unwrap();
         let report = verify_two_axes(&b, source, 2, 23);
         prop_assert!(report.is_ok(), "{:?}", report);

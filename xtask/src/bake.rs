@@ -232,16 +232,13 @@ pub fn run(args: &BakeArgs) -> Result<ExitCode> {
     }
     let mut code = ExitCode::SUCCESS;
     if args.verify {
-        match aspect_bake::verify(&baked, source, spin, 4, 0x5EED) {
-            Ok(r) => line.push_str(&format!(
-                ", verified ({} interior angles, {} breakpoints)",
+        let checked = aspect_bake::verify(&baked, source, spin, 4, 0x5EED).map(|r| {
+            format!(
+                "{} interior angles, {} breakpoints",
                 r.interior_checks, r.breakpoint_checks
-            )),
-            Err(e) => {
-                line.push_str(&format!(", VERIFY FAILED: {e}"));
-                code = ExitCode::FAILURE;
-            }
-        }
+            )
+        });
+        code = report_verify(&mut line, checked);
     }
     if let Some(path) = &args.json {
         let value = bake_json(&baked, &prepared, missed);
@@ -271,6 +268,20 @@ impl BakeArgs {
             AxisChoice::Yaw => "yaw",
             AxisChoice::Pitch => "pitch",
             AxisChoice::Roll => "roll",
+        }
+    }
+}
+
+/// Appends `--verify`'s outcome to the summary line; failure when the bake disagrees.
+fn report_verify(line: &mut String, checked: Result<String, impl std::fmt::Display>) -> ExitCode {
+    match checked {
+        Ok(what) => {
+            line.push_str(&format!(", verified ({what})"));
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            line.push_str(&format!(", VERIFY FAILED: {e}"));
+            ExitCode::FAILURE
         }
     }
 }
@@ -414,16 +425,13 @@ fn run_two_axes(args: &BakeArgs, prepared: &Prepared, pitch: (f64, f64)) -> Resu
     );
     let mut code = ExitCode::SUCCESS;
     if args.verify {
-        match aspect_bake::verify_two_axes(&baked, source, 2, 0x5EED) {
-            Ok(r) => line.push_str(&format!(
-                ", verified ({} interior points, {} curves)",
+        let checked = aspect_bake::verify_two_axes(&baked, source, 2, 0x5EED).map(|r| {
+            format!(
+                "{} interior points, {} curves",
                 r.interior_checks, r.curve_checks
-            )),
-            Err(e) => {
-                line.push_str(&format!(", VERIFY FAILED: {e}"));
-                code = ExitCode::FAILURE;
-            }
-        }
+            )
+        });
+        code = report_verify(&mut line, checked);
     }
     if let Some(path) = &args.json {
         let items = item_values(&baked.polygons, prepared);

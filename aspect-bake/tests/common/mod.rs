@@ -3,6 +3,7 @@
 
 #![allow(dead_code)] // each test file uses its part
 
+use aspect_bake::{BspSource, CentroidSource, EventSource};
 use face_sort::glam::DVec3;
 use face_sort::{Geometry, PolygonMesh};
 use proptest::test_runner::Config;
@@ -34,6 +35,15 @@ pub fn close_pair() -> Geometry {
     let positions: Vec<DVec3> = quads.iter().flatten().copied().collect();
     let faces = vec![vec![0, 1, 2, 3], vec![4, 5, 6, 7]];
     Geometry::new(&PolygonMesh::new(positions, faces).unwrap()).unwrap()
+}
+
+/// The centroid's event source when `centroid`, else the BSP's.
+pub fn source(geometry: &Geometry, centroid: bool) -> Box<dyn EventSource> {
+    if centroid {
+        Box::new(CentroidSource::of(geometry))
+    } else {
+        Box::new(BspSource::of(geometry))
+    }
 }
 
 /// `PROPTEST_CASES` cases (`default` when unset), with a reject allowance that grows with
