@@ -1,13 +1,20 @@
-//! 400 frames of one sorter on spot (a 0.9° yaw spin), for instruction-count profiles:
+//! 400 frames of one sorter on one model (default spot), turning the yaw by `STEP` degrees per
+//! frame (default 0.9; `STEP=0` repeats one view), for instruction-count profiles and for
+//! per-frame wall time:
 //!
 //! ```sh
 //! cargo build --release -p face-sort --example profile_frame
 //! valgrind --tool=callgrind target/release/examples/profile_frame bsp
 //! valgrind --tool=callgrind target/release/examples/profile_frame centroid
+//! STEP=0.02 MODEL=suzanne/suzanne.obj target/release/examples/profile_frame centroid
 //! ```
+//!
+//! `MODEL` is a path under `assets/models`.
 
 #[path = "../tests/common/mod.rs"]
 mod common;
+
+use std::time::Instant;
 
 use face_sort::{DrawList, Geometry, SorterKind, View};
 
@@ -17,18 +24,29 @@ fn main() {
         eprintln!("unknown sorter {name}: centroid, topological, newell or bsp");
         std::process::exit(2);
     };
-    let mesh = common::read_obj(&common::asset("keenan-crane/spot/spot_quadrangulated.obj"));
+    let model = std::env::var("MODEL")
+        .unwrap_or_else(|_| "keenan-crane/spot/spot_quadrangulated.obj".into());
+    let step: f64 = match std::env::var("STEP") {
+        Ok(step) => step.parse().unwrap_or_else(|_| {
+            eprintln!("STEP must be a number of degrees, not {step:?}");
+            std::process::exit(2);
+        }),
+        Err(_) => 0.9,
+    };
+    let mesh = common::read_obj(&common::asset(&model));
     let geometry = Geometry::new(&mesh).expect("valid model");
     let mut sorter = kind.build(&geometry);
     let base = View::fit(&geometry.bounds(), 512, 512);
+    let views: Vec<View> = (0..400)
+        .map(|k| base.with_yaw_pitch_roll(f64::from(k) * step, 20.0, 0.0))
+        .collect();
     let mut list = DrawList::new();
     let mut drawn = 0;
-    for k in 0..400 {
-        sorter.sort(
-            &base.with_yaw_pitch_roll(f64::from(k) * 0.9, 20.0, 0.0),
-            &mut list,
-        );
+    let start = Instant::now();
+    for view in &views {
+        sorter.sort(view, &mut list);
         drawn += list.len();
     }
-    println!("{name}: {drawn} items over 400 frames");
+    let per_frame = start.elapsed().as_secs_f64() * 1e6 / views.len() as f64;
+    println!("{name}: {drawn} items over 400 frames, {per_frame:.2} µs per frame");
 }

@@ -140,6 +140,8 @@ fn bench_smoke_writes_the_reports() {
         "pixel_error",
         "violations",
         "frame_ratio_vs_centroid",
+        "same_view_us",
+        "same_view_ratio_vs_centroid",
     ] {
         assert!(rows[0].get(key).is_some(), "missing {key}");
     }

@@ -21,10 +21,16 @@ pub struct Row {
     pub pieces: usize,
     /// Views measured.
     pub views: usize,
-    /// Median per-frame cull+order time over every timed frame, microseconds.
+    /// Median per-frame cull+order time over every timed frame, microseconds; each timed
+    /// frame turns the view a little (a new view every frame, as in an animation).
     pub frame_us: f64,
     /// `frame_us` ÷ the centroid sorter's on the same scene and projection.
     pub frame_ratio_vs_centroid: f64,
+    /// The same, every timed frame repeating its view (which favours sorts: the CPU learns
+    /// their branches).
+    pub same_view_us: f64,
+    /// `same_view_us` ÷ the centroid sorter's.
+    pub same_view_ratio_vs_centroid: f64,
     /// Build time of cached state, milliseconds (0 for sorters without any).
     pub build_ms: f64,
     /// Mean number of items drawn per view (fragments included).
@@ -63,6 +69,14 @@ pub(super) fn fmt_error(e: Option<f64>) -> String {
     }
 }
 
+fn fmt_ratio(ratio: f64) -> String {
+    if ratio.is_finite() {
+        format!("{ratio:.2}")
+    } else {
+        "—".to_owned()
+    }
+}
+
 pub(super) fn fmt_time(us: f64) -> String {
     if us.is_nan() {
         "—".to_owned()
@@ -86,7 +100,10 @@ pub(super) fn markdown(
         s,
         "Command: `{command}` (release build). Per scene and projection, every view of the set \
          (yaws × pitches) is measured; **frame** is the median cull+order time over all timed \
-         frames, **× centroid** its ratio to the centroid baseline in the same run, **build** \
+         frames, each of which turns the view by a further 0.02° of yaw (a new view every \
+         frame, as in an animation), **× centroid** its ratio to the centroid baseline in the \
+         same run, **same view** and its **× centroid** the same with every timed frame \
+         repeating its view (which favours sorts: the CPU learns their branches), **build** \
          the one-time cost, **items** the mean polygons drawn per view (fragments included), \
          **items × centroid** their ratio to the centroid's (both rounded as shown), \
          **pixel error** wrong ÷ unambiguous pixels against the z-buffer truth at \
@@ -95,11 +112,11 @@ pub(super) fn markdown(
     );
     let _ = writeln!(
         s,
-        "| scene | proj | faces | pieces | sorter | frame | × centroid | build | items | items × centroid | pixel error | violations | note |"
+        "| scene | proj | faces | pieces | sorter | frame | × centroid | same view | × centroid | build | items | items × centroid | pixel error | violations | note |"
     );
     let _ = writeln!(
         s,
-        "|---|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---|"
+        "|---|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|"
     );
     // Items as the table shows them (formatting rounds half to even), so that the ratio
     // read back from the table is the one written.
@@ -116,18 +133,16 @@ pub(super) fn markdown(
         };
         let _ = writeln!(
             s,
-            "| {} | {} | {} | {} | {} | {} | {} | {:.2} ms | {:.0} | {} | {} | {} | {} |",
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.2} ms | {:.0} | {} | {} | {} | {} |",
             r.scene,
             r.projection,
             r.faces,
             r.pieces,
             r.sorter,
             fmt_time(r.frame_us),
-            if r.frame_ratio_vs_centroid.is_finite() {
-                format!("{:.2}", r.frame_ratio_vs_centroid)
-            } else {
-                "—".to_owned()
-            },
+            fmt_ratio(r.frame_ratio_vs_centroid),
+            fmt_time(r.same_view_us),
+            fmt_ratio(r.same_view_ratio_vs_centroid),
             r.build_ms,
             r.fragments,
             items_ratio,
@@ -143,7 +158,7 @@ pub(super) fn markdown(
     if !scaling.is_empty() {
         let _ = writeln!(
             s,
-            "\n## Scaling (generated planar torus, orthographic 512², two views)\n\n**build / face** is the build time shown divided by the faces (every face of the planar torus is one piece). Chart (log-log, written by the runs that measure the series): [bench-scaling.svg](bench-scaling.svg).\n\n| faces | sorter | build | build / face | frame | items | note |\n|---:|---|---:|---:|---:|---:|---|"
+            "\n## Scaling (generated planar torus, orthographic 512², two views)\n\n**build / face** is the build time shown divided by the faces (every face of the planar torus is one piece); **frame** repeats each view. Chart (log-log, written by the runs that measure the series): [bench-scaling.svg](bench-scaling.svg).\n\n| faces | sorter | build | build / face | frame | items | note |\n|---:|---|---:|---:|---:|---:|---|"
         );
         for r in scaling {
             let build = r.build_ms.map(|b| format!("{b:.1}"));
@@ -343,6 +358,8 @@ fn parse_row(cells: &[&str]) -> Result<Row> {
         sorter,
         frame,
         ratio,
+        same_view,
+        same_view_ratio,
         build,
         items,
         _items_ratio,
@@ -351,7 +368,14 @@ fn parse_row(cells: &[&str]) -> Result<Row> {
         note,
     ] = cells
     else {
-        bail!("{} cells, the table has 13", cells.len());
+        bail!("{} cells, the table has 15", cells.len());
+    };
+    let parse_ratio = |cell: &str| -> Result<f64> {
+        Ok(if cell == "—" {
+            f64::NAN
+        } else {
+            cell.parse()?
+        })
     };
     let build = build
         .strip_suffix(" ms")
@@ -364,11 +388,9 @@ fn parse_row(cells: &[&str]) -> Result<Row> {
         pieces: pieces.parse()?,
         views: usize::from(*violations != "—"),
         frame_us: parse_time(frame)?,
-        frame_ratio_vs_centroid: if *ratio == "—" {
-            f64::NAN
-        } else {
-            ratio.parse()?
-        },
+        frame_ratio_vs_centroid: parse_ratio(ratio)?,
+        same_view_us: parse_time(same_view)?,
+        same_view_ratio_vs_centroid: parse_ratio(same_view_ratio)?,
         build_ms: build.parse()?,
         fragments: items.parse()?,
         pixel_error: parse_error(error)?,
@@ -421,6 +443,8 @@ mod tests {
             views: 16,
             frame_us,
             frame_ratio_vs_centroid: frame_us / 75.7,
+            same_view_us: frame_us * 0.8,
+            same_view_ratio_vs_centroid: frame_us / 75.7,
             build_ms: 0.05,
             fragments: 2927.0,
             pixel_error: error,

@@ -89,7 +89,7 @@ pub(super) fn scaling_size(
         let mut times = Vec::new();
         let mut items = 0;
         for view in &views {
-            time_frames(&frame_budget, &mut times, || sorter.sort(view, &mut list));
+            time_frames(&frame_budget, &mut times, |_| sorter.sort(view, &mut list));
             items += list.len();
         }
         out.push(ScalingRow {
@@ -121,7 +121,7 @@ pub(super) fn scaling_size(
         let mut times = Vec::new();
         let mut items = 0;
         for view in &views {
-            time_frames(&frame_budget, &mut times, || {
+            time_frames(&frame_budget, &mut times, |_| {
                 items = peer.frame(view);
             });
         }

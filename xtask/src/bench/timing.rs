@@ -11,33 +11,57 @@ use crate::peer::PlaneSplitPeer;
 use crate::raster;
 use crate::scenes::Scene;
 
-/// The bench's views of a scene: `yaws` yaws (offset from the axes) × pitches.
-fn views(geometry: &Geometry, scene: &Scene, budget: &Budget, size: u32, persp: bool) -> Vec<View> {
+/// Yaw turned between two timed frames, degrees: each timed frame orders a view no frame
+/// ordered just before, as an animation does (a slow orbit: 1.2° per second at 60 frames per
+/// second). Timing one view over and over instead lets the CPU's branch predictors learn a
+/// sort's comparisons: the centroid sort of spot ran 45 µs per frame on a repeated view and
+/// 62–67 µs on views turning by 0.01–7.3° per frame (`STEP=0 MODEL=… cargo run --release -p
+/// face-sort --example profile_frame centroid`), while the BSP's time did not move.
+const TURN_PER_FRAME_DEG: f64 = 0.02;
+
+/// The bench's views of a scene: `yaws` yaws (offset from the axes) × pitches, each with the
+/// views its timed frames turn through (the first is the view itself).
+fn views(
+    geometry: &Geometry,
+    scene: &Scene,
+    budget: &Budget,
+    size: u32,
+    persp: bool,
+) -> Vec<Vec<View>> {
+    let view = |yaw: f64, pitch: f64| {
+        let view = View::fit(&geometry.bounds(), size, size)
+            .with_yaw_pitch_roll(yaw, pitch, 0.0)
+            .with_cull(scene.cull);
+        if persp {
+            view.with_perspective(f64::from(size))
+        } else {
+            view
+        }
+    };
     let mut out = Vec::new();
     for k in 0..budget.yaws {
         let yaw = 15.0 + 360.0 * k as f64 / budget.yaws as f64;
         for &pitch in budget.pitches {
-            let mut view = View::fit(&geometry.bounds(), size, size)
-                .with_yaw_pitch_roll(yaw, pitch, 0.0)
-                .with_cull(scene.cull);
-            if persp {
-                view = view.with_perspective(f64::from(size));
-            }
-            out.push(view);
+            out.push(
+                (0..=budget.frames)
+                    .map(|i| view(yaw + TURN_PER_FRAME_DEG * i as f64, pitch))
+                    .collect(),
+            );
         }
     }
     out
 }
 
-/// Times `frame` until `budget.frames` frames or `budget.per_view` elapsed (at least 3).
-pub(super) fn time_frames(budget: &Budget, times: &mut Vec<f64>, mut frame: impl FnMut()) {
-    frame(); // warm-up: first-frame allocations are not the steady state.
+/// Times `frame(i)` for `i` = 1, 2, … until `budget.frames` frames or `budget.per_view`
+/// elapsed (at least 3), after one untimed `frame(0)`.
+pub(super) fn time_frames(budget: &Budget, times: &mut Vec<f64>, mut frame: impl FnMut(usize)) {
+    frame(0); // warm-up: first-frame allocations are not the steady state.
     let start = Instant::now();
-    for i in 0..budget.frames {
+    for i in 1..=budget.frames {
         let t = Instant::now();
-        frame();
+        frame(i);
         times.push(t.elapsed().as_secs_f64() * 1e6);
-        if i >= 2 && start.elapsed() >= budget.per_view {
+        if i >= 3 && start.elapsed() >= budget.per_view {
             break;
         }
     }
@@ -60,7 +84,9 @@ pub(crate) fn median(values: &mut [f64]) -> f64 {
 /// Accumulates one (sorter, projection) over views.
 #[derive(Default)]
 struct Acc {
+    /// Frames turning the view ([`TURN_PER_FRAME_DEG`]), and frames repeating it.
     times: Vec<f64>,
+    same_view_times: Vec<f64>,
     items: usize,
     wrong: u64,
     unambiguous: u64,
@@ -99,6 +125,8 @@ impl Acc {
             views: self.views,
             frame_us: median(&mut self.times),
             frame_ratio_vs_centroid: f64::NAN,
+            same_view_us: median(&mut self.same_view_times),
+            same_view_ratio_vs_centroid: f64::NAN,
             build_ms,
             fragments: self.items as f64 / self.views.max(1) as f64,
             pixel_error: self
@@ -131,14 +159,23 @@ pub(super) fn bench_scene(scene: &Scene, budget: &Budget, resolution: u32) -> Re
         let views = views(&geometry, scene, budget, resolution, persp);
         let mut accs: Vec<Acc> = sorters.iter().map(|_| Acc::default()).collect();
         let mut peer_acc = Acc::default();
-        for view in &views {
+        for turning in &views {
+            let view = &turning[0];
             let truth = raster::truth(view, &geometry);
             for ((sorter, _), acc) in sorters.iter_mut().zip(accs.iter_mut()) {
-                time_frames(budget, &mut acc.times, || sorter.sort(view, &mut list));
+                time_frames(budget, &mut acc.times, |i| {
+                    sorter.sort(&turning[i], &mut list)
+                });
+                time_frames(budget, &mut acc.same_view_times, |_| {
+                    sorter.sort(view, &mut list);
+                });
                 acc.check(view, &list, truth.as_ref());
             }
             if run_peer {
-                time_frames(budget, &mut peer_acc.times, || {
+                time_frames(budget, &mut peer_acc.times, |i| {
+                    peer.frame(&turning[i]);
+                });
+                time_frames(budget, &mut peer_acc.same_view_times, |_| {
                     peer.frame(view);
                 });
                 peer.write_draw_list(view, &mut list);
@@ -168,12 +205,12 @@ pub(super) fn bench_scene(scene: &Scene, budget: &Budget, resolution: u32) -> Re
             );
             scene_rows.push(row);
         }
-        let base = scene_rows
-            .iter()
-            .find(|r| r.sorter == "centroid")
-            .map_or(f64::NAN, |r| r.frame_us);
+        let centroid = scene_rows.iter().find(|r| r.sorter == "centroid");
+        let (base, same_view_base) =
+            centroid.map_or((f64::NAN, f64::NAN), |r| (r.frame_us, r.same_view_us));
         for row in &mut scene_rows {
             row.frame_ratio_vs_centroid = row.frame_us / base;
+            row.same_view_ratio_vs_centroid = row.same_view_us / same_view_base;
         }
         rows.extend(scene_rows);
     }
