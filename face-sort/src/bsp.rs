@@ -5,6 +5,7 @@ use std::time::Instant;
 
 use glam::DVec3;
 
+use crate::fragment_merge::{FragmentMerge, MergeInput};
 use crate::plane::{Plane, Side};
 use crate::polygon::split_polygon;
 use crate::tolerance::PLANE_SIDE;
@@ -118,6 +119,15 @@ pub struct BspTree {
     spheres: Vec<[f64; 4]>,
     build_ms: f64,
     depth: usize,
+    /// Fragments proper: `fragments` holds them first, then a whole copy of every split
+    /// piece, which [`FragmentMerge`] may draw instead of its fragments.
+    fragment_count: usize,
+    /// Per piece, the index of its whole copy in `fragments` (`NONE` when it is not split),
+    /// and its number of fragments.
+    whole: Vec<u32>,
+    fragments_of: Vec<u32>,
+    /// The model's diagonal `L`, for the merge's overlap tolerance.
+    diagonal: f64,
 }
 
 /// Per node, a sphere around its subtree's fragments: the subtree's box, bottom up (children
@@ -258,7 +268,26 @@ impl BspTree {
             .map(|i| builder.fragments.face(i))
             .collect();
         let spheres = subtree_spheres(&builder.nodes, &builder.fragments);
+        let fragment_count = builder.fragments.len();
+        let mut whole = vec![NONE; pieces.len()];
+        let mut fragments_of = vec![0u32; pieces.len()];
+        for &p in &builder.fragment_piece {
+            fragments_of[p as usize] += 1;
+        }
+        for (p, &count) in fragments_of.iter().enumerate() {
+            if count > 1 {
+                whole[p] =
+                    builder
+                        .fragments
+                        .push(pieces.corners(p), pieces.face(p), *pieces.plane(p));
+            }
+        }
         Ok(BspTree {
+            fragment_count,
+            whole,
+            fragments_of,
+            // Every build's tolerance is `PLANE_SIDE · L` (Newell's local trees too).
+            diagonal: tolerance / PLANE_SIDE,
             piece_rows,
             fragment_face,
             plane_rows,
@@ -291,7 +320,7 @@ impl BspTree {
     /// Number of fragments (pieces, some cut in parts).
     #[must_use]
     pub fn fragment_count(&self) -> usize {
-        self.fragments.len()
+        self.fragment_count
     }
 
     /// Number of nodes.
@@ -327,6 +356,7 @@ impl BspTree {
             + self.nodes.capacity() * size_of::<Node>()
             + self.fragments.heap_bytes()
             + self.fragment_piece.capacity() * 4
+            + (self.whole.capacity() + self.fragments_of.capacity()) * 4
     }
 }
 
@@ -579,6 +609,8 @@ pub struct Bsp {
     /// Every fragment's item in paint order, drawn or not (the branch-free compaction's
     /// target, one slot per fragment, kept between frames); the drawn prefix is copied out.
     scratch: Vec<crate::DrawItem>,
+    /// The merge of split pieces drawn whole (`None`: fragments as the tree cut them).
+    merge: Option<Box<FragmentMerge>>,
 }
 
 impl Bsp {
@@ -623,7 +655,8 @@ impl Bsp {
     pub fn from_tree(tree: Arc<BspTree>) -> Self {
         Bsp {
             base: vec![0; tree.nodes.len()],
-            order: vec![0; tree.fragments.len()],
+            order: vec![0; tree.fragment_count],
+            merge: None,
             piece_drawn: vec![false; tree.pieces.len()],
             piece_facing: vec![false; tree.pieces.len()],
             viewer_in_front: vec![false; tree.nodes.len()],
@@ -634,7 +667,7 @@ impl Bsp {
                     polygon: 0,
                     face: 0,
                 };
-                tree.fragments.len()
+                tree.fragment_count
             ],
             tree,
         }
@@ -645,11 +678,28 @@ impl Bsp {
     pub fn tree(&self) -> &Arc<BspTree> {
         &self.tree
     }
+
+    /// This sorter drawing each split piece whole, per view, where nothing drawn between its
+    /// fragments overlaps it on screen (`merge` true), or as the tree cut it (false, the
+    /// default). Exact either way. Merged lists hold about as many items as the centroid
+    /// sort's (spot: 1.05× instead of 1.86×) for a per-view cost of several BSP traversals:
+    /// every sink pays per item, so exporters (SVG, PDF, HTML, plotters) gain; an animation
+    /// whose sink is cheap per item may not. Only [`FaceSorter::sort`] merges (it needs the
+    /// projection), not [`Bsp::sort_culled`]. The name becomes `"bsp-merged"`.
+    #[must_use]
+    pub fn with_fragment_merge(mut self, merge: bool) -> Self {
+        self.merge = merge.then(|| Box::new(FragmentMerge::new(&self.tree.pieces)));
+        self
+    }
 }
 
 impl FaceSorter for Bsp {
     fn name(&self) -> &'static str {
-        "bsp"
+        if self.merge.is_some() {
+            "bsp-merged"
+        } else {
+            "bsp"
+        }
     }
 
     fn sort(&mut self, view: &View, out: &mut DrawList) {
@@ -659,13 +709,14 @@ impl FaceSorter for Bsp {
     fn stats(&self) -> SorterStats {
         SorterStats {
             build_ms: self.tree.build_ms,
-            polygons: self.tree.fragments.len(),
+            polygons: self.tree.fragment_count,
             cached_bytes: self.tree.heap_bytes()
                 + self.base.capacity() * 4
                 + self.order.capacity() * 4
                 + self.piece_drawn.capacity()
                 + self.piece_facing.capacity()
-                + self.viewer_in_front.capacity(),
+                + self.viewer_in_front.capacity()
+                + self.merge.as_ref().map_or(0, |m| m.heap_bytes()),
             depth: self.tree.depth,
             fallbacks: 0,
         }
@@ -686,6 +737,7 @@ impl Bsp {
     /// it: a model entirely in view pays nothing for the test).
     fn sort_in_view(&mut self, cull: &crate::CullTest, frustum: Option<&View>, out: &mut DrawList) {
         let tree = &*self.tree;
+        let frustum_view = frustum;
         // Frustum culling of subtrees, when a good part of the model may lie outside the
         // image: the model's projected bound covers more than twice the image, or reaches the
         // near plane. (A fitted view, whose bound just overlaps the border, would pay a pass
@@ -851,6 +903,19 @@ impl Bsp {
                 drawn += usize::from(self.piece_drawn[tree.fragment_piece[f] as usize]);
             }
         }
-        out.items_mut().extend_from_slice(&items[..drawn]);
+        match (&mut self.merge, frustum_view) {
+            (Some(merge), Some(view)) => {
+                let input = MergeInput {
+                    pieces: &tree.pieces,
+                    whole: &tree.whole,
+                    fragment_count: &tree.fragments_of,
+                    fragment_piece: &tree.fragment_piece,
+                    facing: &self.piece_facing,
+                    diagonal: tree.diagonal,
+                };
+                merge.merge(view, &input, &items[..drawn], out.items_mut());
+            }
+            _ => out.items_mut().extend_from_slice(&items[..drawn]),
+        }
     }
 }

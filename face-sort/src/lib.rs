@@ -37,6 +37,7 @@ mod centroid;
 pub mod colours;
 mod draw_list;
 mod error;
+mod fragment_merge;
 pub mod generate;
 mod geometry;
 mod mesh;
@@ -88,19 +89,23 @@ pub enum SorterKind {
     Newell,
     /// [`Bsp`].
     Bsp,
+    /// [`Bsp`] drawing split pieces whole where nothing between their fragments overlaps
+    /// them ([`Bsp::with_fragment_merge`]).
+    BspMerged,
 }
 
 impl SorterKind {
     /// All sorters, baseline first.
-    pub const ALL: [SorterKind; 4] = [
+    pub const ALL: [SorterKind; 5] = [
         SorterKind::Centroid,
         SorterKind::Topological,
         SorterKind::Newell,
         SorterKind::Bsp,
+        SorterKind::BspMerged,
     ];
 
     /// The exact ones.
-    pub const EXACT: [SorterKind; 2] = [SorterKind::Newell, SorterKind::Bsp];
+    pub const EXACT: [SorterKind; 3] = [SorterKind::Newell, SorterKind::Bsp, SorterKind::BspMerged];
 
     /// Lower-case name.
     #[must_use]
@@ -110,6 +115,7 @@ impl SorterKind {
             SorterKind::Topological => "topological",
             SorterKind::Newell => "newell",
             SorterKind::Bsp => "bsp",
+            SorterKind::BspMerged => "bsp-merged",
         }
     }
 
@@ -127,6 +133,7 @@ impl SorterKind {
             SorterKind::Topological => Box::new(Topological::new(geometry)),
             SorterKind::Newell => Box::new(Newell::new(geometry)),
             SorterKind::Bsp => Box::new(Bsp::new(geometry)),
+            SorterKind::BspMerged => Box::new(Bsp::new(geometry).with_fragment_merge(true)),
         }
     }
 }

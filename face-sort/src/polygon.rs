@@ -61,6 +61,28 @@ pub fn signed_area_2d(corners: &[DVec2]) -> f64 {
     sum * 0.5
 }
 
+/// Whether the line through an edge of one convex polygon (either winding) has that polygon
+/// on one side (and some of it strictly) and the other polygon on the other, touching allowed: then their intersection
+/// has no area. Each line is checked against both polygons, so that a line badly defined (a
+/// zero or tiny edge, repeated corners) never separates what overlaps. A cheap first test
+/// before [`clip_convex_2d`].
+#[must_use]
+pub(crate) fn separated_2d(a: &[DVec2], b: &[DVec2]) -> bool {
+    let outside = |p: &[DVec2], q: &[DVec2]| {
+        let orientation = signed_area_2d(p).signum();
+        let n = p.len();
+        (0..n).any(|i| {
+            let (from, edge) = (p[i], p[(i + 1) % n] - p[i]);
+            let side = |x: DVec2| edge.perp_dot(x - from) * orientation;
+            // `p` strictly inside somewhere: a zero edge (repeated corner) separates nothing.
+            q.iter().all(|&x| side(x) <= 0.0)
+                && p.iter().all(|&x| side(x) >= 0.0)
+                && p.iter().any(|&x| side(x) > 0.0)
+        })
+    };
+    outside(a, b) || outside(b, a)
+}
+
 /// Clips the convex polygon `subject` by the convex polygon `clip` (either winding),
 /// writing the intersection to `out` (cleared first). `scratch` is a reusable buffer.
 pub fn clip_convex_2d(
@@ -145,6 +167,27 @@ impl Box2 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_repeated_corner_separates_nothing() {
+        let square = |x: f64| {
+            [
+                DVec2::new(x, 0.0),
+                DVec2::new(x + 2.0, 0.0),
+                DVec2::new(x + 2.0, 2.0),
+                DVec2::new(x, 2.0),
+            ]
+        };
+        let (a, b) = (square(0.0), square(1.0));
+        assert!(!separated_2d(&a, &b));
+        // The first corner repeated: its zero edge has every point on its line.
+        let repeated = [a[0], a[0], a[1], a[2], a[3]];
+        assert!(!separated_2d(&repeated, &b));
+        assert!(!separated_2d(&b, &repeated));
+        // Apart, or only touching along an edge: separated.
+        assert!(separated_2d(&repeated, &square(2.0)));
+        assert!(separated_2d(&a, &square(3.0)));
+    }
 
     #[test]
     fn split_square_in_half() {

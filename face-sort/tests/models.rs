@@ -87,3 +87,33 @@ fn bsp_fragments_and_build_are_reported() {
         stats.build_ms
     );
 }
+
+/// Split pieces drawn whole: on spot (fans of triangles sharing their edges bit for bit) the
+/// merged BSP draws at most 1.2 times the centroid sort's items (the target; 1.15
+/// measured over these views, some with back faces drawn and the eye close) where the plain
+/// BSP draws about 1.9 times, and stays exact (the oracle above covers `bsp-merged` on every
+/// model).
+#[test]
+fn merged_bsp_draws_about_as_many_items_as_the_centroid_sort_on_spot() {
+    let geometry = Geometry::new(&read_obj(&asset(MODELS[0]))).unwrap();
+    let mut counts = [0usize; 3];
+    let mut list = DrawList::new();
+    for view in views(&geometry) {
+        for (count, kind) in
+            counts
+                .iter_mut()
+                .zip([SorterKind::Centroid, SorterKind::Bsp, SorterKind::BspMerged])
+        {
+            kind.build(&geometry).sort(&view, &mut list);
+            *count += list.len();
+        }
+    }
+    let [centroid, plain, merged] = counts.map(|c| c as f64);
+    eprintln!(
+        "spot, 9 views: centroid {centroid}, bsp {plain} ({:.2}x), bsp-merged {merged} ({:.2}x)",
+        plain / centroid,
+        merged / centroid
+    );
+    assert!(plain > 1.5 * centroid);
+    assert!(merged <= 1.2 * centroid);
+}

@@ -157,6 +157,9 @@ pub enum SorterChoice {
     Newell,
     /// BSP tree built once (exact).
     Bsp,
+    /// BSP, split pieces drawn whole where nothing between their fragments overlaps them
+    /// (exact, fewer items).
+    BspMerged,
 }
 
 /// `--cull`.
@@ -311,6 +314,7 @@ fn plan(choice: SorterChoice, geometry: &Geometry) -> (Box<dyn FaceSorter>, Stri
         SorterChoice::Topological => asked(SorterKind::Topological),
         SorterChoice::Newell => asked(SorterKind::Newell),
         SorterChoice::Bsp => asked(SorterKind::Bsp),
+        SorterChoice::BspMerged => asked(SorterKind::BspMerged),
     }
 }
 

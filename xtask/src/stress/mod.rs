@@ -236,11 +236,11 @@ impl CaseReport {
 }
 
 /// The sorters run on every case: the exact ones, then the reference.
-const SORTERS: [&str; 4] = ["bsp", "newell", "auto", "centroid"];
+const SORTERS: [&str; 5] = ["bsp", "bsp-merged", "newell", "auto", "centroid"];
 
 /// The sorters whose failures fail the run.
 fn is_exact(name: &str) -> bool {
-    matches!(name, "bsp" | "newell" | "auto")
+    matches!(name, "bsp" | "bsp-merged" | "newell" | "auto")
 }
 
 /// Builds a sorter by its name in [`SORTERS`].

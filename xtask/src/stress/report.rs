@@ -10,18 +10,20 @@ pub fn markdown(reports: &[CaseReport], size: u32) -> String {
         "One row per case, figures summed over its views ({size}×{size} px). Per sorter: \
          order violations (oracle) / wrong unambiguous pixels against the z-buffer truth / \
          fragments beyond the pieces (BSP: the tree's; Newell: most cut in one frame) / \
-         milliseconds (build + sorts). **px** unambiguous pixels judged per sorter; \
+         milliseconds (build + sorts); **bsp-merged** (split pieces drawn whole where nothing \
+         between their fragments overlaps them): violations / wrong pixels / most items drawn \
+         in one view / milliseconds. **px** unambiguous pixels judged per sorter; \
          **NaN, fb** non-finite coordinates in the exact sorters' draw lists and frames \
          where they gave up exactness. `auto` is the planner (in brackets what it ran: \
          `cull-only` on meshes in convex position); `centroid` is the inexact reference.\n"
     );
     let _ = writeln!(
         s,
-        "| group | case | pieces | views | px | bsp | newell | auto | centroid | NaN, fb | status |"
+        "| group | case | pieces | views | px | bsp | bsp-merged | newell | auto | centroid | NaN, fb | status |"
     );
     let _ = writeln!(
         s,
-        "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |"
+        "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |"
     );
     for r in reports {
         let head = format!(
@@ -32,11 +34,11 @@ pub fn markdown(reports: &[CaseReport], size: u32) -> String {
             r.views.len()
         );
         if let Some(f) = &r.failure {
-            let _ = writeln!(s, "{head} | | | | | | **FAIL**: {f} |");
+            let _ = writeln!(s, "{head} | | | | | | | **FAIL**: {f} |");
             continue;
         }
         if let Some(e) = &r.error {
-            let _ = writeln!(s, "{head} | | | | | | typed error: {e} |");
+            let _ = writeln!(s, "{head} | | | | | | | typed error: {e} |");
             continue;
         }
         let pixels = r.outcomes.first().map_or(0, |o| o.unambiguous_pixels);
@@ -47,6 +49,10 @@ pub fn markdown(reports: &[CaseReport], size: u32) -> String {
                 .map_or_else(String::new, |o| match &o.panic {
                     Some(_) => "panic".to_owned(),
                     None if name == "centroid" => format!("{} / {}", o.violations, o.wrong_pixels),
+                    None if name == "bsp-merged" => format!(
+                        "{} / {} / {} / {:.1}",
+                        o.violations, o.wrong_pixels, o.drawn_max, o.ms
+                    ),
                     None if name == "auto" => format!(
                         "{} / {} ({})",
                         o.violations,
@@ -71,8 +77,9 @@ pub fn markdown(reports: &[CaseReport], size: u32) -> String {
         };
         let _ = writeln!(
             s,
-            "{head} {pixels} | {} | {} | {} | {} | {nan}, {fb} | {status} |",
+            "{head} {pixels} | {} | {} | {} | {} | {} | {nan}, {fb} | {status} |",
             cell("bsp"),
+            cell("bsp-merged"),
             cell("newell"),
             cell("auto"),
             cell("centroid"),
