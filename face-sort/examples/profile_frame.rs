@@ -21,7 +21,7 @@ use face_sort::{DrawList, Geometry, SorterKind, View};
 fn main() {
     let name = std::env::args().nth(1).unwrap_or_else(|| "bsp".into());
     let Some(kind) = SorterKind::from_name(&name) else {
-        eprintln!("unknown sorter {name}: centroid, topological, newell or bsp");
+        eprintln!("unknown sorter {name}: centroid, topological, newell, bsp or bsp-merged");
         std::process::exit(2);
     };
     let model = std::env::var("MODEL")

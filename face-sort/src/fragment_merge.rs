@@ -31,7 +31,7 @@
 
 use glam::DVec2;
 
-use crate::polygon::{Box2, clip_convex_2d, separated_2d, signed_area_2d};
+use crate::polygon::{Box2, clip_convex_2d, edges, separated_2d, signed_area_2d};
 use crate::polygon_set::PolygonSet;
 use crate::screen_grid::ScreenGrid;
 use crate::tolerance::OVERLAP_AREA;
@@ -59,10 +59,7 @@ impl EdgeNeighbours {
     /// Finds every piece's neighbours.
     pub(crate) fn new(pieces: &PolygonSet) -> Self {
         let key = |a: glam::DVec3, b: glam::DVec3| [a.x, a.y, a.z, b.x, b.y, b.z].map(f64::to_bits);
-        let edges_of = |p: usize| {
-            let corners = pieces.corners(p);
-            (0..corners.len()).map(move |k| (corners[k], corners[(k + 1) % corners.len()]))
-        };
+        let edges_of = |p: usize| edges(pieces.corners(p));
         // Directed edge → (piece, how many pieces have it).
         let mut directed = std::collections::HashMap::new();
         for p in 0..pieces.len() {
@@ -313,9 +310,8 @@ impl FragmentMerge {
             if area.abs() > largest {
                 (largest, orientation) = (area.abs(), area.signum());
             }
-            for (k, &q) in across.iter().enumerate() {
+            for ((a, b), &q) in edges(corners).zip(across) {
                 if on_boundary(q) {
-                    let (a, b) = (corners[k], corners[(k + 1) % corners.len()]);
                     // The orientation factor is applied below, once it is known.
                     self.edges.push(BoundaryEdge {
                         a,
@@ -563,10 +559,9 @@ fn cells_of(
 /// of it strictly) and the segment on the other. Each line is checked against both, so that a line badly defined (a
 /// zero or tiny edge, repeated corners) never separates what meets.
 fn enters(corners: &[DVec2], area: f64, a: DVec2, b: DVec2) -> bool {
-    let n = corners.len();
     let orientation = area.signum();
-    for i in 0..n {
-        let (from, edge) = (corners[i], corners[(i + 1) % n] - corners[i]);
+    for (from, to) in edges(corners) {
+        let edge = to - from;
         let side = |x: DVec2| edge.perp_dot(x - from) * orientation;
         // The polygon strictly inside somewhere: a zero edge (repeated corner) separates nothing.
         if side(a) <= 0.0

@@ -119,11 +119,8 @@ impl Plane {
 /// polygon). Counter-clockwise corners seen from the tip give a normal toward the viewer.
 #[must_use]
 pub fn newell_normal(corners: &[DVec3]) -> DVec3 {
-    let n = corners.len();
     let mut normal = DVec3::ZERO;
-    for i in 0..n {
-        let a = corners[i];
-        let b = corners[(i + 1) % n];
+    for (a, b) in crate::polygon::edges(corners) {
         normal.x += (a.y - b.y) * (a.z + b.z);
         normal.y += (a.z - b.z) * (a.x + b.x);
         normal.z += (a.x - b.x) * (a.y + b.y);

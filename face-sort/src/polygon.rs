@@ -5,6 +5,14 @@ use glam::{DVec2, DVec3};
 
 use crate::plane::Plane;
 
+/// A polygon's edges: each corner with the next, the last with the first (no `%` per corner:
+/// an integer division costs tens of cycles).
+#[inline]
+pub(crate) fn edges<T: Copy>(corners: &[T]) -> impl Iterator<Item = (T, T)> + '_ {
+    let next = corners.iter().skip(1).chain(corners.first());
+    corners.iter().copied().zip(next.copied())
+}
+
 /// Splits a convex polygon by `plane`, appending the part in front to `front` and the part
 /// behind to `back` (each left empty when that side has no part). Corners within `tolerance`
 /// of the plane belong to both parts, so the two parts share the cut edge exactly.
@@ -15,12 +23,9 @@ pub fn split_polygon(
     front: &mut Vec<DVec3>,
     back: &mut Vec<DVec3>,
 ) {
-    let n = corners.len();
     let start_front = front.len();
     let start_back = back.len();
-    for i in 0..n {
-        let a = corners[i];
-        let b = corners[(i + 1) % n];
+    for (a, b) in edges(corners) {
         let da = plane.signed_distance(a);
         let db = plane.signed_distance(b);
         let a_on = da.abs() <= tolerance;
@@ -51,14 +56,7 @@ pub fn split_polygon(
 /// Twice the signed area of a 2D polygon (positive when counter-clockwise, y up).
 #[must_use]
 pub fn signed_area_2d(corners: &[DVec2]) -> f64 {
-    let n = corners.len();
-    let mut sum = 0.0;
-    for i in 0..n {
-        let a = corners[i];
-        let b = corners[(i + 1) % n];
-        sum += a.perp_dot(b);
-    }
-    sum * 0.5
+    edges(corners).map(|(a, b)| a.perp_dot(b)).sum::<f64>() * 0.5
 }
 
 /// Whether the line through an edge of one convex polygon (either winding) has that polygon
@@ -70,9 +68,8 @@ pub fn signed_area_2d(corners: &[DVec2]) -> f64 {
 pub(crate) fn separated_2d(a: &[DVec2], b: &[DVec2]) -> bool {
     let outside = |p: &[DVec2], q: &[DVec2]| {
         let orientation = signed_area_2d(p).signum();
-        let n = p.len();
-        (0..n).any(|i| {
-            let (from, edge) = (p[i], p[(i + 1) % n] - p[i]);
+        edges(p).any(|(from, to)| {
+            let edge = to - from;
             let side = |x: DVec2| edge.perp_dot(x - from) * orientation;
             // `p` strictly inside somewhere: a zero edge (repeated corner) separates nothing.
             q.iter().all(|&x| side(x) <= 0.0)
@@ -98,21 +95,15 @@ pub fn clip_convex_2d(
         out.clear();
         return;
     }
-    let m = clip.len();
-    for i in 0..m {
+    for (a, b) in edges(clip) {
         if out.is_empty() {
             return;
         }
-        let a = clip[i];
-        let b = clip[(i + 1) % m];
         let edge = b - a;
         std::mem::swap(out, scratch);
         out.clear();
         let inside = |p: DVec2| edge.perp_dot(p - a) * orientation;
-        let k = scratch.len();
-        for j in 0..k {
-            let p = scratch[j];
-            let q = scratch[(j + 1) % k];
+        for (p, q) in edges(scratch) {
             let dp = inside(p);
             let dq = inside(q);
             if dp >= 0.0 {
