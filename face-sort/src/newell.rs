@@ -46,6 +46,8 @@ pub struct Newell {
     /// Work items not yet drawn, sorted by `z_min` (farthest first); drawn or split items are
     /// flagged `done` and skipped.
     remaining: Vec<u32>,
+    /// `remaining` with its depths, for the frame's sort.
+    keyed: Vec<(f64, u32)>,
     done: Vec<bool>,
     /// Items moved ahead of the one that was waiting below them (top = next candidate).
     stack: Vec<u32>,
@@ -88,6 +90,7 @@ impl Newell {
             pieces: Arc::clone(geometry.pieces()),
             work: Vec::new(),
             remaining: Vec::new(),
+            keyed: Vec::new(),
             done: Vec::new(),
             stack: Vec::new(),
             projected: Vec::new(),
@@ -340,9 +343,15 @@ impl FaceSorter for Newell {
                 }
             }
         }
+        // Sorted by key pairs (no lookup per comparison); ties keep the work order.
         let work = &self.work;
-        self.remaining
-            .sort_unstable_by(|&a, &b| work[a as usize].z_min.total_cmp(&work[b as usize].z_min));
+        self.keyed.clear();
+        self.keyed
+            .extend(self.remaining.iter().map(|&w| (work[w as usize].z_min, w)));
+        self.keyed
+            .sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        self.remaining.clear();
+        self.remaining.extend(self.keyed.iter().map(|&(_, w)| w));
         let mut all = Box2::EMPTY;
         for w in &self.work {
             if w.projected_len > 0 {
