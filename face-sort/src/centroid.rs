@@ -13,6 +13,53 @@ pub struct Centroid {
     pieces: Arc<PolygonSet>,
     centroids: Vec<DVec3>,
     keys: Vec<(f64, u32)>,
+    scratch: Vec<(f64, u32)>,
+}
+
+/// From this many drawn pieces on, the depths are radix sorted.
+const RADIX_MIN: usize = 1024;
+
+/// Sorts `keys` by depth (`f64::total_cmp`): a comparison sort for few keys, else a radix sort
+/// (8 bits a pass from the lowest; passes whose digit every key shares are skipped, which a
+/// model's depths, close in sign and exponent, make most of the high ones). On views that
+/// change every frame the radix sort took spot from 68 to 49 µs a frame, blub from 148 to
+/// 102 µs; under `RADIX_MIN` it was no faster (fandisk's 638 drawn pieces: 8.2 against 8.5 µs;
+/// `STEP=0.02 MODEL=… profile_frame centroid`).
+fn sort_by_depth(keys: &mut Vec<(f64, u32)>, scratch: &mut Vec<(f64, u32)>) {
+    if keys.len() < RADIX_MIN {
+        keys.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
+        return;
+    }
+    // An integer with `total_cmp`'s order.
+    let bits = |x: f64| {
+        let b = x.to_bits();
+        if b >> 63 == 1 { !b } else { b | (1 << 63) }
+    };
+    let mut counts = [[0u32; 256]; 8];
+    for k in keys.iter() {
+        let b = bits(k.0);
+        for (pass, c) in counts.iter_mut().enumerate() {
+            c[((b >> (8 * pass)) & 255) as usize] += 1;
+        }
+    }
+    scratch.clear();
+    scratch.resize(keys.len(), (0.0, 0));
+    let n = keys.len() as u32;
+    for (pass, c) in counts.iter_mut().enumerate() {
+        if c.contains(&n) {
+            continue;
+        }
+        let mut start = 0;
+        for count in c.iter_mut() {
+            (*count, start) = (start, start + *count);
+        }
+        for k in keys.iter() {
+            let digit = &mut c[((bits(k.0) >> (8 * pass)) & 255) as usize];
+            scratch[*digit as usize] = *k;
+            *digit += 1;
+        }
+        std::mem::swap(keys, scratch);
+    }
 }
 
 impl Centroid {
@@ -30,6 +77,7 @@ impl Centroid {
             pieces,
             centroids,
             keys: Vec::new(),
+            scratch: Vec::new(),
         }
     }
 }
@@ -49,7 +97,7 @@ impl FaceSorter for Centroid {
                     .push((depth_axis.dot(self.centroids[i]), i as u32));
             }
         }
-        self.keys.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
+        sort_by_depth(&mut self.keys, &mut self.scratch);
         out.begin(&self.pieces);
         for &(_, i) in &self.keys {
             out.push(i, self.pieces.face(i as usize));
@@ -60,8 +108,45 @@ impl FaceSorter for Centroid {
         SorterStats {
             polygons: self.pieces.len(),
             cached_bytes: self.centroids.capacity() * size_of::<DVec3>()
-                + self.keys.capacity() * size_of::<(f64, u32)>(),
+                + (self.keys.capacity() + self.scratch.capacity()) * size_of::<(f64, u32)>(),
             ..SorterStats::default()
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_radix_sort_orders_as_total_cmp() {
+        let mut state = 0x2545_f491_4f6c_dd1d_u64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state
+        };
+        for n in [RADIX_MIN, 3000] {
+            let mut keys: Vec<(f64, u32)> = (0..n as u32)
+                .map(|i| {
+                    let r = next();
+                    // Depths near one another, both signs, zeros of both signs, and ties.
+                    let d = match r % 7 {
+                        0 => 0.0,
+                        1 => -0.0,
+                        2 => -((r >> 8) as f64) * 1e-9,
+                        3 => 0.5,
+                        _ => ((r >> 11) as f64) * 1e-12 - 3.0,
+                    };
+                    (d, i)
+                })
+                .collect();
+            let mut want = keys.clone();
+            want.sort_by(|a, b| a.0.total_cmp(&b.0));
+            sort_by_depth(&mut keys, &mut Vec::new());
+            let depths = |v: &[(f64, u32)]| v.iter().map(|k| k.0.to_bits()).collect::<Vec<_>>();
+            assert_eq!(depths(&keys), depths(&want));
         }
     }
 }
