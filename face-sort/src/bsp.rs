@@ -98,6 +98,30 @@ struct Node {
     leaf: bool,
 }
 
+/// An inner node as the per-view pass reads it: its plane row and its layout, one cache line.
+#[derive(Clone, Copy, Debug)]
+struct Inner {
+    row: [f64; 4],
+    /// Its index in `nodes` (and `base`).
+    node: u32,
+    first: u32,
+    same: u32,
+    opposite: u32,
+    front_size: u32,
+    back_size: u32,
+    /// Child indices; `nodes.len()` (a spare `base` slot) when absent.
+    front_child: u32,
+    back_child: u32,
+}
+
+/// A convex leaf's fragments `first..first + count`, placed from its node's base.
+#[derive(Clone, Copy, Debug)]
+struct LeafRun {
+    node: u32,
+    first: u32,
+    count: u32,
+}
+
 /// The immutable tree, shareable between views and threads (`Arc`).
 #[derive(Debug)]
 pub struct BspTree {
@@ -119,6 +143,9 @@ pub struct BspTree {
     spheres: Vec<[f64; 4]>,
     build_ms: f64,
     depth: usize,
+    /// The inner nodes in pre-order and the leaves, for the per-view pass.
+    inners: Vec<Inner>,
+    leaf_runs: Vec<LeafRun>,
     /// Fragments proper: `fragments` holds them first, then a whole copy of every split
     /// piece, which [`FragmentMerge`] may draw instead of its fragments.
     fragment_count: usize,
@@ -282,7 +309,10 @@ impl BspTree {
                         .push(pieces.corners(p), pieces.face(p), *pieces.plane(p));
             }
         }
+        let (inners, leaf_runs) = pass_layout(&builder.nodes, &builder.planes);
         Ok(BspTree {
+            inners,
+            leaf_runs,
             fragment_count,
             whole,
             fragments_of,
@@ -357,7 +387,40 @@ impl BspTree {
             + self.fragments.heap_bytes()
             + self.fragment_piece.capacity() * 4
             + (self.whole.capacity() + self.fragments_of.capacity()) * 4
+            + self.inners.capacity() * size_of::<Inner>()
+            + self.leaf_runs.capacity() * size_of::<LeafRun>()
     }
+}
+
+/// The per-view pass's view of the nodes: inner nodes in pre-order with their planes, and the
+/// leaves.
+fn pass_layout(nodes: &[Node], planes: &[Plane]) -> (Vec<Inner>, Vec<LeafRun>) {
+    let absent = nodes.len() as u32;
+    let child = |c: u32| if c == NONE { absent } else { c };
+    let (mut inners, mut leaves) = (Vec::new(), Vec::new());
+    for (k, (node, plane)) in nodes.iter().zip(planes).enumerate() {
+        if node.leaf {
+            leaves.push(LeafRun {
+                node: k as u32,
+                first: node.first,
+                count: node.same,
+            });
+        } else {
+            let n = plane.normal();
+            inners.push(Inner {
+                row: [n.x, n.y, n.z, plane.offset()],
+                node: k as u32,
+                first: node.first,
+                same: node.same,
+                opposite: node.opposite,
+                front_size: node.front_size,
+                back_size: node.back_size,
+                front_child: child(node.front_child),
+                back_child: child(node.back_child),
+            });
+        }
+    }
+    (inners, leaves)
 }
 
 struct Builder {
@@ -601,7 +664,6 @@ pub struct Bsp {
     order: Vec<u32>,
     piece_drawn: Vec<bool>,
     piece_facing: Vec<bool>,
-    viewer_in_front: Vec<bool>,
     /// Per node, for the current frame: its subtree lies outside the image.
     node_culled: Vec<bool>,
     /// Per node, for the current frame: its subtree lies inside the image (no test below).
@@ -654,12 +716,11 @@ impl Bsp {
     #[must_use]
     pub fn from_tree(tree: Arc<BspTree>) -> Self {
         Bsp {
-            base: vec![0; tree.nodes.len()],
+            base: vec![0; tree.nodes.len() + 1],
             order: vec![0; tree.fragment_count],
             merge: None,
             piece_drawn: vec![false; tree.pieces.len()],
             piece_facing: vec![false; tree.pieces.len()],
-            viewer_in_front: vec![false; tree.nodes.len()],
             node_culled: vec![false; tree.nodes.len()],
             node_inside: vec![false; tree.nodes.len()],
             scratch: vec![
@@ -715,7 +776,6 @@ impl FaceSorter for Bsp {
                 + self.order.capacity() * 4
                 + self.piece_drawn.capacity()
                 + self.piece_facing.capacity()
-                + self.viewer_in_front.capacity()
                 + self.merge.as_ref().map_or(0, |m| m.heap_bytes()),
             depth: self.tree.depth,
             fallbacks: 0,
@@ -732,11 +792,85 @@ impl Bsp {
         self.sort_in_view(cull, None, out);
     }
 
+    /// Places every fragment in paint order: one pass over the inner nodes in pre-order, each
+    /// placing its children's subtrees and its own fragments (facing away from the viewer
+    /// first) from its subtree's start without a branch on the viewer's side, then one over
+    /// the leaves. With `FRUSTUM`, the fragments of culled nodes are marked [`CULLED`].
+    fn place<const FRUSTUM: bool>(&mut self, point: DVec3, w: f64) {
+        let tree = &*self.tree;
+        let (base, order, culled) = (
+            &mut self.base[..],
+            &mut self.order[..],
+            &self.node_culled[..],
+        );
+        let mark = |node: u32| {
+            if FRUSTUM {
+                u32::from(culled[node as usize]).wrapping_neg()
+            } else {
+                0
+            }
+        };
+        base[0] = 0;
+        for inner in &tree.inners {
+            let b = base[inner.node as usize];
+            let t = u32::from(facing(&inner.row, point, w) >= 0.0);
+            let own = inner.same + inner.opposite;
+            // In front: back subtree, own (opposite, then same), front subtree; behind: front
+            // subtree, own (same, then opposite), back subtree.
+            base[inner.front_child as usize] = b + t * (inner.back_size + own);
+            base[inner.back_child as usize] = b + (1 - t) * (inner.front_size + own);
+            let own_base = b + t * inner.back_size + (1 - t) * inner.front_size;
+            let mark = mark(inner.node);
+            let same_base = (own_base + t * inner.opposite) as usize;
+            for (slot, f) in order[same_base..same_base + inner.same as usize]
+                .iter_mut()
+                .zip(inner.first..)
+            {
+                *slot = f | mark;
+            }
+            let opposite_base = (own_base + (1 - t) * inner.same) as usize;
+            for (slot, f) in order[opposite_base..opposite_base + inner.opposite as usize]
+                .iter_mut()
+                .zip(inner.first + inner.same..)
+            {
+                *slot = f | mark;
+            }
+        }
+        for run in &tree.leaf_runs {
+            let b = base[run.node as usize] as usize;
+            let mark = mark(run.node);
+            for (slot, f) in order[b..b + run.count as usize].iter_mut().zip(run.first..) {
+                *slot = f | mark;
+            }
+        }
+    }
+
+    /// When back faces are drawn, each convex leaf's fragments facing away from the viewer go
+    /// first (its front faces never overlap, nor do its back faces); culled marks stay.
+    fn leaves_away_first(&mut self) {
+        let tree = &*self.tree;
+        for run in &tree.leaf_runs {
+            let b = self.base[run.node as usize] as usize;
+            let slots = &mut self.order[b..b + run.count as usize];
+            if slots.first() == Some(&CULLED) {
+                continue;
+            }
+            let range = run.first..run.first + run.count;
+            let facing = |f: &u32| self.piece_facing[tree.fragment_piece[*f as usize] as usize];
+            let away = range.clone().filter(|f| !facing(f));
+            for (slot, f) in slots.iter_mut().zip(away.chain(range.filter(facing))) {
+                *slot = f;
+            }
+        }
+    }
+
     /// The order for `cull`'s viewer; with `frustum`, subtrees whose bounding sphere lies
     /// outside the view's image are skipped (only when the whole tree's does not lie inside
     /// it: a model entirely in view pays nothing for the test).
     fn sort_in_view(&mut self, cull: &crate::CullTest, frustum: Option<&View>, out: &mut DrawList) {
-        let tree = &*self.tree;
+        // A handle of its own, so that the passes below can borrow `self` mutably.
+        let tree = Arc::clone(&self.tree);
+        let tree = &*tree;
         let frustum_view = frustum;
         // Frustum culling of subtrees, when a good part of the model may lie outside the
         // image: the model's projected bound covers more than twice the image, or reaches the
@@ -755,8 +889,7 @@ impl Bsp {
             })
         });
         let (point, w) = cull.viewer_point();
-        let facing =
-            |row: &[f64; 4]| row[0] * point.x + row[1] * point.y + row[2] * point.z - w * row[3];
+        let facing = |row: &[f64; 4]| facing(row, point, w);
         // Cull per piece: fragments share their piece's plane, and each is culled by it.
         let only_toward = cull.facing_rule() == Some((true, false));
         match cull.facing_rule() {
@@ -778,13 +911,6 @@ impl Bsp {
                     self.piece_facing[i] = cull.viewer.facing(plane) > 0.0;
                 }
             }
-        }
-        // Which side of every node plane the viewer is on: one branch-free pass.
-        for (side, row) in self.viewer_in_front.iter_mut().zip(&tree.plane_rows) {
-            *side = facing(row) >= 0.0;
-        }
-        if let Some(first) = self.base.first_mut() {
-            *first = 0;
         }
         if let Some(view) = frustum {
             // Parents come before their children: a culled parent culls its subtree.
@@ -811,71 +937,13 @@ impl Bsp {
                 }
             }
         }
-        for (k, node) in tree.nodes.iter().enumerate() {
-            let b = self.base[k];
-            if frustum.is_some() && self.node_culled[k] {
-                // The whole subtree is off the image: its slots, contiguous from `b`, are
-                // marked and skipped below; its nodes are not visited for order.
-                let size = node.front_size + node.back_size + node.same + node.opposite;
-                self.order[b as usize..(b + size) as usize].fill(CULLED);
-                for (child, offset) in [(node.front_child, 0), (node.back_child, node.front_size)] {
-                    if child != NONE {
-                        self.base[child as usize] = b + offset;
-                    }
-                }
-                continue;
-            }
-            if node.leaf {
-                let range = node.first..node.first + node.same;
-                if only_toward {
-                    // Only pieces facing the viewer are drawn: any order within the leaf.
-                    for (slot, f) in self.order[b as usize..].iter_mut().zip(range) {
-                        *slot = f;
-                    }
-                    continue;
-                }
-                // Facing away first, then facing the viewer.
-                let piece_of = |f: &u32| tree.fragment_piece[*f as usize] as usize;
-                let away = range.clone().filter(|f| !self.piece_facing[piece_of(f)]);
-                let toward = range.filter(|f| self.piece_facing[piece_of(f)]);
-                for (slot, f) in self.order[b as usize..].iter_mut().zip(away.chain(toward)) {
-                    *slot = f;
-                }
-                continue;
-            }
-            let in_front = self.viewer_in_front[k];
-            let (first_child, second_child, first_size) = if in_front {
-                (node.back_child, node.front_child, node.back_size)
-            } else {
-                (node.front_child, node.back_child, node.front_size)
-            };
-            if first_child != NONE {
-                self.base[first_child as usize] = b;
-            }
-            let own = (b + first_size) as usize;
-            if second_child != NONE {
-                self.base[second_child as usize] = b + first_size + node.same + node.opposite;
-            }
-            // Within the plane, polygons facing away from the viewer go first.
-            let (same, opposite) = (node.same as usize, node.opposite as usize);
-            let first = node.first;
-            let slots = &mut self.order[own..own + same + opposite];
-            let (away, toward) = if in_front {
-                slots.split_at_mut(opposite)
-            } else {
-                slots.split_at_mut(same)
-            };
-            let (away_first, toward_first) = if in_front {
-                (first + node.same, first)
-            } else {
-                (first, first + node.same)
-            };
-            for (slot, f) in away.iter_mut().zip(away_first..) {
-                *slot = f;
-            }
-            for (slot, f) in toward.iter_mut().zip(toward_first..) {
-                *slot = f;
-            }
+        if frustum.is_some() {
+            self.place::<true>(point, w);
+        } else {
+            self.place::<false>(point, w);
+        }
+        if !only_toward {
+            self.leaves_away_first();
         }
         out.begin(&tree.fragments);
         // Branch-free compaction: write every fragment, advance past the drawn ones only.
@@ -918,4 +986,11 @@ impl Bsp {
             _ => out.items_mut().extend_from_slice(&items[..drawn]),
         }
     }
+}
+
+/// The viewer's facing value for a plane row `[nx, ny, nz, offset]` (positive in front of it)
+/// from its homogeneous point `(point, w)`.
+#[inline]
+fn facing(row: &[f64; 4], point: DVec3, w: f64) -> f64 {
+    row[0] * point.x + row[1] * point.y + row[2] * point.z - w * row[3]
 }
