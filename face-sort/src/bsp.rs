@@ -131,7 +131,7 @@ pub struct BspTree {
     /// The pieces' planes, likewise, for the per-view cull pass.
     piece_rows: Vec<[f64; 4]>,
     /// Source face of each fragment.
-    fragment_face: Vec<u32>,
+    fragment_face: Vec<[u32; 2]>,
     nodes: Vec<Node>,
     /// Fragments in pre-order: node by node, each node's own fragments contiguous.
     fragments: Arc<PolygonSet>,
@@ -292,7 +292,7 @@ impl BspTree {
         let plane_rows = builder.planes.iter().map(row).collect();
         let piece_rows = pieces.planes().iter().map(row).collect();
         let fragment_face = (0..builder.fragments.len())
-            .map(|i| builder.fragments.face(i))
+            .map(|i| [builder.fragments.face(i), builder.fragment_piece[i]])
             .collect();
         let spheres = subtree_spheres(&builder.nodes, &builder.fragments);
         let fragment_count = builder.fragments.len();
@@ -382,7 +382,7 @@ impl BspTree {
     pub fn heap_bytes(&self) -> usize {
         self.planes.capacity() * size_of::<Plane>()
             + (self.plane_rows.capacity() + self.piece_rows.capacity()) * size_of::<[f64; 4]>()
-            + self.fragment_face.capacity() * 4
+            + self.fragment_face.capacity() * 8
             + self.nodes.capacity() * size_of::<Node>()
             + self.fragments.heap_bytes()
             + self.fragment_piece.capacity() * 4
@@ -955,20 +955,22 @@ impl Bsp {
                     continue;
                 }
                 let f = f as usize;
+                let [face, piece] = tree.fragment_face[f];
                 items[drawn] = crate::DrawItem {
                     polygon: f as u32,
-                    face: tree.fragment_face[f],
+                    face,
                 };
-                drawn += usize::from(self.piece_drawn[tree.fragment_piece[f] as usize]);
+                drawn += usize::from(self.piece_drawn[piece as usize]);
             }
         } else {
             for &f in &self.order {
                 let f = f as usize;
+                let [face, piece] = tree.fragment_face[f];
                 items[drawn] = crate::DrawItem {
                     polygon: f as u32,
-                    face: tree.fragment_face[f],
+                    face,
                 };
-                drawn += usize::from(self.piece_drawn[tree.fragment_piece[f] as usize]);
+                drawn += usize::from(self.piece_drawn[piece as usize]);
             }
         }
         match (&mut self.merge, frustum_view) {
