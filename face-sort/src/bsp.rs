@@ -213,9 +213,6 @@ fn sphere_in_image(view: &View, sphere: &[f64; 4]) -> Option<bool> {
 /// times the image's area (a zoomed view), or reaches the near plane.
 const ZOOMED_AREA: f64 = 2.0;
 
-/// Marks a culled fragment slot.
-const CULLED: u32 = u32::MAX;
-
 impl BspTree {
     /// Builds the tree over a geometry's pieces, in f64, with the plane tolerance
     /// [`PLANE_SIDE`]` · L`. Fragments are not bounded (the options' budget is ignored);
@@ -661,7 +658,10 @@ impl Builder {
 pub struct Bsp {
     tree: Arc<BspTree>,
     base: Vec<u32>,
-    order: Vec<u32>,
+    /// Per slot of `scratch`, whether its fragment is drawn this frame.
+    keep: Vec<u8>,
+    /// A convex leaf's slots while they are put facing away first.
+    leaf_buffer: Vec<(crate::DrawItem, u8)>,
     piece_drawn: Vec<bool>,
     piece_facing: Vec<bool>,
     /// Per node, for the current frame: its subtree lies outside the image.
@@ -717,7 +717,8 @@ impl Bsp {
     pub fn from_tree(tree: Arc<BspTree>) -> Self {
         Bsp {
             base: vec![0; tree.nodes.len() + 1],
-            order: vec![0; tree.fragment_count],
+            keep: vec![0; tree.fragment_count],
+            leaf_buffer: Vec::new(),
             merge: None,
             piece_drawn: vec![false; tree.pieces.len()],
             piece_facing: vec![false; tree.pieces.len()],
@@ -773,7 +774,8 @@ impl FaceSorter for Bsp {
             polygons: self.tree.fragment_count,
             cached_bytes: self.tree.heap_bytes()
                 + self.base.capacity() * 4
-                + self.order.capacity() * 4
+                + self.keep.capacity()
+                + self.leaf_buffer.capacity() * size_of::<(crate::DrawItem, u8)>()
                 + self.piece_drawn.capacity()
                 + self.piece_facing.capacity()
                 + self.merge.as_ref().map_or(0, |m| m.heap_bytes()),
@@ -795,20 +797,21 @@ impl Bsp {
     /// Places every fragment in paint order: one pass over the inner nodes in pre-order, each
     /// placing its children's subtrees and its own fragments (facing away from the viewer
     /// first) from its subtree's start without a branch on the viewer's side, then one over
-    /// the leaves. With `FRUSTUM`, the fragments of culled nodes are marked [`CULLED`].
+    /// the leaves. Each slot gets the fragment's item and whether it is drawn (its piece is,
+    /// and with `FRUSTUM` its node is not culled). Fragments are read in storage order.
     fn place<const FRUSTUM: bool>(&mut self, point: DVec3, w: f64) {
         let tree = &*self.tree;
-        let (base, order, culled) = (
+        let (base, slots, keep) = (
             &mut self.base[..],
-            &mut self.order[..],
-            &self.node_culled[..],
+            &mut self.scratch[..],
+            &mut self.keep[..],
         );
-        let mark = |node: u32| {
-            if FRUSTUM {
-                u32::from(culled[node as usize]).wrapping_neg()
-            } else {
-                0
-            }
+        let (culled, piece_drawn) = (&self.node_culled[..], &self.piece_drawn[..]);
+        let shown = |node: u32| !FRUSTUM || !culled[node as usize];
+        let mut put = |slot: usize, f: u32, shown: bool| {
+            let [face, piece] = tree.fragment_face[f as usize];
+            slots[slot] = crate::DrawItem { polygon: f, face };
+            keep[slot] = u8::from(piece_drawn[piece as usize] & shown);
         };
         base[0] = 0;
         for inner in &tree.inners {
@@ -820,46 +823,56 @@ impl Bsp {
             base[inner.front_child as usize] = b + t * (inner.back_size + own);
             base[inner.back_child as usize] = b + (1 - t) * (inner.front_size + own);
             let own_base = b + t * inner.back_size + (1 - t) * inner.front_size;
-            let mark = mark(inner.node);
-            let same_base = (own_base + t * inner.opposite) as usize;
-            for (slot, f) in order[same_base..same_base + inner.same as usize]
-                .iter_mut()
-                .zip(inner.first..)
-            {
-                *slot = f | mark;
+            let shown = shown(inner.node);
+            let same_base = own_base + t * inner.opposite;
+            for j in 0..inner.same {
+                put((same_base + j) as usize, inner.first + j, shown);
             }
-            let opposite_base = (own_base + (1 - t) * inner.same) as usize;
-            for (slot, f) in order[opposite_base..opposite_base + inner.opposite as usize]
-                .iter_mut()
-                .zip(inner.first + inner.same..)
-            {
-                *slot = f | mark;
+            let opposite_base = own_base + (1 - t) * inner.same;
+            for j in 0..inner.opposite {
+                put(
+                    (opposite_base + j) as usize,
+                    inner.first + inner.same + j,
+                    shown,
+                );
             }
         }
         for run in &tree.leaf_runs {
-            let b = base[run.node as usize] as usize;
-            let mark = mark(run.node);
-            for (slot, f) in order[b..b + run.count as usize].iter_mut().zip(run.first..) {
-                *slot = f | mark;
+            let b = base[run.node as usize];
+            let shown = shown(run.node);
+            for j in 0..run.count {
+                put((b + j) as usize, run.first + j, shown);
             }
         }
     }
 
     /// When back faces are drawn, each convex leaf's fragments facing away from the viewer go
-    /// first (its front faces never overlap, nor do its back faces); culled marks stay.
+    /// first (its front faces never overlap, nor do its back faces).
     fn leaves_away_first(&mut self) {
         let tree = &*self.tree;
         for run in &tree.leaf_runs {
             let b = self.base[run.node as usize] as usize;
-            let slots = &mut self.order[b..b + run.count as usize];
-            if slots.first() == Some(&CULLED) {
-                continue;
-            }
-            let range = run.first..run.first + run.count;
-            let facing = |f: &u32| self.piece_facing[tree.fragment_piece[*f as usize] as usize];
-            let away = range.clone().filter(|f| !facing(f));
-            for (slot, f) in slots.iter_mut().zip(away.chain(range.filter(facing))) {
-                *slot = f;
+            let range = b..b + run.count as usize;
+            // The leaf's slots hold its fragments in storage order: sort them, stably, by
+            // facing the viewer (away first), keeping each slot's drawn flag with it.
+            let facing = |item: &crate::DrawItem| {
+                let [_, piece] = tree.fragment_face[item.polygon as usize];
+                self.piece_facing[piece as usize]
+            };
+            self.leaf_buffer.clear();
+            self.leaf_buffer.extend(
+                self.scratch[range.clone()]
+                    .iter()
+                    .zip(&self.keep[range.clone()])
+                    .map(|(&item, &keep)| (item, keep)),
+            );
+            self.leaf_buffer.sort_by_key(|(item, _)| facing(item));
+            for ((slot, keep), &(item, drawn)) in self.scratch[range.clone()]
+                .iter_mut()
+                .zip(&mut self.keep[range])
+                .zip(&self.leaf_buffer)
+            {
+                (*slot, *keep) = (item, drawn);
             }
         }
     }
@@ -946,32 +959,12 @@ impl Bsp {
             self.leaves_away_first();
         }
         out.begin(&tree.fragments);
-        // Branch-free compaction: write every fragment, advance past the drawn ones only.
+        // Branch-free compaction in place: write every slot, advance past the drawn ones only.
         let items = &mut self.scratch;
         let mut drawn = 0;
-        if frustum.is_some() {
-            for &f in &self.order {
-                if f == CULLED {
-                    continue;
-                }
-                let f = f as usize;
-                let [face, piece] = tree.fragment_face[f];
-                items[drawn] = crate::DrawItem {
-                    polygon: f as u32,
-                    face,
-                };
-                drawn += usize::from(self.piece_drawn[piece as usize]);
-            }
-        } else {
-            for &f in &self.order {
-                let f = f as usize;
-                let [face, piece] = tree.fragment_face[f];
-                items[drawn] = crate::DrawItem {
-                    polygon: f as u32,
-                    face,
-                };
-                drawn += usize::from(self.piece_drawn[piece as usize]);
-            }
+        for (k, &keep) in self.keep.iter().enumerate() {
+            items[drawn] = items[k];
+            drawn += usize::from(keep);
         }
         match (&mut self.merge, frustum_view) {
             (Some(merge), Some(view)) => {
