@@ -419,7 +419,11 @@ impl FragmentMerge {
                 let list = self.cell_start[c] as usize..self.cell_start[c + 1] as usize;
                 for &e in &self.cell_edges[list] {
                     let e = self.edges[e as usize];
-                    if enters(corners, area, e.a, e.b) {
+                    // An edge whose box misses the piece's cannot enter it.
+                    let (lo, hi) = (e.a.min(e.b), e.a.max(e.b));
+                    let apart =
+                        hi.x < b.min.x || lo.x > b.max.x || hi.y < b.min.y || lo.y > b.max.y;
+                    if !apart && enters(corners, area, e.a, e.b) {
                         return false;
                     }
                 }
