@@ -9,7 +9,8 @@
 //! STEP=0.02 MODEL=suzanne/suzanne.obj target/release/examples/profile_frame centroid
 //! ```
 //!
-//! `MODEL` is a path under `assets/models`.
+//! `MODEL` is a path under `assets/models`; `PERSP=1` views in perspective (eye 512 px away,
+//! as the bench's).
 
 #[path = "../tests/common/mod.rs"]
 mod common;
@@ -36,7 +37,10 @@ fn main() {
     let mesh = common::read_obj(&common::asset(&model));
     let geometry = Geometry::new(&mesh).expect("valid model");
     let mut sorter = kind.build(&geometry);
-    let base = View::fit(&geometry.bounds(), 512, 512);
+    let mut base = View::fit(&geometry.bounds(), 512, 512);
+    if std::env::var_os("PERSP").is_some() {
+        base = base.with_perspective(512.0);
+    }
     let views: Vec<View> = (0..400)
         .map(|k| base.with_yaw_pitch_roll(f64::from(k) * step, 20.0, 0.0))
         .collect();
