@@ -60,7 +60,10 @@ pub(super) fn scaling_size(
     let mut out = Vec::new();
     let mut list = DrawList::new();
     // `bsp-merged` builds the same tree as `bsp`: the series measures the tree's growth once.
-    for kind in SorterKind::ALL.into_iter().filter(|&k| k != SorterKind::BspMerged) {
+    for kind in SorterKind::ALL
+        .into_iter()
+        .filter(|&k| k != SorterKind::BspMerged)
+    {
         let name = kind.name();
         let build_estimate = estimate(name, |r| r.build_ms, 1.0).unwrap_or(0.0);
         let frame_estimate = estimate(name, |r| r.frame_us, 1e-3).unwrap_or(0.0);
