@@ -651,9 +651,10 @@ impl Builder {
 /// Exact back-to-front order from a BSP tree built once per geometry.
 ///
 /// The tree ([`BspTree`]) is immutable and shared through an `Arc`, so any number of views or
-/// threads can use one build. Per view, one linear pass over the nodes in pre-order places
-/// every node's fragments (no stack, no recursion: each node's subtree sizes are known at
-/// build time), then the fragments are culled each by its own plane.
+/// threads can use one build. Per view, one linear pass over the inner nodes in pre-order and
+/// one over the leaves place every fragment in its paint-order slot (no stack, no recursion,
+/// no branch on the viewer's side: each node's subtree sizes are known at build time), each
+/// slot marked drawn or culled by its piece's plane; a branch-free compaction keeps the drawn.
 #[derive(Debug)]
 pub struct Bsp {
     tree: Arc<BspTree>,
@@ -668,8 +669,8 @@ pub struct Bsp {
     node_culled: Vec<bool>,
     /// Per node, for the current frame: its subtree lies inside the image (no test below).
     node_inside: Vec<bool>,
-    /// Every fragment's item in paint order, drawn or not (the branch-free compaction's
-    /// target, one slot per fragment, kept between frames); the drawn prefix is copied out.
+    /// Every fragment's item in paint order, drawn or not (one slot per fragment, kept between
+    /// frames); compacted in place to the drawn ones, which are copied out.
     scratch: Vec<crate::DrawItem>,
     /// The merge of split pieces drawn whole (`None`: fragments as the tree cut them).
     merge: Option<Box<FragmentMerge>>,
@@ -744,7 +745,8 @@ impl Bsp {
     /// This sorter drawing each split piece whole, per view, where nothing drawn between its
     /// fragments overlaps it on screen (`merge` true), or as the tree cut it (false, the
     /// default). Exact either way. Merged lists hold about as many items as the centroid
-    /// sort's (spot: 1.05× instead of 1.86×) for a per-view cost of several BSP traversals:
+    /// sort's (spot: 1.07× instead of 1.86×) for a per-view cost of many BSP traversals (15×
+    /// the centroid sort's on spot, docs/bench.md):
     /// every sink pays per item, so exporters (SVG, PDF, HTML, plotters) gain; an animation
     /// whose sink is cheap per item may not. Only [`FaceSorter::sort`] merges (it needs the
     /// projection), not [`Bsp::sort_culled`]. The name becomes `"bsp-merged"`.
@@ -853,8 +855,7 @@ impl Bsp {
         for run in &tree.leaf_runs {
             let b = self.base[run.node as usize] as usize;
             let range = b..b + run.count as usize;
-            // The leaf's slots hold its fragments in storage order: sort them, stably, by
-            // facing the viewer (away first), keeping each slot's drawn flag with it.
+            // The leaf's slots hold its fragments in storage order, each with its drawn flag.
             let facing = |item: &crate::DrawItem| {
                 let [_, piece] = tree.fragment_face[item.polygon as usize];
                 self.piece_facing[piece as usize]
@@ -866,11 +867,14 @@ impl Bsp {
                     .zip(&self.keep[range.clone()])
                     .map(|(&item, &keep)| (item, keep)),
             );
-            self.leaf_buffer.sort_by_key(|(item, _)| facing(item));
+            // Facing away, then facing the viewer, each in storage order (a stable partition
+            // without the allocation of a stable sort).
+            let away = self.leaf_buffer.iter().filter(|(item, _)| !facing(item));
+            let toward = self.leaf_buffer.iter().filter(|(item, _)| facing(item));
             for ((slot, keep), &(item, drawn)) in self.scratch[range.clone()]
                 .iter_mut()
                 .zip(&mut self.keep[range])
-                .zip(&self.leaf_buffer)
+                .zip(away.chain(toward))
             {
                 (*slot, *keep) = (item, drawn);
             }
@@ -884,6 +888,7 @@ impl Bsp {
         // A handle of its own, so that the passes below can borrow `self` mutably.
         let tree = Arc::clone(&self.tree);
         let tree = &*tree;
+        // The view as given: the merge projects with it whether or not subtrees are culled.
         let frustum_view = frustum;
         // Frustum culling of subtrees, when a good part of the model may lie outside the
         // image: the model's projected bound covers more than twice the image, or reaches the

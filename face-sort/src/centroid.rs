@@ -120,17 +120,11 @@ mod tests {
 
     #[test]
     fn the_radix_sort_orders_as_total_cmp() {
-        let mut state = 0x2545_f491_4f6c_dd1d_u64;
-        let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            state
-        };
+        let mut rng = test_support::Rng::new(7);
         for n in [RADIX_MIN, 3000] {
             let mut keys: Vec<(f64, u32)> = (0..n as u32)
                 .map(|i| {
-                    let r = next();
+                    let r = rng.next_u64();
                     // Depths near one another, both signs, zeros of both signs, and ties.
                     let d = match r % 7 {
                         0 => 0.0,

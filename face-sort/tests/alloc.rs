@@ -39,17 +39,25 @@ static GLOBAL: Counting = Counting;
 #[test]
 fn sorting_again_allocates_nothing() {
     let geometry = Geometry::new(&read_obj(&asset("compas/boxes.obj"))).unwrap();
-    let base = View::fit(&geometry.bounds(), 256, 256);
-    let views: Vec<View> = (0..12)
-        .map(|k| {
-            let v = base.with_yaw_pitch_roll(f64::from(k) * 30.0, 20.0, 0.0);
-            if k % 2 == 0 {
-                v
-            } else {
-                v.with_perspective(256.0)
-            }
-        })
-        .collect();
+    // Orthographic and perspective, back faces culled and (every third view) drawn.
+    let views_of = |geometry: &Geometry| -> Vec<View> {
+        let base = View::fit(&geometry.bounds(), 256, 256);
+        (0..12)
+            .map(|k| {
+                let v = base.with_yaw_pitch_roll(f64::from(k) * 30.0, 20.0, 0.0);
+                let v = if k % 2 == 0 {
+                    v
+                } else {
+                    v.with_perspective(256.0)
+                };
+                if k % 3 == 0 {
+                    v.with_cull(face_sort::CullMode::None)
+                } else {
+                    v
+                }
+            })
+            .collect()
+    };
     // Every sorter, and the planner's choices for this model and for one of its boxes (parts
     // ordered as wholes, cull only).
     let one_box = Geometry::new(&face_sort::generate::uv_sphere(8, 4)).unwrap();
@@ -57,11 +65,14 @@ fn sorting_again_allocates_nothing() {
         Plan::analyse(&geometry, PlanHint::ONE_FRAME).build(&geometry),
         Plan::analyse(&one_box, PlanHint::ONE_FRAME).build(&one_box),
     ];
+    // The merged BSP also on a model whose tree splits pieces (boxes' does not).
+    let split = Geometry::new(&read_obj(&asset("suzanne/suzanne.obj"))).unwrap();
     let sorters = SorterKind::ALL
         .iter()
-        .map(|kind| kind.build(&geometry))
-        .chain(planned);
-    for mut sorter in sorters {
+        .map(|kind| (kind.build(&geometry), views_of(&geometry)))
+        .chain(planned.map(|sorter| (sorter, views_of(&geometry))))
+        .chain([(SorterKind::BspMerged.build(&split), views_of(&split))]);
+    for (mut sorter, views) in sorters {
         let mut list = DrawList::new();
         // Warm-up: buffers grow to the largest frame (Newell's splits vary by view).
         for view in &views {
