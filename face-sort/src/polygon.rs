@@ -59,25 +59,32 @@ pub fn signed_area_2d(corners: &[DVec2]) -> f64 {
     edges(corners).map(|(a, b)| a.perp_dot(b)).sum::<f64>() * 0.5
 }
 
-/// Whether the line through an edge of one convex polygon (either winding) has that polygon
-/// on one side (and some of it strictly) and the other polygon on the other, touching allowed: then their intersection
+/// Whether the line through an edge of one convex polygon (either winding; a segment counts as
+/// a polygon of two corners) has one polygon on one side and the other on the other, touching
+/// allowed, and some corner strictly off it: then their intersection lies in that line and
 /// has no area. Each line is checked against both polygons, so that a line badly defined (a
 /// zero or tiny edge, repeated corners) never separates what overlaps. A cheap first test
-/// before [`clip_convex_2d`].
+/// before [`clip_convex_2d`]; `!separated_2d(polygon, &[a, b])` says that segment `a`–`b`
+/// meets the polygon's interior.
 #[must_use]
 pub(crate) fn separated_2d(a: &[DVec2], b: &[DVec2]) -> bool {
-    let outside = |p: &[DVec2], q: &[DVec2]| {
-        let orientation = signed_area_2d(p).signum();
+    let by_edge_of = |p: &[DVec2]| {
         edges(p).any(|(from, to)| {
             let edge = to - from;
-            let side = |x: DVec2| edge.perp_dot(x - from) * orientation;
-            // `p` strictly inside somewhere: a zero edge (repeated corner) separates nothing.
-            q.iter().all(|&x| side(x) <= 0.0)
-                && p.iter().all(|&x| side(x) >= 0.0)
-                && p.iter().any(|&x| side(x) > 0.0)
+            let range = |polygon: &[DVec2]| {
+                polygon
+                    .iter()
+                    .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &x| {
+                        let side = edge.perp_dot(x - from);
+                        (lo.min(side), hi.max(side))
+                    })
+            };
+            let ((a_lo, a_hi), (b_lo, b_hi)) = (range(a), range(b));
+            let apart = (a_hi <= 0.0 && b_lo >= 0.0) || (a_lo >= 0.0 && b_hi <= 0.0);
+            apart && (a_lo < 0.0 || a_hi > 0.0 || b_lo < 0.0 || b_hi > 0.0)
         })
     };
-    outside(a, b) || outside(b, a)
+    by_edge_of(a) || by_edge_of(b)
 }
 
 /// Clips the convex polygon `subject` by the convex polygon `clip` (either winding),
