@@ -440,7 +440,7 @@ fn critical_pitches(
     }
     for (i, ci) in circles.iter().enumerate() {
         for cj in &circles[i + 1..] {
-            for d in circle_crossings(ci, cj) {
+            for d in circle_crossings(ci, cj).into_iter().flatten() {
                 // sin y = d.y sin r − d.x cos r; cos y·sin p = d.x sin r + d.y cos r;
                 // cos y·cos p = d.z. Two charts of each direction: y and π − y.
                 let sy = (d.y * sr - d.x * cr).clamp(-1.0, 1.0);
@@ -474,14 +474,15 @@ fn critical_pitches(
 }
 
 /// The directions `d` (unit) with `n₁·d = c₁` and `n₂·d = c₂`: none, or two (equal at a
-/// tangency). Parallel normals give none (equal circles have no isolated crossing).
-fn circle_crossings(a: &EventCircle, b: &EventCircle) -> Vec<DVec3> {
+/// tangency). Parallel normals give none (equal circles have no isolated crossing). No
+/// allocation: it runs for every pair of circles.
+fn circle_crossings(a: &EventCircle, b: &EventCircle) -> Option<[DVec3; 2]> {
     let (n1, n2) = (a.normal, b.normal);
     let cross = n1.cross(n2);
     let cc = cross.length_squared();
     let scale = n1.length_squared() * n2.length_squared();
     if cc <= PARALLEL_SIN * PARALLEL_SIN * scale {
-        return Vec::new();
+        return None;
     }
     // d = α n₁ + β n₂ + γ n₁×n₂ with the Gram system for α, β.
     let (g11, g12, g22) = (n1.length_squared(), n1.dot(n2), n2.length_squared());
@@ -491,10 +492,10 @@ fn circle_crossings(a: &EventCircle, b: &EventCircle) -> Vec<DVec3> {
     let base = n1 * alpha + n2 * beta;
     let rest = 1.0 - base.length_squared();
     if rest < 0.0 {
-        return Vec::new();
+        return None;
     }
     let gamma = (rest / cc).sqrt();
-    vec![base + cross * gamma, base - cross * gamma]
+    Some([base + cross * gamma, base - cross * gamma])
 }
 
 /// The exact two-axis bake of `source` over `domain`: slabs between consecutive critical
@@ -881,7 +882,7 @@ mod tests {
             normal: DVec3::new(-0.5, 0.3, 1.0),
             offset: -0.2,
         };
-        let found = circle_crossings(&a, &b);
+        let found = circle_crossings(&a, &b).expect("two crossings");
         assert_eq!(found.len(), 2);
         for d in found {
             assert!((d.length() - 1.0).abs() < 1e-14);

@@ -29,6 +29,8 @@
 //!    [`Newell`](crate::Newell)'s overlap test (the exact convex intersection has more than
 //!    [`OVERLAP_AREA`]` · L²` of area).
 
+use std::ops::ControlFlow;
+
 use glam::DVec2;
 
 use crate::polygon::{Box2, clip_convex_2d, edges, separated_2d, signed_area_2d};
@@ -252,7 +254,7 @@ impl FragmentMerge {
             self.projected_start.push(self.projected.len() as u32);
             let start = self.projected.len();
             for &c in pieces.corners(p as usize) {
-                match view.project_point(c) {
+                match view.project_view_point(view.to_view(c)) {
                     Some(q) => self.projected.push(q),
                     None => return false,
                 }
@@ -468,7 +470,7 @@ impl FragmentMerge {
             let jq = self.dense[q] as usize;
             let (first, last) = (self.first[q], self.last[q]);
             let q_box = self.boxes[jq];
-            let hidden = std::cell::Cell::new(false);
+            let mut hidden = false;
             let (drawn, firsts, lasts, boxes) = (&self.drawn, &self.first, &self.last, &self.boxes);
             let (projected, starts) = (&self.projected, &self.projected_start);
             let polygon = |j: usize| &projected[starts[j] as usize..starts[j + 1] as usize];
@@ -478,25 +480,26 @@ impl FragmentMerge {
             // A neighbour facing the same way lies on the other side of the shared edge.
             let beside =
                 |r: usize| input.facing[r] == input.facing[q] && across.contains(&(r as u32));
-            self.grid.for_each_candidate(
-                &q_box,
-                |_| !hidden.get(),
-                |j| {
-                    let r = drawn[j as usize] as usize;
-                    if r == q
-                        || firsts[r] >= last
-                        || lasts[r] <= first
-                        || !boxes[j as usize].overlaps(&q_box)
-                        || beside(r)
-                        || separated_2d(polygon(jq), polygon(j as usize))
-                    {
-                        return;
-                    }
-                    clip_convex_2d(polygon(jq), polygon(j as usize), clip_out, clip_scratch);
-                    hidden.set(clip_out.len() >= 3 && signed_area_2d(clip_out).abs() > min_area);
-                },
-            );
-            if !hidden.get() {
+            self.grid.for_each_candidate(&q_box, |j| {
+                let r = drawn[j as usize] as usize;
+                if r == q
+                    || firsts[r] >= last
+                    || lasts[r] <= first
+                    || !boxes[j as usize].overlaps(&q_box)
+                    || beside(r)
+                    || separated_2d(polygon(jq), polygon(j as usize))
+                {
+                    return ControlFlow::Continue(());
+                }
+                clip_convex_2d(polygon(jq), polygon(j as usize), clip_out, clip_scratch);
+                hidden = clip_out.len() >= 3 && signed_area_2d(clip_out).abs() > min_area;
+                if hidden {
+                    ControlFlow::Break(())
+                } else {
+                    ControlFlow::Continue(())
+                }
+            });
+            if !hidden {
                 self.merged[q] = self.frame;
             }
         }

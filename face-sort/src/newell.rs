@@ -195,16 +195,17 @@ impl Newell {
         candidates.clear();
         {
             let (work, done) = (&self.work, &self.done);
-            self.grid.for_each_candidate(
-                &wp.bounds,
-                |q| !done[q as usize],
-                |q| {
-                    let wq = &work[q as usize];
-                    if q != p && wq.z_min < wp.z_max && wp.bounds.overlaps(&wq.bounds) {
-                        candidates.push(q);
-                    }
-                },
-            );
+            self.grid.for_each_candidate(&wp.bounds, |q| {
+                let wq = &work[q as usize];
+                if q != p
+                    && !done[q as usize]
+                    && wq.z_min < wp.z_max
+                    && wp.bounds.overlaps(&wq.bounds)
+                {
+                    candidates.push(q);
+                }
+                std::ops::ControlFlow::Continue(())
+            });
         }
         let action = self.decide_among(out, p, &plane_p, &candidates, viewer);
         self.candidates = candidates;

@@ -1,6 +1,8 @@
 //! A uniform grid over screen boxes, rebuilt per frame, to find the polygons whose screen boxes
 //! may overlap a given box without scanning them all.
 
+use std::ops::ControlFlow;
+
 use glam::DVec2;
 
 use crate::polygon::Box2;
@@ -79,13 +81,11 @@ impl ScreenGrid {
         }
     }
 
-    /// Calls `f` once for every item inserted in a cell that `b` touches and for which `live`
-    /// holds.
+    /// Calls `f` once for every item inserted in a cell that `b` touches, until `f` breaks.
     pub(crate) fn for_each_candidate(
         &mut self,
         b: &Box2,
-        live: impl Fn(u32) -> bool,
-        mut f: impl FnMut(u32),
+        mut f: impl FnMut(u32) -> ControlFlow<()>,
     ) {
         let Some((x0, x1, y0, y1)) = self.range(b) else {
             return;
@@ -100,11 +100,11 @@ impl ScreenGrid {
         for row in self.cells.chunks(self.columns).take(y1 + 1).skip(y0) {
             for cell in &row[x0..=x1] {
                 for &item in cell {
-                    if live(item) {
-                        let seen = &mut stamp[item as usize];
-                        if *seen != query {
-                            *seen = query;
-                            f(item);
+                    let seen = &mut stamp[item as usize];
+                    if *seen != query {
+                        *seen = query;
+                        if f(item).is_break() {
+                            return;
                         }
                     }
                 }
@@ -139,7 +139,10 @@ mod tests {
         }
         for (i, query) in boxes.iter().enumerate() {
             let mut found = Vec::new();
-            grid.for_each_candidate(query, |_| true, |j| found.push(j));
+            grid.for_each_candidate(query, |j| {
+                found.push(j);
+                ControlFlow::Continue(())
+            });
             let mut unique = found.clone();
             unique.sort_unstable();
             unique.dedup();

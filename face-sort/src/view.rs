@@ -299,17 +299,6 @@ impl View {
         }
     }
 
-    /// Pixel position of a point (centred model space), or `None` when it lies behind the
-    /// near plane (`w < NEAR_W`, perspective only): the same position as
-    /// [`project_polygon`](Self::project_polygon) gives a corner it does not clip.
-    #[inline]
-    #[must_use]
-    pub(crate) fn project_point(&self, centred: DVec3) -> Option<DVec2> {
-        let v = self.to_view(centred);
-        let w = self.w_of_view_point(v);
-        (w >= NEAR_W).then(|| self.pixel_of(v, w))
-    }
-
     /// Pixel position of view-space point `v` whose `w` is `w`.
     #[inline]
     fn pixel_of(&self, v: DVec3, w: f64) -> DVec2 {

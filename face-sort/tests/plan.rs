@@ -358,7 +358,8 @@ fn parts_whose_boxes_no_plane_separates_go_to_a_sorter() {
                 (v(1.0, 1.0, 1.0), v(2.0, 2.0, 2.0)),
             ],
         ),
-        // Three sticks in a cycle: every pair of boxes overlaps on every axis. (With the
+        // Three sticks in a cycle: no axis-aligned plane separates all three from one another
+        // (sticks 2 and 3 are apart in z, but stick 1 spans them both). (With the
         // third stick's top at z = 0.3, the eye of some views sits on the second stick's
         // bottom plane, and both exact sorters then leave one oracle violation: a degenerate
         // view, left out here.)

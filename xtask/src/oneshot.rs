@@ -9,6 +9,9 @@ use clap::Args;
 
 use crate::bench::median;
 
+/// Untimed runs of each sorter before the timed ones (disk cache, first-run costs).
+const WARM_UP: usize = 2;
+
 /// Options of `oneshot`.
 #[derive(Debug, Args)]
 pub struct OneshotArgs {
@@ -18,8 +21,8 @@ pub struct OneshotArgs {
     #[arg(long, default_value_t = 10)]
     runs: usize,
     /// Image size.
-    #[arg(long, value_name = "WxH", default_value = "1024x1024")]
-    size: String,
+    #[arg(long, value_name = "WxH", default_value = "1024x1024", value_parser = crate::render::parse_size)]
+    size: (u32, u32),
 }
 
 /// Runs `render MODEL --sorter auto` and `--sorter centroid` alternately as separate
@@ -33,13 +36,14 @@ pub fn run(args: &OneshotArgs) -> Result<ExitCode> {
     let out = crate::target_dir().join("oneshot.png");
     let mut times: [Vec<f64>; 2] = [Vec::new(), Vec::new()];
     let sorters = ["auto", "centroid"];
-    for round in 0..args.runs + 2 {
+    let size = format!("{}x{}", args.size.0, args.size.1);
+    for round in 0..args.runs + WARM_UP {
         for (k, sorter) in sorters.iter().enumerate() {
             let start = Instant::now();
             let status = Command::new(&exe)
                 .arg("render")
                 .arg(&args.model)
-                .args(["--sorter", sorter, "--size", &args.size, "-o"])
+                .args(["--sorter", sorter, "--size", &size, "-o"])
                 .arg(&out)
                 .stdout(Stdio::null())
                 .status()
@@ -47,7 +51,7 @@ pub fn run(args: &OneshotArgs) -> Result<ExitCode> {
             if !status.success() {
                 bail!("render --sorter {sorter} failed ({status})");
             }
-            if round >= 2 {
+            if round >= WARM_UP {
                 times[k].push(start.elapsed().as_secs_f64() * 1e3);
             }
         }
@@ -55,11 +59,10 @@ pub fn run(args: &OneshotArgs) -> Result<ExitCode> {
     let [auto, centroid] = &mut times;
     let (auto, centroid) = (median(auto), median(centroid));
     println!(
-        "{}: auto {auto:.1} ms, centroid {centroid:.1} ms, ratio {:.3} (medians of {} alternating runs after 2 warm-up runs, {})",
+        "{}: auto {auto:.1} ms, centroid {centroid:.1} ms, ratio {:.3} (medians of {} alternating runs after {WARM_UP} warm-up runs, {size})",
         args.model.display(),
         auto / centroid,
         args.runs,
-        args.size
     );
     Ok(ExitCode::SUCCESS)
 }
