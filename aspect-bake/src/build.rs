@@ -191,8 +191,8 @@ impl Merger<'_> {
     }
 }
 
-/// Draw lists per block: bounded memory between budget checks.
-const BLOCK: usize = 2048;
+/// Draw lists per block: bounded memory between budget checks (one- and two-axis bakes).
+pub(crate) const BLOCK: usize = 2048;
 
 /// The exact bake: every sign change of the source's event functions in closed form, roots
 /// closer than [`SAME_ROOT_RAD`] merged, the live sorter run once inside each interval

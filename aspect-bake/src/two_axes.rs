@@ -43,7 +43,7 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 use crate::BakeError;
-use crate::build::lists_at;
+use crate::build::{BLOCK, lists_at};
 use crate::cells::cell_bytes;
 use crate::event::{EventFn, Roots, reduce};
 use crate::source::EventSource;
@@ -245,7 +245,9 @@ pub struct Bake2Options {
     /// Stop with [`BakeError::EventBudget`] beyond this many critical pitches (curve
     /// crossings, turning points, boundary crossings) or circle pairs examined / 64.
     pub max_events: usize,
-    /// Stop with [`BakeError::SizeBudget`] beyond this many bytes of per-cell lists.
+    /// Stop with [`BakeError::SizeBudget`] beyond this many bytes of per-cell lists, counted
+    /// as they are sorted (before equal neighbours in a slab merge, so the finished bake's
+    /// `full_bytes` is smaller).
     pub budget_bytes: usize,
 }
 
@@ -609,7 +611,7 @@ pub fn bake_two_axes(
     let total_cells = points.len();
     let mut lists: Vec<Vec<u32>> = Vec::with_capacity(total_cells);
     let mut bytes = 0;
-    for block in points.chunks(4096) {
+    for block in points.chunks(BLOCK) {
         let view = |&(y, p): &(f64, f64)| domain.view_at(y.to_degrees(), p.to_degrees());
         for list in lists_at(source, block, view) {
             bytes += cell_bytes(list.len());
