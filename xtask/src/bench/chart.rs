@@ -17,18 +17,38 @@ const COLOURS: [RGBColor; 6] = [
     RGBColor(0xff, 0x7f, 0x0e),
 ];
 
+/// The sorters in order of first appearance (their colours' order).
+fn sorter_order<'a>(names: impl Iterator<Item = &'a str>) -> Vec<&'a str> {
+    let mut sorters: Vec<&str> = Vec::new();
+    for name in names {
+        if !sorters.contains(&name) {
+            sorters.push(name);
+        }
+    }
+    sorters
+}
+
+/// A sorter's colour: by its place in `sorters`.
+fn colour_of(sorters: &[&str], sorter: &str) -> RGBColor {
+    COLOURS[sorters.iter().position(|&n| n == sorter).unwrap_or(0) % COLOURS.len()]
+}
+
+/// The power of ten at or below `v`, and at or above it.
+fn decade_below(v: f64) -> f64 {
+    10f64.powf(v.log10().floor())
+}
+
+fn decade_above(v: f64) -> f64 {
+    10f64.powf(v.log10().ceil())
+}
+
 /// The chart as SVG text.
 pub(super) fn chart_svg(rows: &[Row]) -> Result<String> {
     let points: Vec<&Row> = rows
         .iter()
         .filter(|r| r.views > 0 && r.frame_us.is_finite() && r.frame_us > 0.0)
         .collect();
-    let mut sorters: Vec<&str> = Vec::new();
-    for r in rows {
-        if !sorters.contains(&r.sorter.as_str()) {
-            sorters.push(&r.sorter);
-        }
-    }
+    let sorters = sorter_order(rows.iter().map(|r| r.sorter.as_str()));
     let lo = points
         .iter()
         .map(|r| r.frame_us)
@@ -39,10 +59,7 @@ pub(super) fn chart_svg(rows: &[Row]) -> Result<String> {
         .map(|r| r.frame_us)
         .fold(0.0, f64::max)
         .max(lo * 10.0);
-    let (x0, x1) = (
-        10f64.powf(lo.log10().floor()),
-        10f64.powf(hi.log10().ceil()),
-    );
+    let (x0, x1) = (decade_below(lo), decade_above(hi));
     let max_error = points
         .iter()
         .filter_map(|r| r.pixel_error)
@@ -50,9 +67,7 @@ pub(super) fn chart_svg(rows: &[Row]) -> Result<String> {
         .max(1e-4)
         * 100.0;
     let y_max = nice_ceiling(max_error);
-    let colour = |sorter: &str| {
-        COLOURS[sorters.iter().position(|&n| n == sorter).unwrap_or(0) % COLOURS.len()]
-    };
+    let colour = |sorter: &str| colour_of(&sorters, sorter);
 
     let mut svg = String::new();
     {
@@ -114,15 +129,10 @@ pub(super) fn chart_svg(rows: &[Row]) -> Result<String> {
     Ok(svg)
 }
 
-/// The scaling series on log-log axes: build time per face (solid) and per-frame time (dashed
-/// marks) against faces, one colour per sorter; skipped measurements are absent.
+/// The scaling series on log-log axes: build time per face (lines) and per-frame time
+/// (crosses) against faces, one colour per sorter; skipped measurements are absent.
 pub(super) fn scaling_svg(rows: &[ScalingRow]) -> Result<String> {
-    let mut sorters: Vec<&str> = Vec::new();
-    for r in rows {
-        if !sorters.contains(&r.sorter.as_str()) {
-            sorters.push(&r.sorter);
-        }
-    }
+    let sorters = sorter_order(rows.iter().map(|r| r.sorter.as_str()));
     // Below a nanosecond per face a build is a constructor, not a build: not drawn.
     let build_us = |r: &ScalingRow| {
         r.build_ms
@@ -139,8 +149,6 @@ pub(super) fn scaling_svg(rows: &[ScalingRow]) -> Result<String> {
         .flat_map(|r| [build_us(r), frame_us(r)])
         .flatten()
         .collect();
-    let decade_below = |v: f64| 10f64.powf(v.log10().floor());
-    let decade_above = |v: f64| 10f64.powf(v.log10().ceil());
     let (fx0, fx1) = values
         .iter()
         .fold((f64::INFINITY, 0.0f64), |(a, b), &(x, _)| {
@@ -160,9 +168,7 @@ pub(super) fn scaling_svg(rows: &[ScalingRow]) -> Result<String> {
         decade_below(fy0),
         decade_above(fy1).max(decade_below(fy0) * 10.0) * 1e3,
     );
-    let colour = |sorter: &str| {
-        COLOURS[sorters.iter().position(|&n| n == sorter).unwrap_or(0) % COLOURS.len()]
-    };
+    let colour = |sorter: &str| colour_of(&sorters, sorter);
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (760, 460)).into_drawing_area();

@@ -123,10 +123,7 @@ pub(super) fn markdown(
     let shown = |v: f64| format!("{v:.0}").parse::<f64>().unwrap_or(f64::NAN);
     for r in rows {
         let items = shown(r.fragments);
-        let centroid_items = rows
-            .iter()
-            .find(|c| c.sorter == "centroid" && c.scene == r.scene && c.projection == r.projection)
-            .map(|c| shown(c.fragments));
+        let centroid_items = centroid_of(rows, r).map(|c| shown(c.fragments));
         let items_ratio = match centroid_items {
             Some(c) if c > 0.0 => format!("{:.2}", items / c),
             _ => "—".to_owned(),
@@ -182,6 +179,17 @@ pub(super) fn markdown(
     s
 }
 
+/// The centroid baseline's row of the same scene and projection as `r`.
+fn centroid_of<'a>(rows: &'a [Row], r: &Row) -> Option<&'a Row> {
+    rows.iter()
+        .find(|c| c.sorter == "centroid" && c.scene == r.scene && c.projection == r.projection)
+}
+
+/// The geometric mean (1 for none).
+fn geo_mean(values: &[f64]) -> f64 {
+    (values.iter().map(|v| v.ln()).sum::<f64>() / values.len().max(1) as f64).exp()
+}
+
 /// The console summary: per sorter, geometric-mean ratio to centroid, mean pixel error,
 /// violations.
 pub(super) fn summary(rows: &[Row]) -> String {
@@ -204,19 +212,15 @@ pub(super) fn summary(rows: &[Row]) -> String {
             .map(|r| r.frame_ratio_vs_centroid)
             .filter(|r| r.is_finite() && *r > 0.0)
             .collect();
-        let geo = (ratios.iter().map(|r| r.ln()).sum::<f64>() / ratios.len().max(1) as f64).exp();
+        let geo = geo_mean(&ratios);
         let item_ratios: Vec<f64> = mine
             .iter()
             .filter_map(|r| {
-                let c = rows.iter().find(|c| {
-                    c.sorter == "centroid" && c.scene == r.scene && c.projection == r.projection
-                })?;
+                let c = centroid_of(rows, r)?;
                 (c.fragments > 0.0).then(|| r.fragments / c.fragments)
             })
             .collect();
-        let items_geo = (item_ratios.iter().map(|r| r.ln()).sum::<f64>()
-            / item_ratios.len().max(1) as f64)
-            .exp();
+        let items_geo = geo_mean(&item_ratios);
         let errors: Vec<f64> = mine.iter().filter_map(|r| r.pixel_error).collect();
         let mean_error = errors.iter().sum::<f64>() / errors.len().max(1) as f64;
         let violations: usize = mine.iter().map(|r| r.violations).sum();
