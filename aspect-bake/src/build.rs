@@ -65,19 +65,30 @@ impl Default for BakeOptions<'_> {
 
 /// The domain in radians: `(start, end, periodic)`.
 fn domain(spin: &Spin, options: &BakeOptions) -> Result<(f64, f64, bool), BakeError> {
-    if spin.template().cull_margin() > 0.0 {
-        return Err(BakeError::CullMargin {
-            degrees: spin.template().cull_margin(),
-        });
-    }
+    refuse_cull_margin(spin.template())?;
     match options.range_deg {
         None => Ok((0.0, TAU, true)),
-        Some((lo, hi)) => {
-            if !(lo.is_finite() && hi.is_finite() && hi > lo && hi - lo <= 360.0) {
-                return Err(BakeError::Range { lo, hi });
-            }
+        Some(range) => {
+            let (lo, hi) = check_range(range)?;
             Ok((lo.to_radians(), hi.to_radians(), false))
         }
+    }
+}
+
+/// A bake's conditions are sign conditions of plane rows only without a cull margin.
+pub(crate) fn refuse_cull_margin(template: &View) -> Result<(), BakeError> {
+    match template.cull_margin() {
+        degrees if degrees > 0.0 => Err(BakeError::CullMargin { degrees }),
+        _ => Ok(()),
+    }
+}
+
+/// An angle range in degrees: finite, not empty, at most one turn.
+pub(crate) fn check_range((lo, hi): (f64, f64)) -> Result<(f64, f64), BakeError> {
+    if lo.is_finite() && hi.is_finite() && hi > lo && hi - lo <= 360.0 {
+        Ok((lo, hi))
+    } else {
+        Err(BakeError::Range { lo, hi })
     }
 }
 

@@ -43,7 +43,7 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 use crate::BakeError;
-use crate::build::{BLOCK, lists_at};
+use crate::build::{BLOCK, check_range, lists_at, refuse_cull_margin};
 use crate::cells::cell_bytes;
 use crate::event::{EventFn, Roots, reduce};
 use crate::source::EventSource;
@@ -121,19 +121,10 @@ impl YawPitch {
     }
 
     fn check(&self) -> Result<(), BakeError> {
-        if self.template.cull_margin() > 0.0 {
-            return Err(BakeError::CullMargin {
-                degrees: self.template.cull_margin(),
-            });
-        }
-        let (lo, hi) = self.pitch;
-        if !(lo.is_finite() && hi.is_finite() && hi > lo && hi - lo <= 360.0) {
-            return Err(BakeError::Range { lo, hi });
-        }
-        if let Some((lo, hi)) = self.yaw
-            && !(lo.is_finite() && hi.is_finite() && hi > lo && hi - lo <= 360.0)
-        {
-            return Err(BakeError::Range { lo, hi });
+        refuse_cull_margin(&self.template)?;
+        check_range(self.pitch)?;
+        if let Some(yaw) = self.yaw {
+            check_range(yaw)?;
         }
         if !self.roll.is_finite() {
             return Err(BakeError::Range {
