@@ -275,6 +275,16 @@ impl EventSource for CentroidSource {
         let pair =
             |order: &[u32], p: usize| keys[order[p + 1] as usize].minus(&keys[order[p] as usize]);
         for p in 0..n - 1 {
+            // Tied exactly at `start`, the two swap there (they are sorted as just after it):
+            // over a full period that is the breakpoint between the last cell and the first,
+            // and roots are searched after `start` only.
+            let (i, j) = (&keys[order[p] as usize], &keys[order[p + 1] as usize]);
+            if i.value(start) == j.value(start) && slope(i, start) != slope(j, start) {
+                out.push(Event {
+                    theta: start,
+                    function: pair(&order, p),
+                });
+            }
             if let Some(t) = next_down(&pair(&order, p), start) {
                 heap.push(Reverse((Time(t), p, 0u64)));
             }

@@ -131,6 +131,19 @@ fn close_events_the_baseline_misses_and_the_exact_bake_finds() {
     }
 }
 
+/// The pair's centroids are at the same depth exactly at 0°, where they swap: over a full
+/// period that is a breakpoint. The kinetic sort searched roots after the start only, so the
+/// last cell ran on past 360° with the wrong order on one side.
+#[test]
+fn a_tie_at_the_start_of_a_period_is_a_breakpoint() {
+    let g = close_pair();
+    let spin = yaw_spin(&g, None);
+    let source = CentroidSource::of(&g);
+    let b = bake(&source, &spin, &BakeOptions::DEFAULT).unwrap();
+    assert!(degrees(&b).contains(&0.0), "{:?}", degrees(&b));
+    verify(&b, &source, &spin, 64, 3).unwrap();
+}
+
 #[test]
 fn budgets_stop_with_the_size_it_would_have() {
     let g = cube();

@@ -6,7 +6,7 @@ use glam::DVec3;
 
 use crate::plane::{Plane, newell_normal};
 use crate::polygon_set::PolygonSet;
-use crate::tolerance::{DEGENERATE_AREA, MAX_EXTENT_ABS, MIN_EXTENT_ABS, PLANARITY};
+use crate::tolerance::{DEGENERATE_AREA, MAX_EXTENT_ABS, MIN_EXTENT_ABS, ON_PLANE, PLANARITY};
 use crate::{Bounds, MeshError, PolygonMesh};
 
 /// A mesh cut into **pieces**, the units every sorter, the oracle and the truth work on
@@ -15,7 +15,9 @@ use crate::{Bounds, MeshError, PolygonMesh};
 /// are dropped.
 ///
 /// Planar faces are snapped onto their fitted plane (a move of at most `1e-6 · D`), so that
-/// every piece is exactly planar and its plane is the one the truth uses.
+/// every piece is planar and its plane is the one the truth uses. Corners already within
+/// [`ON_PLANE`]` · L` of it (round-off: every corner of a triangle) keep their bits, so that
+/// neighbours keep sharing them.
 #[derive(Clone, Debug)]
 pub struct Geometry {
     pieces: Arc<PolygonSet>,
@@ -55,6 +57,7 @@ impl Geometry {
             return Err(MeshError::ExtentOutOfRange { exponent });
         }
         let centre = bounds.centre();
+        let on_plane = ON_PLANE * diagonal;
         let mut pieces = PolygonSet::new();
         let mut corners: Vec<DVec3> = Vec::new();
         let mut non_planar_faces = 0;
@@ -75,8 +78,12 @@ impl Geometry {
                         dropped_pieces += 1;
                         continue;
                     }
+                    // A corner already on the plane (to round-off) keeps its bits, so that
+                    // neighbours keep sharing it.
                     for c in corners.iter_mut() {
-                        *c = plane.project_point(*c);
+                        if plane.signed_distance(*c).abs() > on_plane {
+                            *c = plane.project_point(*c);
+                        }
                     }
                     pieces.push(&corners, face as u32, plane);
                 }

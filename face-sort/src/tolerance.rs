@@ -27,6 +27,15 @@ pub const DEGENERATE_AREA: f64 = 1e-12;
 /// `1e-12`, 1,194 at `1e-13`.
 pub const PLANE_SIDE: f64 = 1e-12;
 
+/// A corner within `ON_PLANE · L` of its planar face's plane is on it already and keeps its
+/// bits (f64 round-off of centred coordinates is about `1e-16 · L`: every corner of a
+/// triangle), so that neighbouring pieces keep sharing it, which the coverage test of
+/// [`Newell`](crate::Newell) and `bsp-merged` needs; corners farther off are moved onto the
+/// plane. Far below [`PLANE_SIDE`]: at `PLANE_SIDE` itself the UV sphere moved by 1e6 units
+/// (`face-sort/tests/stress.rs`) left a BSP violation of `9e-9 · L` (faces at grazing angles
+/// magnify an off-plane corner `1 / sin θ` times); at `1e-14` it leaves none.
+pub const ON_PLANE: f64 = 1e-14;
+
 /// Order-violation depth tolerance: a later polygon must lie behind an earlier one by
 /// more than `ORACLE_DEPTH · L` in view depth to count (CONVENTIONS.md).
 pub const ORACLE_DEPTH: f64 = 1e-9;
