@@ -35,6 +35,7 @@
 mod bsp;
 mod centroid;
 pub mod colours;
+mod coverage;
 mod draw_list;
 mod error;
 mod fragment_merge;

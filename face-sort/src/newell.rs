@@ -5,6 +5,7 @@ use std::sync::Arc;
 
 use glam::{DVec2, DVec3};
 
+use crate::coverage::Coverage;
 use crate::plane::{Plane, Side};
 use crate::polygon::{Box2, clip_convex_2d, signed_area_2d, split_polygon};
 use crate::screen_grid::ScreenGrid;
@@ -37,8 +38,13 @@ struct Work {
 /// does not always break a cycle through several polygons (fuzzing found such cases among 60
 /// crossing quads). Frames that break a cycle allocate; others do not.
 ///
+/// Only the pieces that another drawn piece overlaps on screen enter the cascade: the others
+/// (on a closed mesh, all but those where the surface folds over itself in this view) are
+/// drawn first, in piece order, found by a [`Coverage`] test over the pieces' edge
+/// neighbours (found once, when the sorter is made).
+///
 /// Exact: the property tests and the book grid check zero order violations. Cost grows with
-/// the number of pairs whose depth extents overlap; it has no cached state.
+/// the number of pairs whose depth extents overlap; it caches nothing between frames.
 #[derive(Debug)]
 pub struct Newell {
     pieces: Arc<PolygonSet>,
@@ -62,6 +68,11 @@ pub struct Newell {
     /// Screen grid over the work items' boxes, and the candidates of the current query.
     grid: ScreenGrid,
     candidates: Vec<u32>,
+    /// Which pieces no other drawn piece overlaps; this frame's drawn pieces, and whether a
+    /// projection was clipped by the near plane (then no piece is drawn early).
+    coverage: Coverage,
+    drawn: Vec<u32>,
+    clipped: bool,
     tolerance: f64,
     min_area: f64,
     fallbacks: usize,
@@ -103,6 +114,9 @@ impl Newell {
             split_back: Vec::new(),
             grid: ScreenGrid::default(),
             candidates: Vec::new(),
+            coverage: Coverage::new(geometry.pieces()),
+            drawn: Vec::new(),
+            clipped: false,
             tolerance: PLANE_SIDE * l,
             min_area: OVERLAP_AREA * l * l,
             fallbacks: 0,
@@ -123,6 +137,7 @@ impl Newell {
             &mut self.projection_out,
             &mut self.projection_scratch,
         );
+        self.clipped |= self.projection_scratch.clipped();
         // Overlap tests run in view units (pixels / s), like the oracle.
         let inv_scale = 1.0 / view.scale();
         let start = self.projected.len() as u32;
@@ -295,6 +310,38 @@ impl Newell {
         }
     }
 
+    /// Draws the remaining work items that no other drawn piece overlaps on screen, and
+    /// removes them from `remaining`.
+    fn draw_alone(&mut self, out: &mut DrawList) {
+        if self.clipped {
+            return;
+        }
+        let (work, projected) = (&self.work, &self.projected);
+        let polygon = |w: &Work| {
+            &projected[w.projected_start as usize..(w.projected_start + w.projected_len) as usize]
+        };
+        self.drawn.clear();
+        self.drawn
+            .extend(self.remaining.iter().map(|&w| work[w as usize].polygon));
+        let remaining = &self.remaining;
+        if !self
+            .coverage
+            .file(&self.drawn, |j| polygon(&work[remaining[j] as usize]))
+        {
+            return;
+        }
+        let (coverage, done) = (&self.coverage, &mut self.done);
+        self.remaining.retain(|&w| {
+            let wk = &work[w as usize];
+            let alone = coverage.alone(polygon(wk), &wk.bounds);
+            if alone {
+                out.push(wk.polygon, wk.face);
+                done[w as usize] = true;
+            }
+            !alone
+        });
+    }
+
     /// Inserts work item `w` into the remaining list at or after `first`, keeping it sorted.
     fn insert_sorted(&mut self, first: usize, w: u32) {
         let z = self.work[w as usize].z_min;
@@ -318,6 +365,7 @@ impl FaceSorter for Newell {
         self.done.clear();
         self.stack.clear();
         self.projected.clear();
+        self.clipped = false;
         self.fallbacks = 0;
         // Frustum culling: a piece whose projection misses the image (in view units, like
         // the work boxes) covers no pixel and orders nothing that is seen; it is not drawn.
@@ -344,6 +392,11 @@ impl FaceSorter for Newell {
                 }
             }
         }
+        let before = self.remaining.len();
+        self.draw_alone(out);
+        if std::env::var_os("DBG").is_some() {
+            eprintln!("drawn {before} contested {}", self.remaining.len());
+        }
         // Sorted by key pairs (no lookup per comparison); ties keep the work order.
         let work = &self.work;
         self.keyed.clear();
@@ -354,15 +407,16 @@ impl FaceSorter for Newell {
         self.remaining.clear();
         self.remaining.extend(self.keyed.iter().map(|&(_, w)| w));
         let mut all = Box2::EMPTY;
-        for w in &self.work {
+        for &w in &self.remaining {
+            let w = &self.work[w as usize];
             if w.projected_len > 0 {
                 all.min = all.min.min(w.bounds.min);
                 all.max = all.max.max(w.bounds.max);
             }
         }
-        self.grid.reset(all, self.work.len());
-        for (i, w) in self.work.iter().enumerate() {
-            self.grid.insert(i as u32, &w.bounds);
+        self.grid.reset(all, self.remaining.len());
+        for &w in &self.remaining {
+            self.grid.insert(w, &self.work[w as usize].bounds);
         }
         // Every move or split costs a step; the budget bounds time on adversarial input.
         let mut budget = 64 * self.remaining.len() + 1024;
