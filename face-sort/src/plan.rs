@@ -92,9 +92,10 @@ impl Strategy {
 ///
 /// Measured with `cargo run --release -p face-sort --example plan_costs` (spot, blub and
 /// generated tori, orthographic; the example prints these medians). On that run the build
-/// per piece and level grew from 824 ns (spot) to 2,020 ns (a 40k-piece torus): the model
+/// per piece and level grew from 986 ns (spot) to 1,937 ns (a 40k-piece torus): the model
 /// under-predicts the build of very large meshes, which only delays the switch to BSP. The
-/// break-even is about 55 frames for spot.
+/// break-even is about 110 frames for spot. `Newell`'s own set-up (its pieces' edge
+/// neighbours, about 500 ns per piece) is left out: it never decides between the two.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CostModel {
     /// BSP build, per piece and per level (`n · log2 n` pieces·levels).
@@ -108,9 +109,9 @@ pub struct CostModel {
 impl CostModel {
     /// The constants measured on this repository's models (see the type's docs).
     pub const MEASURED: CostModel = CostModel {
-        bsp_build_per_piece_level: 1_126.0,
-        bsp_frame_per_piece: 16.0,
-        newell_frame_per_piece: 272.0,
+        bsp_build_per_piece_level: 1_191.0,
+        bsp_frame_per_piece: 7.1,
+        newell_frame_per_piece: 141.0,
     };
 
     /// Predicted nanoseconds for `pieces` pieces over `frames` frames.
