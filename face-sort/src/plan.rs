@@ -137,11 +137,20 @@ pub struct Plan {
     pub strategy: Strategy,
     /// One line a person can read, e.g. `convex position → cull only`.
     pub reason: String,
-    /// For [`Strategy::CullOnly`]: whether exit pieces are the back-facing ones (outward
-    /// normals) rather than the front-facing ones (inward normals).
-    exits_face_away: bool,
-    /// For [`Strategy::ConvexParts`]: the parts and the planes between them.
-    parts: Option<Arc<PartTree>>,
+    /// What the strategy's sorter needs from the analysis.
+    found: Found,
+}
+
+/// What a [`Plan`]'s analysis found for its sorter.
+#[derive(Clone, Debug, PartialEq)]
+enum Found {
+    /// Convex position: whether exit pieces are the back-facing ones (outward normals)
+    /// rather than the front-facing ones (inward normals).
+    Convex { exits_face_away: bool },
+    /// Separate convex parts and the planes between them.
+    Parts(Arc<PartTree>),
+    /// Nothing (Newell and BSP need no analysis).
+    Nothing,
 }
 
 impl Plan {
@@ -163,8 +172,7 @@ impl Plan {
                     "convex position ({} pieces, normals {normals}) → cull only: no sort, no fragments",
                     pieces.len()
                 ),
-                exits_face_away,
-                parts: None,
+                found: Found::Convex { exits_face_away },
             };
         }
         if let Some(tree) = PartTree::analyse(geometry) {
@@ -176,8 +184,7 @@ impl Plan {
                     tree.parts.len() - 1,
                     pieces.len()
                 ),
-                exits_face_away: true,
-                parts: Some(Arc::new(tree)),
+                found: Found::Parts(Arc::new(tree)),
             };
         }
         let n = pieces.len();
@@ -202,32 +209,30 @@ impl Plan {
                 cheaper * 1e-6,
                 dearer * 1e-6
             ),
-            exits_face_away: true,
-            parts: None,
+            found: Found::Nothing,
         }
     }
 
-    /// Builds the sorter this plan names.
+    /// Builds the sorter this plan names; a cull-only or convex-parts strategy that the
+    /// analysis did not prove (a `strategy` changed by hand) builds the BSP, which is exact.
     #[must_use]
     pub fn build(&self, geometry: &Geometry) -> Box<dyn FaceSorter> {
-        match self.strategy {
-            Strategy::CullOnly => Box::new(CullOnly {
+        match (self.strategy, &self.found) {
+            (Strategy::CullOnly, &Found::Convex { exits_face_away }) => Box::new(CullOnly {
                 pieces: Arc::clone(geometry.pieces()),
-                exits_face_away: self.exits_face_away,
+                exits_face_away,
                 grouped: None,
             }),
-            Strategy::ConvexParts => Box::new(ConvexParts {
+            (Strategy::ConvexParts, Found::Parts(tree)) => Box::new(ConvexParts {
                 pieces: Arc::clone(geometry.pieces()),
-                tree: Arc::clone(self.parts.as_ref().expect("a parts plan holds its parts")),
+                tree: Arc::clone(tree),
                 stack: Vec::new(),
             }),
-            Strategy::Newell => Box::new(Newell::new(geometry)),
+            (Strategy::Newell, _) => Box::new(Newell::new(geometry)),
             // A tree over its fragment budget (BspOptions) would cost more than it saves:
             // Newell is exact too and needs no tree.
-            Strategy::Bsp => {
-                Bsp::new_or_fallback(geometry, &BspOptions::DEFAULT, BspFallback::Newell)
-                    .unwrap_or_else(|_| Box::new(Newell::new(geometry)))
-            }
+            _ => Bsp::new_or_fallback(geometry, &BspOptions::DEFAULT, BspFallback::Newell)
+                .unwrap_or_else(|_| Box::new(Newell::new(geometry))),
         }
     }
 }
@@ -335,10 +340,8 @@ impl FaceSorter for Auto {
     }
 
     fn sort(&mut self, view: &View, out: &mut DrawList) {
-        if self.last_view.as_ref() == Some(view)
-            && out.sealed().is_some()
-            && out.sealed() == self.last_seal
-        {
+        // A view seen last frame, and the list still sealed as this sorter left it.
+        if self.last_view.as_ref() == Some(view) && out.sealed() == self.last_seal {
             self.skipped += 1;
             return;
         }
@@ -748,10 +751,20 @@ mod tests {
     fn a_cube_is_in_convex_position_either_way_round() {
         let outward = Plan::analyse(&cube(false), PlanHint::ONE_FRAME);
         assert_eq!(outward.strategy, Strategy::CullOnly, "{}", outward.reason);
-        assert!(outward.exits_face_away);
+        assert_eq!(
+            outward.found,
+            Found::Convex {
+                exits_face_away: true
+            }
+        );
         let inward = Plan::analyse(&cube(true), PlanHint::ONE_FRAME);
         assert_eq!(inward.strategy, Strategy::CullOnly, "{}", inward.reason);
-        assert!(!inward.exits_face_away);
+        assert_eq!(
+            inward.found,
+            Found::Convex {
+                exits_face_away: false
+            }
+        );
     }
 
     #[test]
