@@ -203,21 +203,6 @@ impl Coverage {
                 }
             }
         }
-        if std::env::var_os("DBG").is_some() {
-            let none = self
-                .neighbours
-                .across
-                .iter()
-                .filter(|&&q| q == NONE)
-                .count();
-            eprintln!(
-                "edges {} none-neigh {} of {} drawn {}",
-                self.edges.len(),
-                none,
-                self.neighbours.across.len(),
-                drawn.len()
-            );
-        }
         !self.edges.is_empty() && self.file_edges(drawn.len())
     }
 

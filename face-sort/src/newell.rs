@@ -392,11 +392,7 @@ impl FaceSorter for Newell {
                 }
             }
         }
-        let before = self.remaining.len();
         self.draw_alone(out);
-        if std::env::var_os("DBG").is_some() {
-            eprintln!("drawn {before} contested {}", self.remaining.len());
-        }
         // Sorted by key pairs (no lookup per comparison); ties keep the work order.
         let work = &self.work;
         self.keyed.clear();
