@@ -2,6 +2,7 @@
 
 use std::cmp::{Ordering, Reverse};
 use std::collections::BinaryHeap;
+use std::f64::consts::TAU;
 use std::sync::Arc;
 
 use face_sort::{Bsp, BspTree, Centroid, FaceSorter, Geometry, PolygonSet};
@@ -275,20 +276,25 @@ impl EventSource for CentroidSource {
         let pair =
             |order: &[u32], p: usize| keys[order[p + 1] as usize].minus(&keys[order[p] as usize]);
         for p in 0..n - 1 {
-            // Tied exactly at `start`, the two swap there (they are sorted as just after it):
-            // over a full period that is the breakpoint between the last cell and the first,
-            // and roots are searched after `start` only.
-            let (i, j) = (&keys[order[p] as usize], &keys[order[p + 1] as usize]);
-            if i.value(start) == j.value(start) && slope(i, start) != slope(j, start) {
-                out.push(Event {
-                    theta: start,
-                    function: pair(&order, p),
-                });
+            // Tied at `start` (to within the root's rounding), the two swap there: they are
+            // sorted as just after it, so the pair's rising root is at `start`. Over a full
+            // period that is the breakpoint between the last cell and the first, which the
+            // search below (falling roots, after `start`) never gives.
+            let g = pair(&order, p);
+            if let Roots::Two { up, .. } = g.roots() {
+                let after = crate::event::reduce(up, start) - start;
+                if after.min(TAU - after) <= SAME_ROOT_RAD.max(g.root_uncertainty()) {
+                    out.push(Event {
+                        theta: start,
+                        function: g,
+                    });
+                }
             }
-            if let Some(t) = next_down(&pair(&order, p), start) {
+            if let Some(t) = next_down(&g, start) {
                 heap.push(Reverse((Time(t), p, 0u64)));
             }
         }
+        budget(out.len(), max_events)?;
         while let Some(Reverse((Time(t), p, s))) = heap.pop() {
             if t >= end {
                 break;

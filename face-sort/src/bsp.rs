@@ -978,7 +978,6 @@ impl Bsp {
                     whole: &tree.whole,
                     fragment_count: &tree.fragments_of,
                     fragment_piece: &tree.fragment_piece,
-                    facing: &self.piece_facing,
                     diagonal: tree.diagonal,
                 };
                 merge.merge(view, &input, &items[..drawn], out.items_mut());

@@ -32,6 +32,10 @@ pub(crate) const NONE: u32 = u32::MAX;
 /// Most cells along either side of the boundary edges' grid.
 const MAX_SIDE: usize = 256;
 
+/// Most boundary-edge entries per grid cell and edge, on average, that a frame files (a
+/// silhouette's short edges touch one to four cells each); beyond, the test gives up.
+const MAX_FILED_PER_CELL: usize = 8;
+
 /// Per piece corner `k`, the piece across the edge from corner `k` to corner `k + 1`.
 #[derive(Debug, Default)]
 pub(crate) struct EdgeNeighbours {
@@ -144,9 +148,13 @@ impl Coverage {
         }
     }
 
-    /// The pieces' edge neighbours.
-    pub(crate) fn neighbours(&self) -> &EdgeNeighbours {
-        &self.neighbours
+    /// Whether drawn pieces `p` and `q` are edge neighbours turning the same way on screen
+    /// this frame (after [`file`](Self::file)): then they lie on opposite sides of their
+    /// shared edge and do not overlap.
+    pub(crate) fn beside(&self, p: usize, q: usize) -> bool {
+        self.turn[p] != 0
+            && self.turn[p] == self.turn[q]
+            && self.neighbours.of(p).contains(&(q as u32))
     }
 
     /// Files the boundary edges of this frame's drawn pieces, `drawn[j]` projecting to
@@ -226,6 +234,22 @@ impl Coverage {
         self.origin = lo;
         self.inverse_cell = DVec2::new(self.columns as f64 / size.x, self.rows as f64 / size.y);
         let (columns, rows) = (self.columns, self.rows);
+        // Long edges (a triangle soup's, where every edge is a boundary edge) could touch
+        // most cells each: past a bound on the work, no piece is proved alone this frame.
+        let mut filed = 0;
+        for e in &self.edges {
+            let (x0, x1, y0, y1) = cells_of(
+                self.origin,
+                self.inverse_cell,
+                (columns, rows),
+                e.a.min(e.b),
+                e.a.max(e.b),
+            );
+            filed += (x1 - x0 + 1) * (y1 - y0 + 1);
+        }
+        if filed > MAX_FILED_PER_CELL * (columns * rows + self.edges.len()) {
+            return false;
+        }
         // A counting sort into cells and rows: count, prefix sums, then fill counting down.
         for (start, len) in [
             (&mut self.cell_start, columns * rows),
@@ -277,12 +301,15 @@ impl Coverage {
         for row in 0..rows {
             let y = self.origin.y + (row as f64 + 0.5) * cell.y;
             self.crossings.clear();
+            let mut poisoned = false;
             let list = self.row_start[row] as usize..self.row_start[row + 1] as usize;
             for &e in &self.row_edges[list] {
                 let e = &self.edges[e as usize];
                 if (e.a.y <= y) != (e.b.y <= y) {
-                    self.crossings
-                        .push((e.a.x + (y - e.a.y) * e.inverse_slope, e.sign));
+                    // Not finite only when `dx / dy` overflows: then `m` is unknown here.
+                    let x = e.a.x + (y - e.a.y) * e.inverse_slope;
+                    poisoned |= !x.is_finite();
+                    self.crossings.push((x, e.sign));
                 }
             }
             self.crossings.sort_unstable_by(|a, b| b.0.total_cmp(&a.0));
@@ -295,7 +322,8 @@ impl Coverage {
                     next += 1;
                 }
                 let c = row * columns + column;
-                self.cell_alone[c] = m <= 1 && self.cell_start[c] == self.cell_start[c + 1];
+                self.cell_alone[c] =
+                    !poisoned && m <= 1 && self.cell_start[c] == self.cell_start[c + 1];
             }
         }
     }
@@ -344,17 +372,17 @@ impl Coverage {
         let row = (((inside.y - self.origin.y) * self.inverse_cell.y).max(0.0) as usize)
             .min(self.rows - 1);
         let list = self.row_start[row] as usize..self.row_start[row + 1] as usize;
-        let m: i32 = self.row_edges[list]
-            .iter()
-            .map(|&e| {
-                let e = &self.edges[e as usize];
-                // Half-open in y, so that an end shared by two edges counts once; no branch.
-                let crosses = (e.a.y <= inside.y) != (e.b.y <= inside.y);
-                let x = e.a.x + (inside.y - e.a.y) * e.inverse_slope;
-                i32::from(crosses & (x > inside.x)) * e.sign
-            })
-            .sum();
-        m == 1
+        let (mut m, mut finite) = (0, true);
+        for &e in &self.row_edges[list] {
+            let e = &self.edges[e as usize];
+            // Half-open in y, so that an end shared by two edges counts once; no branch.
+            let crosses = (e.a.y <= inside.y) != (e.b.y <= inside.y);
+            let x = e.a.x + (inside.y - e.a.y) * e.inverse_slope;
+            m += i32::from(crosses & (x > inside.x)) * e.sign;
+            // Not finite only when `dx / dy` overflows: then `m` is unknown.
+            finite &= !crosses | x.is_finite();
+        }
+        finite && m == 1
     }
 
     /// Heap bytes.
@@ -375,10 +403,11 @@ impl Coverage {
 
 /// Whether segment `a`–`b` meets the interior of the convex polygon `corners`, which turns
 /// `turn` (`±1`) on screen. Not when a separating line exists (touching allowed): an edge's
-/// line with the segment on its outer side and every corner on its inner side, one strictly
-/// (so that a zero or tiny edge turned by rounding never separates), or the segment's line
-/// with every corner on one side, one strictly. [`separated_2d`](crate::polygon::separated_2d)'s test, shortened for a
-/// segment against a polygon of known turn.
+/// line with the segment on its outer side and every corner on its inner side, one
+/// strictly (so that a zero-length edge never separates), or the segment's line with every
+/// corner on one side, one strictly. A stricter subset of
+/// [`separated_2d`](crate::polygon::separated_2d)'s lines, for a segment against a polygon
+/// of known turn: whenever it separates, `separated_2d` does too.
 fn enters(corners: &[DVec2], turn: f64, a: DVec2, b: DVec2) -> bool {
     let separates = |from: DVec2, direction: DVec2, outer: &dyn Fn(f64) -> bool| {
         let (mut inner, mut strictly) = (true, false);
@@ -446,6 +475,32 @@ mod tests {
     use crate::polygon::clip_convex_2d;
     use crate::tolerance::OVERLAP_AREA;
     use crate::{CullMode, Geometry, ProjectionScratch, View, generate};
+
+    /// A repeated corner (a zero-length edge) separates nothing, in either winding; a
+    /// segment through the interior enters, one outside or along an edge does not.
+    #[test]
+    fn segments_enter_only_through_the_interior() {
+        let square = [
+            DVec2::new(0.0, 0.0),
+            DVec2::new(1.0, 0.0),
+            DVec2::new(1.0, 0.0),
+            DVec2::new(1.0, 1.0),
+            DVec2::new(0.0, 1.0),
+        ];
+        let reversed: Vec<DVec2> = square.iter().rev().copied().collect();
+        for (corners, turn) in [(&square[..], 1.0), (&reversed[..], -1.0)] {
+            let enters = |a: (f64, f64), b: (f64, f64)| {
+                enters(corners, turn, DVec2::new(a.0, a.1), DVec2::new(b.0, b.1))
+            };
+            assert!(enters((-1.0, 0.5), (2.0, 0.5)));
+            assert!(enters((0.5, 0.5), (0.6, 0.6)));
+            assert!(enters((1.0, -1.0), (0.5, 0.5)));
+            assert!(!enters((1.0, -1.0), (1.0, 2.0)));
+            assert!(!enters((0.0, 0.0), (1.0, 0.0)));
+            assert!(!enters((2.0, -1.0), (2.0, 3.0)));
+            assert!(!enters((-1.0, 2.0), (2.0, 1.5)));
+        }
+    }
 
     /// Every piece the test proves alone overlaps no other drawn piece (brute force over all
     /// pairs, with Newell's and the oracle's overlap tolerance), on a torus (folds in most

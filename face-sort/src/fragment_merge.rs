@@ -43,8 +43,6 @@ pub(crate) struct MergeInput<'a> {
     pub fragment_count: &'a [u32],
     /// Per fragment, its piece.
     pub fragment_piece: &'a [u32],
-    /// Per piece, whether the viewer is in front of it.
-    pub facing: &'a [bool],
     /// The model's diagonal `L`.
     pub diagonal: f64,
 }
@@ -135,7 +133,7 @@ impl FragmentMerge {
             self.alone();
             // Newell's overlap tolerance, `OVERLAP_AREA · L²` in view units, in pixels².
             let l = input.diagonal * view.scale();
-            self.nothing_between(input, OVERLAP_AREA * l * l);
+            self.nothing_between(OVERLAP_AREA * l * l);
         }
         for (i, item) in items.iter().enumerate() {
             let p = input.fragment_piece[item.polygon as usize] as usize;
@@ -199,7 +197,7 @@ impl FragmentMerge {
 
     /// Test 2: merges each pending split piece that no piece drawn between its fragments
     /// overlaps.
-    fn nothing_between(&mut self, input: &MergeInput<'_>, min_area: f64) {
+    fn nothing_between(&mut self, min_area: f64) {
         if self.pending.is_empty() {
             return;
         }
@@ -222,17 +220,14 @@ impl FragmentMerge {
             let (projected, starts) = (&self.projected, &self.projected_start);
             let polygon = |j: usize| &projected[starts[j] as usize..starts[j + 1] as usize];
             let (clip_out, clip_scratch) = (&mut self.clip_out, &mut self.clip_scratch);
-            let across = self.coverage.neighbours().of(q);
-            // A neighbour facing the same way lies on the other side of the shared edge.
-            let beside =
-                |r: usize| input.facing[r] == input.facing[q] && across.contains(&(r as u32));
+            let coverage = &self.coverage;
             self.grid.for_each_candidate(&q_box, |j| {
                 let r = drawn[j as usize] as usize;
                 if r == q
                     || firsts[r] >= last
                     || lasts[r] <= first
                     || !boxes[j as usize].overlaps(&q_box)
-                    || beside(r)
+                    || coverage.beside(q, r)
                     || separated_2d(polygon(jq), polygon(j as usize))
                 {
                     return ControlFlow::Continue(());

@@ -1,5 +1,5 @@
 //! Newell, Newell and Sancha's painter's algorithm, per frame, with splits: exact, and needs
-//! no precomputation (so it serves deforming meshes).
+//! no tree (only its pieces' edge neighbours, found once when it is made).
 
 use std::sync::Arc;
 
@@ -44,7 +44,8 @@ struct Work {
 /// neighbours (found once, when the sorter is made).
 ///
 /// Exact: the property tests and the book grid check zero order violations. Cost grows with
-/// the number of pairs whose depth extents overlap; it caches nothing between frames.
+/// the number of overlapped pieces and of pairs whose depth extents overlap; nothing carries
+/// over between frames.
 #[derive(Debug)]
 pub struct Newell {
     pieces: Arc<PolygonSet>,
@@ -137,7 +138,6 @@ impl Newell {
             &mut self.projection_out,
             &mut self.projection_scratch,
         );
-        self.clipped |= self.projection_scratch.clipped();
         // Overlap tests run in view units (pixels / s), like the oracle.
         let inv_scale = 1.0 / view.scale();
         let start = self.projected.len() as u32;
@@ -383,6 +383,7 @@ impl FaceSorter for Newell {
                     && bounds.min.y < image.max.y
                     && image.min.y < bounds.max.y;
                 if in_image {
+                    self.clipped |= self.projection_scratch.clipped();
                     self.remaining.push(w);
                 } else {
                     let start = self.work[w as usize].projected_start as usize;
@@ -491,7 +492,7 @@ impl FaceSorter for Newell {
     fn stats(&self) -> SorterStats {
         SorterStats {
             polygons: self.pieces.len(),
-            cached_bytes: 0,
+            cached_bytes: self.coverage.heap_bytes(),
             fallbacks: self.fallbacks,
             ..SorterStats::default()
         }
