@@ -65,17 +65,22 @@ fn sorting_again_allocates_nothing() {
         Plan::analyse(&geometry, PlanHint::ONE_FRAME).build(&geometry),
         Plan::analyse(&one_box, PlanHint::ONE_FRAME).build(&one_box),
     ];
-    // The merged BSP also on a model whose tree splits pieces (boxes' does not).
+    // The merged BSP also on a model whose tree splits pieces (boxes' does not), and Newell
+    // on a closed model large enough for its coverage test.
     let split = Geometry::new(&read_obj(&asset("suzanne/suzanne.obj"))).unwrap();
+    let torus = Geometry::new(&face_sort::generate::torus(600)).unwrap();
     let sorters = SorterKind::ALL
         .iter()
         .map(|kind| (kind.build(&geometry), views_of(&geometry)))
         .chain(planned.map(|sorter| (sorter, views_of(&geometry))))
-        .chain([(SorterKind::BspMerged.build(&split), views_of(&split))]);
+        .chain([(SorterKind::BspMerged.build(&split), views_of(&split))])
+        // Newell's coverage test runs from 64 drawn pieces (boxes has 48).
+        .chain([(SorterKind::Newell.build(&torus), views_of(&torus))]);
     for (mut sorter, views) in sorters {
         let mut list = DrawList::new();
-        // Warm-up: buffers grow to the largest frame (Newell's splits vary by view).
-        for view in &views {
+        // Warm-up: buffers grow to the largest frame (Newell's splits vary by view; its
+        // coverage test starts at its second frame, so the views are drawn twice).
+        for view in views.iter().chain(&views) {
             sorter.sort(view, &mut list);
         }
         let before = ALLOCATIONS.load(Ordering::Relaxed);
