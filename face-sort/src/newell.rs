@@ -46,9 +46,10 @@ struct Work {
 /// Only the pieces that another drawn piece overlaps on screen enter the cascade: the others
 /// (on a closed mesh, all but those where the surface folds over itself in this view) are
 /// drawn first, in piece order, found by a [`Coverage`] test over the pieces' edge
-/// neighbours. Those are found at the sorter's second frame: one picture (what the planner
-/// gives Newell) does not pay for them (`cargo xtask oneshot` on a 69k-triangle blob: 1.47×
-/// the centroid sort's whole-process time when found up front, 1.16× before the test).
+/// neighbours, found when the sorter is made. For one picture they cost more than they save:
+/// [`Newell::without_coverage`] skips them, and the planner makes that one for a single frame
+/// (`cargo xtask oneshot` on a 69k-triangle blob: 1.47× the centroid sort's whole-process
+/// time with them, 1.16× without).
 ///
 /// Exact: the property tests and the book grid check zero order violations. Cost grows with
 /// the number of overlapped pieces and of pairs whose depth extents overlap; nothing carries
@@ -76,13 +77,12 @@ pub struct Newell {
     /// Screen grid over the work items' boxes, and the candidates of the current query.
     grid: ScreenGrid,
     candidates: Vec<u32>,
-    /// Which pieces no other drawn piece overlaps (from the second frame on); this frame's
-    /// drawn pieces, and whether a projection was clipped by the near plane (then no piece is
-    /// drawn early); whether a frame was sorted before.
+    /// Which pieces no other drawn piece overlaps (`None`: not tested); this frame's drawn
+    /// pieces, and whether a projection was clipped by the near plane (then no piece is drawn
+    /// early).
     coverage: Option<Box<Coverage>>,
     drawn: Vec<u32>,
     clipped: bool,
-    sorted_before: bool,
     tolerance: f64,
     min_area: f64,
     fallbacks: usize,
@@ -103,9 +103,20 @@ enum Action {
 }
 
 impl Newell {
-    /// A Newell sorter over a geometry's pieces.
+    /// A Newell sorter over a geometry's pieces, with their edge neighbours for the coverage
+    /// test (about 0.5 µs per piece: 2.95 ms on spot's 5,854 pieces, `cargo xtask bench`).
     #[must_use]
     pub fn new(geometry: &Geometry) -> Self {
+        Newell {
+            coverage: Some(Box::new(Coverage::new(geometry.pieces()))),
+            ..Newell::without_coverage(geometry)
+        }
+    }
+
+    /// A Newell sorter that sends every piece through the cascade: nothing to find when it
+    /// is made, for one picture.
+    #[must_use]
+    pub fn without_coverage(geometry: &Geometry) -> Self {
         let l = geometry.bounds().diagonal();
         Newell {
             pieces: Arc::clone(geometry.pieces()),
@@ -127,7 +138,6 @@ impl Newell {
             coverage: None,
             drawn: Vec::new(),
             clipped: false,
-            sorted_before: false,
             tolerance: PLANE_SIDE * l,
             min_area: OVERLAP_AREA * l * l,
             fallbacks: 0,
@@ -323,15 +333,12 @@ impl Newell {
     /// Draws the remaining work items that no other drawn piece overlaps on screen, and
     /// removes them from `remaining`.
     fn draw_alone(&mut self, out: &mut DrawList) {
-        if !std::mem::replace(&mut self.sorted_before, true) {
+        let Some(coverage) = &mut self.coverage else {
             return;
-        }
+        };
         if self.clipped || self.remaining.len() < COVERAGE_MIN_PIECES {
             return;
         }
-        let coverage = self
-            .coverage
-            .get_or_insert_with(|| Box::new(Coverage::new(&self.pieces)));
         let (work, projected) = (&self.work, &self.projected);
         let polygon = |w: &Work| {
             &projected[w.projected_start as usize..(w.projected_start + w.projected_len) as usize]

@@ -95,7 +95,8 @@ impl Strategy {
 /// per piece and level grew from 986 ns (spot) to 1,937 ns (a 40k-piece torus): the model
 /// under-predicts the build of very large meshes, which only delays the switch to BSP. The
 /// break-even is about 110 frames for spot. `Newell`'s own set-up (its pieces' edge
-/// neighbours, about 500 ns per piece) is left out: it never decides between the two.
+/// neighbours, about 500 ns per piece) is left out: counted, it would move spot's
+/// break-even from about 111 to about 107 frames.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CostModel {
     /// BSP build, per piece and per level (`n · log2 n` pieces·levels).
@@ -139,7 +140,15 @@ pub struct Plan {
     pub reason: String,
     /// What the strategy's sorter needs from the analysis.
     found: Found,
+    /// The frames the caller said it will draw ([`PlanHint::frames`]).
+    frames: u64,
 }
+
+/// From this many frames on, the planner's [`Newell`] finds its pieces' edge neighbours for
+/// the coverage test: on spot they cost 2.95 ms once (`cargo xtask bench`, Newell's build)
+/// and save about 0.7 ms a frame (1.45 ms before the test, 0.76 ms with it), even from about
+/// 4.3 frames.
+const NEWELL_COVERAGE_FRAMES: u64 = 5;
 
 /// What a [`Plan`]'s analysis found for its sorter.
 #[derive(Clone, Debug, PartialEq)]
@@ -173,6 +182,7 @@ impl Plan {
                     pieces.len()
                 ),
                 found: Found::Convex { exits_face_away },
+                frames: hint.frames,
             };
         }
         if let Some(tree) = PartTree::analyse(geometry) {
@@ -185,6 +195,7 @@ impl Plan {
                     pieces.len()
                 ),
                 found: Found::Parts(Arc::new(tree)),
+                frames: hint.frames,
             };
         }
         let n = pieces.len();
@@ -210,6 +221,7 @@ impl Plan {
                 dearer * 1e-6
             ),
             found: Found::Nothing,
+            frames: hint.frames,
         }
     }
 
@@ -228,7 +240,10 @@ impl Plan {
                 tree: Arc::clone(tree),
                 stack: Vec::new(),
             }),
-            (Strategy::Newell, _) => Box::new(Newell::new(geometry)),
+            (Strategy::Newell, _) if self.frames >= NEWELL_COVERAGE_FRAMES => {
+                Box::new(Newell::new(geometry))
+            }
+            (Strategy::Newell, _) => Box::new(Newell::without_coverage(geometry)),
             // A tree over its fragment budget (BspOptions) would cost more than it saves:
             // Newell is exact too and needs no tree.
             _ => Bsp::new_or_fallback(geometry, &BspOptions::DEFAULT, BspFallback::Newell)

@@ -658,7 +658,10 @@ impl SceneSorter {
             self.clusters.insert(
                 members.to_vec(),
                 Cluster {
-                    sorter: ClusterSorter::Newell(Box::new(crate::Newell::new(&geometry))),
+                    // Made again each frame a member moves: no edge neighbours to find.
+                    sorter: ClusterSorter::Newell(Box::new(crate::Newell::without_coverage(
+                        &geometry,
+                    ))),
                     geometry,
                     frames: 0,
                     faces: scene_faces,

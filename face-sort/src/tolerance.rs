@@ -28,8 +28,8 @@ pub const DEGENERATE_AREA: f64 = 1e-12;
 pub const PLANE_SIDE: f64 = 1e-12;
 
 /// A corner within `ON_PLANE · L` of its planar face's plane is on it already and keeps its
-/// bits (f64 round-off of centred coordinates is about `1e-16 · L`: every corner of a
-/// triangle), so that neighbouring pieces keep sharing it, which the coverage test of
+/// bits (f64 round-off of centred coordinates is about `1e-16 · L`: typically every corner
+/// of a triangle), so that neighbouring pieces keep sharing it, which the coverage test of
 /// [`Newell`](crate::Newell) and `bsp-merged` needs; corners farther off are moved onto the
 /// plane. Far below [`PLANE_SIDE`]: at `PLANE_SIDE` itself the UV sphere moved by 1e6 units
 /// (`face-sort/tests/stress.rs`) left a BSP violation of `9e-9 · L` (faces at grazing angles
@@ -52,8 +52,8 @@ pub const NEAR_W: f64 = 1e-3;
 pub const ORACLE_INTERIOR: f64 = 1e-9;
 
 /// Corners closer than `SAME_CORNER · L` are one corner when `Topological` finds pieces that
-/// share an edge: planar faces are snapped onto their planes (by up to [`PLANARITY`]` · D`),
-/// so corners that a file shares move apart.
+/// share an edge: planar faces more than [`ON_PLANE`]` · L` off their fitted plane are snapped
+/// onto it (by up to [`PLANARITY`]` · D`), so corners that a file shares move apart.
 pub const SAME_CORNER: f64 = 1e-5;
 
 /// Absolute: the smallest and largest bounding-box diagonal `L` a [`Geometry`](crate::Geometry)
