@@ -95,8 +95,8 @@ impl Strategy {
 /// per piece and level grew from 986 ns (spot) to 1,937 ns (a 40k-piece torus): the model
 /// under-predicts the build of very large meshes, which only delays the switch to BSP. The
 /// break-even is about 110 frames for spot. `Newell`'s own set-up (its pieces' edge
-/// neighbours, about 500 ns per piece) is left out: counted, it would move spot's
-/// break-even from about 111 to about 107 frames.
+/// neighbours, about 330 ns per piece) is left out: counted, it would move spot's
+/// break-even from about 111 to about 109 frames.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CostModel {
     /// BSP build, per piece and per level (`n · log2 n` pieces·levels).
@@ -145,10 +145,10 @@ pub struct Plan {
 }
 
 /// From this many frames on, the planner's [`Newell`] finds its pieces' edge neighbours for
-/// the coverage test: on spot they cost 2.95 ms once (`cargo xtask bench`, Newell's build)
-/// and save about 0.7 ms a frame (1.45 ms before the test, 0.76 ms with it), even from about
-/// 4.3 frames.
-const NEWELL_COVERAGE_FRAMES: u64 = 5;
+/// the coverage test: on spot they cost 1.9 ms once (`cargo run --release -p face-sort
+/// --example stats`) and save about 0.65 ms a frame (`cargo bench -p face-sort --bench
+/// sorters`: 1.45 ms before the test, 0.80 ms with it), even from about 2.9 frames.
+const NEWELL_COVERAGE_FRAMES: u64 = 3;
 
 /// What a [`Plan`]'s analysis found for its sorter.
 #[derive(Clone, Debug, PartialEq)]
