@@ -49,9 +49,9 @@ use crate::event::{EventFn, Roots, reduce};
 use crate::source::EventSource;
 use crate::tolerance::{
     CHART_POLE, CONTINUE_GAP_RAD, IDENTICALLY_ZERO, PARALLEL_SIN, ROOT_NOISE, SAME_ROOT_RAD,
-    VERIFY_MIN_GAP_RAD, VERIFY_MIN_SIDE_RAD, VERIFY_SIDE_RAD,
+    VERIFY_MIN_GAP_RAD, VERIFY_MIN_SIDE_RAD,
 };
-use crate::verify::unit;
+use crate::verify::{cell_state, changes_sign, inside, polygons_of, side_of, unit};
 
 /// The event set `{d : normal·d = offset}` of one sign condition, `d` the unit vector toward
 /// the viewer in centred model space.
@@ -749,9 +749,9 @@ pub fn verify_two_axes(
             |(sorter, list), cell| {
                 let mut live = |y: f64, p: f64| {
                     sorter.sort(&domain.view_at(y.to_degrees(), p.to_degrees()), list);
-                    list.items().iter().map(|i| i.polygon).collect::<Vec<u32>>()
+                    polygons_of(list)
                 };
-                let mut state = seed ^ (cell as u64).wrapping_mul(0x2545_F491_4F6C_DD1D);
+                let mut state = cell_state(seed, cell);
                 let mut report = Verify2Report::default();
                 let mine = &gaps[cell];
                 let pick = |state: &mut u64| {
@@ -768,7 +768,7 @@ pub fn verify_two_axes(
                     if hi - lo <= VERIFY_MIN_GAP_RAD {
                         continue;
                     }
-                    let y = lo + (hi - lo) * (0.001 + 0.998 * unit(&mut state));
+                    let y = lo + (hi - lo) * inside(&mut state);
                     let fail = |what: &str| Verify2Error::Interior {
                         cell,
                         yaw: y.to_degrees(),
@@ -791,7 +791,7 @@ pub fn verify_two_axes(
                 };
                 let (lo, y) = bake.gap(s, k, p);
                 let (_, hi) = bake.gap(s, k + 1, p);
-                let side = VERIFY_SIDE_RAD.min(0.25 * (y - lo).min(hi - y));
+                let side = side_of(y - lo, hi - y);
                 if side <= VERIFY_MIN_SIDE_RAD {
                     return Ok(report);
                 }
@@ -804,7 +804,7 @@ pub fn verify_two_axes(
                     what,
                 };
                 let (before, after) = (f.value(y - side), f.value(y + side));
-                if before * after >= 0.0 || before.is_nan() || after.is_nan() {
+                if !changes_sign(before, after) {
                     return Err(fail(format!(
                         "its circle does not change sign ({before:e}, {after:e})"
                     )));

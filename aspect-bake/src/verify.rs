@@ -45,6 +45,33 @@ pub enum VerifyError {
     },
 }
 
+/// The random state for cell `k` of a check seeded with `seed`.
+pub(crate) fn cell_state(seed: u64, k: usize) -> u64 {
+    seed ^ (k as u64).wrapping_mul(0x2545_F491_4F6C_DD1D)
+}
+
+/// A random fraction strictly inside `(0, 1)`, away from both ends by a margin (0.1 %).
+pub(crate) fn inside(state: &mut u64) -> f64 {
+    0.001 + 0.998 * unit(state)
+}
+
+/// How far on each side of a boundary to evaluate: [`VERIFY_SIDE_RAD`], or a quarter of the
+/// narrower of the two widths beside it (radians).
+pub(crate) fn side_of(left: f64, right: f64) -> f64 {
+    VERIFY_SIDE_RAD.min(0.25 * left.min(right))
+}
+
+/// Whether an event function's values just before and just after a boundary have opposite
+/// strict signs (a real sign change, not a tangency).
+pub(crate) fn changes_sign(before: f64, after: f64) -> bool {
+    before * after < 0.0
+}
+
+/// The polygons of a draw list, in order (what a cell stores).
+pub(crate) fn polygons_of(list: &DrawList) -> Vec<u32> {
+    list.items().iter().map(|i| i.polygon).collect()
+}
+
 /// SplitMix64: a few random interior angles per cell, reproducible from a seed.
 pub(crate) fn unit(state: &mut u64) -> f64 {
     *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
@@ -76,15 +103,13 @@ pub fn verify(
             || (source.sorter(), DrawList::new()),
             |(sorter, list), k| {
                 let cell = &bake.cells[k];
-                let mut state = seed ^ (k as u64).wrapping_mul(0x2545_F491_4F6C_DD1D);
+                let mut state = cell_state(seed, k);
                 let mut live = |degrees: f64| {
                     sorter.sort(&spin.view_at(degrees.to_radians()), list);
-                    list.items().iter().map(|i| i.polygon).collect::<Vec<u32>>()
+                    polygons_of(list)
                 };
                 for _ in 0..per_cell {
-                    // Strictly inside: away from both ends by a margin.
-                    let f = 0.001 + 0.998 * unit(&mut state);
-                    let degrees = cell.range.lerp(f);
+                    let degrees = cell.range.lerp(inside(&mut state));
                     if live(degrees) != cell.order {
                         return Err(VerifyError::Interior {
                             cell: k,
@@ -130,17 +155,17 @@ pub fn verify(
                     let r = bake.cells[c].range;
                     (r.hi - r.lo).to_radians()
                 };
-                let side = VERIFY_SIDE_RAD.min(0.25 * width(left).min(width(right)));
+                let side = side_of(width(left), width(right));
                 let t = b.degrees.to_radians();
                 let (before, after) = (event.value(t - side), event.value(t + side));
-                if before * after >= 0.0 || before.is_nan() || after.is_nan() {
+                if !changes_sign(before, after) {
                     return Err(fail(format!(
                         "its event does not change sign ({before:e} before, {after:e} after)"
                     )));
                 }
                 let mut live = |theta: f64| {
                     sorter.sort(&spin.view_at(theta), list);
-                    list.items().iter().map(|i| i.polygon).collect::<Vec<u32>>()
+                    polygons_of(list)
                 };
                 if live(t - side) != bake.cells[left].order {
                     return Err(fail(
