@@ -83,6 +83,8 @@ pub struct Newell {
     coverage: Option<Box<Coverage>>,
     drawn: Vec<u32>,
     clipped: bool,
+    /// Whether the last work item added was clipped by the near plane.
+    last_clipped: bool,
     tolerance: f64,
     min_area: f64,
     fallbacks: usize,
@@ -139,45 +141,62 @@ impl Newell {
             coverage: None,
             drawn: Vec::new(),
             clipped: false,
+            last_clipped: false,
             tolerance: PLANE_SIDE * l,
             min_area: OVERLAP_AREA * l * l,
             fallbacks: 0,
         }
     }
 
+    /// Adds a work item: the polygon's depth extent, its projection in view units (pixels / s,
+    /// like the oracle) and screen box, in one pass over its corners; the near-plane clipped
+    /// projection when a corner lies behind the near plane (then `last_clipped` is set).
     fn add_work(&mut self, view: &View, out: &DrawList, polygon: u32, face: u32) -> u32 {
         let corners = out.corners(DrawItem { polygon, face });
-        let depth_axis = view.rotation().row(2);
-        let (mut z_min, mut z_max) = (f64::INFINITY, f64::NEG_INFINITY);
-        for &c in corners {
-            let z = depth_axis.dot(c);
-            z_min = z_min.min(z);
-            z_max = z_max.max(z);
-        }
-        view.project_polygon(
-            corners,
-            &mut self.projection_out,
-            &mut self.projection_scratch,
-        );
-        // Overlap tests run in view units (pixels / s), like the oracle.
         let inv_scale = 1.0 / view.scale();
-        let start = self.projected.len() as u32;
-        self.projected
-            .extend(self.projection_out.iter().map(|&p| p * inv_scale));
-        let projected = &self.projected[start as usize..];
-        let bounds = if projected.is_empty() {
-            Box2::EMPTY
-        } else {
-            Box2::from_points(projected)
-        };
+        let start = self.projected.len();
+        let (mut z_min, mut z_max) = (f64::INFINITY, f64::NEG_INFINITY);
+        let mut bounds = Box2::EMPTY;
+        let mut behind = false;
+        for &c in corners {
+            let v = view.to_view(c);
+            z_min = z_min.min(v.z);
+            z_max = z_max.max(v.z);
+            match view.project_view_point(v) {
+                Some(p) => {
+                    let p = p * inv_scale;
+                    bounds.min = bounds.min.min(p);
+                    bounds.max = bounds.max.max(p);
+                    self.projected.push(p);
+                }
+                None => behind = true,
+            }
+        }
+        if behind {
+            self.projected.truncate(start);
+            view.project_polygon(
+                corners,
+                &mut self.projection_out,
+                &mut self.projection_scratch,
+            );
+            self.projected
+                .extend(self.projection_out.iter().map(|&p| p * inv_scale));
+            let projected = &self.projected[start..];
+            bounds = if projected.is_empty() {
+                Box2::EMPTY
+            } else {
+                Box2::from_points(projected)
+            };
+        }
+        self.last_clipped = behind;
         self.work.push(Work {
             polygon,
             face,
             z_min,
             z_max,
             bounds,
-            projected_start: start,
-            projected_len: projected.len() as u32,
+            projected_start: start as u32,
+            projected_len: (self.projected.len() - start) as u32,
             marked: false,
         });
         self.done.push(false);
@@ -404,7 +423,7 @@ impl FaceSorter for Newell {
                     && bounds.min.y < image.max.y
                     && image.min.y < bounds.max.y;
                 if in_image {
-                    self.clipped |= self.projection_scratch.clipped();
+                    self.clipped |= self.last_clipped;
                     self.remaining.push(w);
                 } else {
                     let start = self.work[w as usize].projected_start as usize;
