@@ -129,6 +129,8 @@ struct BoundaryEdge {
     /// `dx / dy` (infinite or NaN for a level edge, which no height crosses half-open).
     inverse_slope: f64,
     sign: i32,
+    /// The piece it belongs to (whose own edges never enter it).
+    piece: u32,
 }
 
 /// Per-frame buffers of the coverage test, kept between frames (steady frames allocate
@@ -234,6 +236,7 @@ impl Coverage {
                         b,
                         inverse_slope: (b.x - a.x) / (b.y - a.y),
                         sign: upward * i32::from(turn),
+                        piece: p as u32,
                     });
                 }
             }
@@ -355,11 +358,12 @@ impl Coverage {
         }
     }
 
-    /// Whether a drawn piece, projecting to `corners` with screen box `bounds`, alone covers
-    /// its projection: it lies in alone cells, or it has area, no boundary edge enters it,
-    /// and the winding number over the boundary edges at its centroid is 1. Only after
-    /// [`file`](Self::file) returned `true` for the frame.
-    pub(crate) fn alone(&self, corners: &[DVec2], bounds: &Box2) -> bool {
+    /// Whether drawn piece `piece`, projecting to `corners` with screen box `bounds`, alone
+    /// covers its projection: it lies in alone cells, or it has area, no boundary edge enters
+    /// it (its own edges lie on its outline and are not tested), and the winding number over
+    /// the boundary edges at its centroid is 1. Only after [`file`](Self::file) returned
+    /// `true` for the frame.
+    pub(crate) fn alone(&self, piece: u32, corners: &[DVec2], bounds: &Box2) -> bool {
         let b = bounds;
         let (x0, x1, y0, y1) = cells_of(
             self.origin,
@@ -385,6 +389,9 @@ impl Coverage {
                 let list = self.cell_start[c] as usize..self.cell_start[c + 1] as usize;
                 for &e in &self.cell_edges[list] {
                     let e = self.edges[e as usize];
+                    if e.piece == piece {
+                        continue;
+                    }
                     // An edge whose box misses the piece's cannot enter it.
                     let (lo, hi) = (e.a.min(e.b), e.a.max(e.b));
                     let apart =
@@ -595,7 +602,7 @@ mod tests {
                     assert!(coverage.file(&drawn, |j| &projected[j]));
                     let (mut clip, mut scratch) = (Vec::new(), Vec::new());
                     for (j, a) in projected.iter().enumerate() {
-                        if !coverage.alone(a, &Box2::from_points(a)) {
+                        if !coverage.alone(drawn[j], a, &Box2::from_points(a)) {
                             refused += 1;
                             continue;
                         }

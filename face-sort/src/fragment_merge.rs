@@ -187,7 +187,7 @@ impl FragmentMerge {
         for s in 0..self.split.len() {
             let q = self.split[s];
             let j = self.dense[q as usize] as usize;
-            if self.coverage.alone(self.polygon(j), &self.boxes[j]) {
+            if self.coverage.alone(q, self.polygon(j), &self.boxes[j]) {
                 self.merged[q as usize] = self.frame;
             } else {
                 self.pending.push(q);

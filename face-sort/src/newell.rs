@@ -373,7 +373,7 @@ impl Newell {
         let done = &mut self.done;
         self.remaining.retain(|&w| {
             let wk = &work[w as usize];
-            let alone = coverage.alone(polygon(wk), &wk.bounds);
+            let alone = coverage.alone(wk.polygon, polygon(wk), &wk.bounds);
             if alone {
                 out.push(wk.polygon, wk.face);
                 done[w as usize] = true;
