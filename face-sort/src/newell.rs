@@ -11,7 +11,6 @@ use crate::polygon::{Box2, clip_convex_2d, signed_area_2d, split_polygon};
 use crate::screen_grid::ScreenGrid;
 use crate::tolerance::{OVERLAP_AREA, PLANE_SIDE};
 use crate::view::Viewer;
-use crate::{Bsp, BspOptions, BspTree};
 use crate::{
     DrawItem, DrawList, FaceSorter, Geometry, PolygonSet, ProjectionScratch, SorterStats, View,
 };
@@ -38,10 +37,11 @@ struct Work {
 /// overlap), moving a polygon ahead when it must be drawn first, and splitting one polygon by
 /// the other's plane when they interpenetrate or their planes cross.
 ///
-/// A cycle (a polygon that was moved ahead must move ahead again) is broken by a small BSP over
-/// the polygons of the cycle, whose fragments replace them: cutting one pair by its own planes
-/// does not always break a cycle through several polygons (fuzzing found such cases among 60
-/// crossing quads). Frames that break a cycle allocate; others do not.
+/// A cycle (a polygon that was moved ahead must move ahead again) is broken by an
+/// auto-partition of the polygons of the cycle (a BSP's fragments, without the tree), whose
+/// fragments replace them: cutting one pair by its own planes does not always break a cycle
+/// through several polygons (fuzzing found such cases among 60 crossing quads). Steady frames
+/// allocate nothing, with cycles or without.
 ///
 /// Only the pieces that another drawn piece overlaps on screen enter the cascade: the others
 /// (on a closed mesh, all but those where the surface folds over itself in this view) are
@@ -74,6 +74,12 @@ pub struct Newell {
     corners: Vec<DVec3>,
     split_front: Vec<DVec3>,
     split_back: Vec<DVec3>,
+    /// A cycle's auto-partition: its polygons, the sets still to cut (ranges of `pool`), and
+    /// one set's polygons in front of and behind its splitter.
+    pool: Vec<DrawItem>,
+    sets: Vec<(usize, usize)>,
+    front_items: Vec<DrawItem>,
+    back_items: Vec<DrawItem>,
     /// Screen grid over the work items' boxes, and the candidates of the current query.
     grid: ScreenGrid,
     candidates: Vec<u32>,
@@ -136,6 +142,10 @@ impl Newell {
             corners: Vec::new(),
             split_front: Vec::new(),
             split_back: Vec::new(),
+            pool: Vec::new(),
+            sets: Vec::new(),
+            front_items: Vec::new(),
+            back_items: Vec::new(),
             grid: ScreenGrid::default(),
             candidates: Vec::new(),
             coverage: None,
@@ -323,31 +333,80 @@ impl Newell {
         Action::Draw
     }
 
-    /// Replaces the cycle `stack[from..]` by the fragments of a local BSP over its members.
-    /// (Allocates: cycles are rare in meshes, and a frame with one is not a steady state.)
+    /// Replaces the cycle `stack[from..]` by the fragments of an auto-partition of its
+    /// members: each set is cut by its first member's plane, the member and those on its
+    /// plane are final, and the sets in front and behind are cut again. Any two final
+    /// fragments then lie on either side of some member's plane (or on it), so no cycle can
+    /// form among them; they go back into the cascade. Reuses its buffers (no allocation
+    /// once they have grown).
     fn untangle(&mut self, view: &View, out: &mut DrawList, from: usize, first: usize) {
-        let mut members = PolygonSet::new();
+        self.pool.clear();
         for &w in &self.stack[from..] {
             let work = self.work[w as usize];
-            let item = DrawItem {
+            self.pool.push(DrawItem {
                 polygon: work.polygon,
                 face: work.face,
-            };
-            members.push(out.corners(item), work.face, *out.plane(item));
+            });
             self.done[w as usize] = true;
         }
         self.stack.truncate(from);
-        let tree = BspTree::build_over(Arc::new(members), self.tolerance, &BspOptions::DEFAULT);
-        let mut local = Bsp::from_tree(Arc::new(tree));
-        let mut fragments = DrawList::new();
-        local.sort(view, &mut fragments);
-        for &item in fragments.items() {
-            let polygon =
-                out.add_frame_polygon(fragments.corners(item), item.face, *fragments.plane(item));
-            let new = self.add_work(view, out, polygon, item.face);
-            self.grid.insert(new, &self.work[new as usize].bounds);
-            self.insert_sorted(first, new);
+        self.sets.clear();
+        self.sets.push((0, self.pool.len()));
+        while let Some((start, end)) = self.sets.pop() {
+            let splitter = self.pool[start];
+            let plane = *out.plane(splitter);
+            self.add_fragment(view, out, splitter, first);
+            self.front_items.clear();
+            self.back_items.clear();
+            for k in start + 1..end {
+                let item = self.pool[k];
+                match plane.side_of_polygon(out.corners(item), self.tolerance) {
+                    Side::On => self.add_fragment(view, out, item, first),
+                    Side::Front => self.front_items.push(item),
+                    Side::Back => self.back_items.push(item),
+                    Side::Spanning => {
+                        let own = *out.plane(item);
+                        self.corners.clear();
+                        self.corners.extend_from_slice(out.corners(item));
+                        self.split_front.clear();
+                        self.split_back.clear();
+                        split_polygon(
+                            &self.corners,
+                            &plane,
+                            self.tolerance,
+                            &mut self.split_front,
+                            &mut self.split_back,
+                        );
+                        for (part, list) in [
+                            (&self.split_front, &mut self.front_items),
+                            (&self.split_back, &mut self.back_items),
+                        ] {
+                            if part.len() >= 3 {
+                                let polygon = out.add_frame_polygon(part, item.face, own);
+                                list.push(DrawItem {
+                                    polygon,
+                                    face: item.face,
+                                });
+                            }
+                        }
+                    }
+                }
+            }
+            for side in [&self.front_items, &self.back_items] {
+                if !side.is_empty() {
+                    let start = self.pool.len();
+                    self.pool.extend_from_slice(side);
+                    self.sets.push((start, self.pool.len()));
+                }
+            }
         }
+    }
+
+    /// Adds a final fragment of [`untangle`](Self::untangle) back into the cascade.
+    fn add_fragment(&mut self, view: &View, out: &DrawList, item: DrawItem, first: usize) {
+        let new = self.add_work(view, out, item.polygon, item.face);
+        self.grid.insert(new, &self.work[new as usize].bounds);
+        self.insert_sorted(first, new);
     }
 
     /// Draws the remaining work items that no other drawn piece overlaps on screen, and
