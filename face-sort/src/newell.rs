@@ -103,8 +103,8 @@ enum Action {
         polygon: u32,
         by: Plane,
     },
-    /// A cycle: the stack from this position to the top. Replaced by the fragments of a
-    /// local BSP over its members, which cannot form a cycle among themselves.
+    /// A cycle: the stack from this position to the top. Replaced by the fragments of an
+    /// auto-partition of its members, which cannot form a cycle among themselves.
     Untangle {
         from: usize,
     },
