@@ -782,7 +782,7 @@ impl FaceSorter for Bsp {
                 + self.piece_facing.capacity()
                 + self.merge.as_ref().map_or(0, |m| m.heap_bytes()),
             depth: self.tree.depth,
-            fallbacks: 0,
+            ..SorterStats::default()
         }
     }
 }

@@ -529,8 +529,10 @@ mod tests {
         let square = EdgeNeighbours::new(&set(&[&[a, b, c], &[a, c, d]]));
         assert_eq!(square.of(0), &[NONE, NONE, 1]);
         assert_eq!(square.of(1), &[0, NONE, NONE]);
-        let three = EdgeNeighbours::new(&set(&[&[a, b, c], &[a, c, d], &[c, a, v(2.0, 3.0)]]));
+        // A third piece with the diagonal in the neighbour's direction: two candidates.
+        let three = EdgeNeighbours::new(&set(&[&[a, b, c], &[a, c, d], &[a, c, v(2.0, 3.0)]]));
         assert_eq!(three.of(0)[2], NONE);
+        // A copy of the diagonal in the piece's own direction.
         let same_way = EdgeNeighbours::new(&set(&[&[a, b, c], &[a, c, d], &[c, a, v(0.5, 2.0)]]));
         assert_eq!(same_way.of(0)[2], NONE);
         assert_eq!(same_way.of(1)[0], NONE);

@@ -94,6 +94,7 @@ pub struct Newell {
     tolerance: f64,
     min_area: f64,
     fallbacks: usize,
+    cycles: usize,
 }
 
 enum Action {
@@ -112,8 +113,9 @@ enum Action {
 
 impl Newell {
     /// A Newell sorter over a geometry's pieces, with their edge neighbours for the coverage
-    /// test (about 0.3 µs per piece: 1.9 ms on spot's 5,854 pieces, `cargo run --release -p
-    /// face-sort --example stats`).
+    /// test (0.3–1.2 µs per piece: 1.9 ms on spot's 5,854 pieces, `cargo run --release -p
+    /// face-sort --example stats`; 1.2 s on the million-face torus, `cargo xtask bench
+    /// --full`).
     #[must_use]
     pub fn new(geometry: &Geometry) -> Self {
         Newell {
@@ -155,6 +157,7 @@ impl Newell {
             tolerance: PLANE_SIDE * l,
             min_area: OVERLAP_AREA * l * l,
             fallbacks: 0,
+            cycles: 0,
         }
     }
 
@@ -322,11 +325,8 @@ impl Newell {
                     by: plane_p,
                 };
             }
-            // A cycle: Q is marked and not drawn, so it waits on the stack below P, and every
-            // member above it must be drawn before the one below.
-            if let Some(from) = self.stack.iter().rposition(|&x| x == q) {
-                return Action::Untangle { from };
-            }
+            // Unreachable for a P hiding Q (then Q goes first, or one of them spans the
+            // other's plane and is cut); counted, should rounding ever lead here.
             self.fallbacks += 1;
             return Action::Draw;
         }
@@ -338,8 +338,9 @@ impl Newell {
     /// plane are final, and the sets in front and behind are cut again. Any two final
     /// fragments then lie on either side of some member's plane (or on it), so no cycle can
     /// form among them; they go back into the cascade. Reuses its buffers (no allocation
-    /// once they have grown).
-    fn untangle(&mut self, view: &View, out: &mut DrawList, from: usize, first: usize) {
+    /// once they have grown). Returns the number of fragments put back.
+    fn untangle(&mut self, view: &View, out: &mut DrawList, from: usize, first: usize) -> usize {
+        let before = self.work.len();
         self.pool.clear();
         for &w in &self.stack[from..] {
             let work = self.work[w as usize];
@@ -400,6 +401,7 @@ impl Newell {
                 }
             }
         }
+        self.work.len() - before
     }
 
     /// Adds a final fragment of [`untangle`](Self::untangle) back into the cascade.
@@ -466,6 +468,7 @@ impl FaceSorter for Newell {
         self.projected.clear();
         self.clipped = false;
         self.fallbacks = 0;
+        self.cycles = 0;
         // Frustum culling: a piece whose projection misses the image (in view units, like
         // the work boxes) covers no pixel and orders nothing that is seen; it is not drawn.
         let inv_scale = 1.0 / view.scale();
@@ -542,7 +545,11 @@ impl FaceSorter for Newell {
                     self.done[p as usize] = true;
                 }
                 Action::Untangle { from } => {
-                    self.untangle(view, out, from, first);
+                    // Every fragment it puts back costs a step too, so that a cycle formed
+                    // again at tolerance level cannot grow the work without bound.
+                    let added = self.untangle(view, out, from, first);
+                    self.cycles += 1;
+                    budget = budget.saturating_sub(added);
                 }
                 Action::MoveAhead(q) => {
                     self.work[q as usize].marked = true;
@@ -593,6 +600,7 @@ impl FaceSorter for Newell {
             polygons: self.pieces.len(),
             cached_bytes: self.coverage.as_ref().map_or(0, |c| c.heap_bytes()),
             fallbacks: self.fallbacks,
+            cycles: self.cycles,
             ..SorterStats::default()
         }
     }

@@ -24,7 +24,7 @@
 //!   one culling pass; no fragments. Boxes that overlap (interlocking or nested parts) leave
 //!   the choice to the next rule.
 //! - **Otherwise the cheaper exact sorter for the frames the caller will draw.** [`Newell`]
-//!   needs no build and draws almost no extra items; [`Bsp`] pays a build once and then
+//!   needs no tree (for fewer than 6 frames, no build at all) and draws almost no extra items; [`Bsp`] pays a build once and then
 //!   traverses cheaply. [`PlanHint::frames`] says how many frames the build is spread over:
 //!   one picture (an export) is [`PlanHint::ONE_FRAME`]. The cost model and its measured
 //!   constants are [`CostModel`].
@@ -95,8 +95,8 @@ impl Strategy {
 /// per piece and level grew from 986 ns (spot) to 1,937 ns (a 40k-piece torus): the model
 /// under-predicts the build of very large meshes, which only delays the switch to BSP. The
 /// break-even is about 110 frames for spot. `Newell`'s own set-up (its pieces' edge
-/// neighbours, about 330 ns per piece) is left out: counted, it would move spot's
-/// break-even from about 111 to about 109 frames.
+/// neighbours, 0.3–1.2 µs per piece: 1.9 ms on spot, 1.2 s on a million faces) is left out:
+/// counted, it would move spot's break-even from about 111 to about 109 frames.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CostModel {
     /// BSP build, per piece and per level (`n · log2 n` pieces·levels).
@@ -145,10 +145,14 @@ pub struct Plan {
 }
 
 /// From this many frames on, the planner's [`Newell`] finds its pieces' edge neighbours for
-/// the coverage test: on spot they cost 1.9 ms once (`cargo run --release -p face-sort
-/// --example stats`) and save about 0.65 ms a frame (`cargo bench -p face-sort --bench
-/// sorters`: 1.45 ms before the test, 0.80 ms with it), even from about 2.9 frames.
-const NEWELL_COVERAGE_FRAMES: u64 = 3;
+/// the coverage test. They pay for themselves after about 2.9 frames on spot (1.9 ms once,
+/// `cargo run --release -p face-sort --example stats`, against 0.65 ms saved a frame, `cargo
+/// bench -p face-sort --bench sorters`: 1.45 ms before the test, 0.80 ms with it), 5.3 on
+/// the bumpy 1k torus (0.52 ms once in a one-off timing, against 98 µs a frame: 432 → 334 µs)
+/// and 5.1 on the million-face planar torus (1.2 s once against 233 ms a frame, `cargo
+/// xtask bench --full`); on 64 separate spheres they never do (the planner orders those as
+/// convex parts).
+const NEWELL_COVERAGE_FRAMES: u64 = 6;
 
 /// What a [`Plan`]'s analysis found for its sorter.
 #[derive(Clone, Debug, PartialEq)]

@@ -16,6 +16,8 @@ pub struct SorterStats {
     /// Cases in the last frame where the sorter gave up exactness (cycles broken by depth,
     /// or a split budget exhausted). Always 0 for exact sorters on valid input.
     pub fallbacks: usize,
+    /// Cycles broken by cutting in the last frame (Newell; exactness kept).
+    pub cycles: usize,
 }
 
 /// Culls and orders a mesh's pieces for a view, back to front.

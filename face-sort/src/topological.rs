@@ -427,8 +427,8 @@ impl FaceSorter for Topological {
                 + self.sided_by_start.capacity())
                 * 4
                 + self.centroids.capacity() * size_of::<DVec3>(),
-            depth: 0,
             fallbacks: self.fallbacks,
+            ..SorterStats::default()
         }
     }
 }
