@@ -265,9 +265,12 @@ impl View {
     /// Orthographic: the centre's pixel ± the radius in pixels. Perspective: along each image
     /// axis the extremes are where a plane through the eye, containing the other image axis'
     /// direction, touches the sphere; in the plane of that axis and the view direction they
-    /// are the two tangents from the eye to a circle of the same radius, at angles
-    /// `atan2(x, d − z) ± asin(r / h)` from the view direction (`h` the eye's distance from the
-    /// centre in that plane), at pixel offsets `d · tan(angle)`.
+    /// are the two tangents from the eye to a circle of the same radius, at angles `a ± b`
+    /// from the view direction, `tan a = x / (d − z)` and `sin b = r / h` (`h` the eye's
+    /// distance from the centre in that plane), at pixel offsets `d · tan(a ± b)`; with the
+    /// tangent's length `t = √(h² − r²)`, `tan(a ± b) = (x·t ± r·(d − z)) / ((d − z)·t ∓ x·r)`,
+    /// so no trigonometric function is needed (both denominators are positive: the sphere lies
+    /// in front of the eye, so every tangent points forward).
     #[must_use]
     pub fn project_sphere(&self, centre: DVec3, radius: f64) -> Option<(DVec2, DVec2)> {
         let half = DVec2::new(f64::from(self.width), f64::from(self.height)) * 0.5;
@@ -285,9 +288,11 @@ impl View {
                 // In front of the near plane: d − z > r, so both tangents point forward.
                 let dz = distance - u.z;
                 let extent = |across: f64| {
-                    let a = across.atan2(dz);
-                    let b = (r / across.hypot(dz)).asin();
-                    (distance * (a - b).tan(), distance * (a + b).tan())
+                    let t = ((across * across + dz * dz) - r * r).sqrt();
+                    (
+                        distance * (across * t - r * dz) / (dz * t + across * r),
+                        distance * (across * t + r * dz) / (dz * t - across * r),
+                    )
                 };
                 let (x0, x1) = extent(u.x);
                 let (y0, y1) = extent(u.y);
