@@ -268,13 +268,7 @@ impl Coverage {
         // most cells each: past a bound on the work, no piece is proved alone this frame.
         let mut filed = 0;
         for e in &self.edges {
-            let (x0, x1, y0, y1) = cells_of(
-                self.origin,
-                self.inverse_cell,
-                (columns, rows),
-                e.a.min(e.b),
-                e.a.max(e.b),
-            );
+            let (x0, x1, y0, y1) = self.cells_of_edge(e);
             filed += (x1 - x0 + 1) * (y1 - y0 + 1);
         }
         if filed > MAX_FILED_PER_CELL * (columns * rows + self.edges.len()) {
@@ -290,13 +284,7 @@ impl Coverage {
         }
         for fill in [false, true] {
             for (i, e) in self.edges.iter().enumerate() {
-                let (x0, x1, y0, y1) = cells_of(
-                    self.origin,
-                    self.inverse_cell,
-                    (columns, rows),
-                    e.a.min(e.b),
-                    e.a.max(e.b),
-                );
+                let (x0, x1, y0, y1) = self.cells_of_edge(e);
                 for y in y0..=y1 {
                     file(&mut self.row_start, &mut self.row_edges, y, i, fill);
                     for c in y * columns + x0..=y * columns + x1 {
@@ -319,6 +307,17 @@ impl Coverage {
         }
         self.find_alone_cells();
         true
+    }
+
+    /// The cells an edge's box touches.
+    fn cells_of_edge(&self, e: &BoundaryEdge) -> (usize, usize, usize, usize) {
+        cells_of(
+            self.origin,
+            self.inverse_cell,
+            (self.columns, self.rows),
+            e.a.min(e.b),
+            e.a.max(e.b),
+        )
     }
 
     /// Per row, `m` at each cell's centre from the boundary edges crossing the row's middle

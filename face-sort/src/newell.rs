@@ -366,30 +366,9 @@ impl Newell {
                     Side::Front => self.front_items.push(item),
                     Side::Back => self.back_items.push(item),
                     Side::Spanning => {
-                        let own = *out.plane(item);
-                        self.corners.clear();
-                        self.corners.extend_from_slice(out.corners(item));
-                        self.split_front.clear();
-                        self.split_back.clear();
-                        split_polygon(
-                            &self.corners,
-                            &plane,
-                            self.tolerance,
-                            &mut self.split_front,
-                            &mut self.split_back,
-                        );
-                        for (part, list) in [
-                            (&self.split_front, &mut self.front_items),
-                            (&self.split_back, &mut self.back_items),
-                        ] {
-                            if part.len() >= 3 {
-                                let polygon = out.add_frame_polygon(part, item.face, own);
-                                list.push(DrawItem {
-                                    polygon,
-                                    face: item.face,
-                                });
-                            }
-                        }
+                        let (front, back) = self.cut(out, item, &plane);
+                        self.front_items.extend(front);
+                        self.back_items.extend(back);
                     }
                 }
             }
@@ -402,6 +381,35 @@ impl Newell {
             }
         }
         self.work.len() - before
+    }
+
+    /// Cuts `item` by `plane` into new frame polygons of `out`, keeping its face and plane:
+    /// the parts in front and behind (`None` for a part with fewer than three corners).
+    fn cut(
+        &mut self,
+        out: &mut DrawList,
+        item: DrawItem,
+        plane: &Plane,
+    ) -> (Option<DrawItem>, Option<DrawItem>) {
+        let own = *out.plane(item);
+        self.corners.clear();
+        self.corners.extend_from_slice(out.corners(item));
+        self.split_front.clear();
+        self.split_back.clear();
+        split_polygon(
+            &self.corners,
+            plane,
+            self.tolerance,
+            &mut self.split_front,
+            &mut self.split_back,
+        );
+        let mut add = |corners: &[DVec3]| {
+            (corners.len() >= 3).then(|| DrawItem {
+                polygon: out.add_frame_polygon(corners, item.face, own),
+                face: item.face,
+            })
+        };
+        (add(&self.split_front), add(&self.split_back))
     }
 
     /// Adds a final fragment of [`untangle`](Self::untangle) back into the cascade.
@@ -562,30 +570,11 @@ impl FaceSorter for Newell {
                         polygon: work.polygon,
                         face: work.face,
                     };
-                    let plane = *out.plane(item);
-                    self.corners.clear();
-                    self.corners.extend_from_slice(out.corners(item));
-                    self.split_front.clear();
-                    self.split_back.clear();
-                    split_polygon(
-                        &self.corners,
-                        &by,
-                        self.tolerance,
-                        &mut self.split_front,
-                        &mut self.split_back,
-                    );
-                    for part in 0..2 {
-                        let corners = if part == 0 {
-                            &self.split_front
-                        } else {
-                            &self.split_back
-                        };
-                        if corners.len() >= 3 {
-                            let polygon = out.add_frame_polygon(corners, work.face, plane);
-                            let new = self.add_work(view, out, polygon, work.face);
-                            self.grid.insert(new, &self.work[new as usize].bounds);
-                            self.insert_sorted(first, new);
-                        }
+                    let (front, back) = self.cut(out, item, &by);
+                    for part in front.into_iter().chain(back) {
+                        let new = self.add_work(view, out, part.polygon, part.face);
+                        self.grid.insert(new, &self.work[new as usize].bounds);
+                        self.insert_sorted(first, new);
                     }
                 }
             }
