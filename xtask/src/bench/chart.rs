@@ -5,9 +5,11 @@
 use anyhow::{Result, anyhow};
 use plotters::prelude::*;
 
-use super::{Row, ScalingRow};
+use face_sort::SorterKind;
 
-/// One colour per sorter, in order of first appearance.
+use super::{PEER, Row, ScalingRow};
+
+/// One colour per sorter: the workspace's sorters in `SorterKind::ALL`'s order, then the peer.
 const COLOURS: [RGBColor; 6] = [
     RGBColor(0x7f, 0x7f, 0x7f),
     RGBColor(0x1f, 0x77, 0xb4),
@@ -17,7 +19,7 @@ const COLOURS: [RGBColor; 6] = [
     RGBColor(0xff, 0x7f, 0x0e),
 ];
 
-/// The sorters in order of first appearance (their colours' order).
+/// The sorters in order of first appearance (the legend's order).
 fn sorter_order<'a>(names: impl Iterator<Item = &'a str>) -> Vec<&'a str> {
     let mut sorters: Vec<&str> = Vec::new();
     for name in names {
@@ -28,10 +30,19 @@ fn sorter_order<'a>(names: impl Iterator<Item = &'a str>) -> Vec<&'a str> {
     sorters
 }
 
-/// A sorter's colour: by its place in `sorters`.
-fn colour_of(sorters: &[&str], sorter: &str) -> RGBColor {
-    COLOURS[sorters.iter().position(|&n| n == sorter).unwrap_or(0) % COLOURS.len()]
+/// A sorter's colour, the same in every chart whichever sorters it shows.
+fn colour_of(sorter: &str) -> RGBColor {
+    let place = SorterKind::ALL
+        .iter()
+        .map(|k| k.name())
+        .chain([PEER])
+        .position(|n| n == sorter)
+        .unwrap_or(0);
+    COLOURS[place % COLOURS.len()]
 }
+
+/// Chart size in pixels.
+const SIZE: (u32, u32) = (760, 460);
 
 /// The power of ten at or below `v`, and at or above it.
 fn decade_below(v: f64) -> f64 {
@@ -67,11 +78,11 @@ pub(super) fn chart_svg(rows: &[Row]) -> Result<String> {
         .max(1e-4)
         * 100.0;
     let y_max = nice_ceiling(max_error);
-    let colour = |sorter: &str| colour_of(&sorters, sorter);
+    let colour = colour_of;
 
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (760, 460)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
         let err = |e: &dyn std::fmt::Display| anyhow!("chart: {e}");
         root.fill(&WHITE).map_err(|e| err(&e))?;
         let mut chart = ChartBuilder::on(&root)
@@ -168,10 +179,10 @@ pub(super) fn scaling_svg(rows: &[ScalingRow]) -> Result<String> {
         decade_below(fy0),
         decade_above(fy1).max(decade_below(fy0) * 10.0) * 1e3,
     );
-    let colour = |sorter: &str| colour_of(&sorters, sorter);
+    let colour = colour_of;
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (760, 460)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
         let err = |e: &dyn std::fmt::Display| anyhow!("scaling chart: {e}");
         root.fill(&WHITE).map_err(|e| err(&e))?;
         let mut chart = ChartBuilder::on(&root)
