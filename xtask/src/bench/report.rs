@@ -6,6 +6,8 @@ use std::fmt::Write as _;
 use anyhow::{Result, bail};
 use serde::Serialize;
 
+use super::timing::TURN_PER_FRAME_DEG;
+
 /// One row of the report: a sorter on a scene under one projection, over every view.
 #[derive(Clone, Debug, Serialize)]
 pub struct Row {
@@ -100,7 +102,7 @@ pub(super) fn markdown(
         s,
         "Command: `{command}` (release build). Per scene and projection, every view of the set \
          (yaws × pitches) is measured; **frame** is the median cull+order time over all timed \
-         frames, each of which turns the view by a further 0.02° of yaw (a new view every \
+         frames, each of which turns the view by a further {TURN_PER_FRAME_DEG}° of yaw (a new view every \
          frame, as in an animation), **× centroid** its ratio to the centroid baseline in the \
          same run, **same view** and its **× centroid** the same with every timed frame \
          repeating its view (which favours sorts: the CPU learns their branches), **build** \
@@ -124,10 +126,11 @@ pub(super) fn markdown(
     for r in rows {
         let items = shown(r.fragments);
         let centroid_items = centroid_of(rows, r).map(|c| shown(c.fragments));
-        let items_ratio = match centroid_items {
-            Some(c) if c > 0.0 => format!("{:.2}", items / c),
-            _ => "—".to_owned(),
-        };
+        let items_ratio = fmt_ratio(
+            centroid_items
+                .filter(|&c| c > 0.0)
+                .map_or(f64::NAN, |c| items / c),
+        );
         let _ = writeln!(
             s,
             "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.2} ms | {:.0} | {} | {} | {} | {} |",

@@ -14,10 +14,11 @@ use crate::scenes::Scene;
 /// Yaw turned between two timed frames, degrees: each timed frame orders a view no frame
 /// ordered just before, as an animation does (a slow orbit: 1.2° per second at 60 frames per
 /// second). Timing one view over and over instead lets the CPU's branch predictors learn a
-/// sort's comparisons: the centroid sort of spot ran 45 µs per frame on a repeated view and
-/// 62–67 µs on views turning by 0.01–7.3° per frame (`STEP=0 MODEL=… cargo run --release -p
-/// face-sort --example profile_frame centroid`), while the BSP's time did not move.
-const TURN_PER_FRAME_DEG: f64 = 0.02;
+/// sort's comparisons: before the centroid sort became a radix sort, it ran spot in 45 µs per
+/// frame on a repeated view and 62–67 µs on views turning by 0.01–7.3° per frame (`STEP=…
+/// MODEL=… cargo run --release -p face-sort --example profile_frame centroid`, `STEP=0` for
+/// the repeated view), while the BSP's time did not move.
+pub(super) const TURN_PER_FRAME_DEG: f64 = 0.02;
 
 /// The bench's views of a scene: `yaws` yaws (offset from the axes) × pitches, each with the
 /// views its timed frames turn through (the first is the view itself).
