@@ -220,7 +220,16 @@ impl BspTree {
     #[must_use]
     pub fn build(geometry: &Geometry, options: &BspOptions) -> Self {
         let tolerance = PLANE_SIDE * geometry.bounds().diagonal();
-        Self::build_over(Arc::clone(geometry.pieces()), tolerance, options)
+        match Self::build_bounded(
+            Arc::clone(geometry.pieces()),
+            tolerance,
+            options,
+            usize::MAX,
+        ) {
+            Ok(tree) => tree,
+            // The fragment count cannot exceed usize::MAX: memory would run out first.
+            Err(_) => unreachable!("an unbounded build has no budget to exceed"),
+        }
     }
 
     /// Builds the tree like [`BspTree::build`], but stops with
@@ -235,20 +244,6 @@ impl BspTree {
         let pieces = Arc::clone(geometry.pieces());
         let budget = options.fragment_budget(pieces.len());
         Self::build_bounded(pieces, tolerance, options, budget)
-    }
-
-    /// Builds a tree over any set of planar convex polygons (centred model space) with the
-    /// plane tolerance `tolerance` (model units), without a fragment budget.
-    pub(crate) fn build_over(
-        pieces: Arc<PolygonSet>,
-        tolerance: f64,
-        options: &BspOptions,
-    ) -> Self {
-        match Self::build_bounded(pieces, tolerance, options, usize::MAX) {
-            Ok(tree) => tree,
-            // The fragment count cannot exceed usize::MAX: memory would run out first.
-            Err(_) => unreachable!("an unbounded build has no budget to exceed"),
-        }
     }
 
     /// Builds a tree holding at most `budget` fragments.
@@ -313,7 +308,7 @@ impl BspTree {
             fragment_count,
             whole,
             fragments_of,
-            // Every build's tolerance is `PLANE_SIDE · L` (Newell's local trees too).
+            // Every build's tolerance is `PLANE_SIDE · L`.
             diagonal: tolerance / PLANE_SIDE,
             piece_rows,
             fragment_face,
@@ -368,7 +363,9 @@ impl BspTree {
         self.build_ms
     }
 
-    /// The fragments (centred model space), in the tree's storage order.
+    /// The fragments (centred model space), in the tree's storage order, followed by a whole
+    /// copy of every split piece (what `bsp-merged` draws instead of its fragments): its
+    /// first [`fragment_count`](Self::fragment_count) polygons are the fragments.
     #[must_use]
     pub fn fragments(&self) -> &Arc<PolygonSet> {
         &self.fragments

@@ -133,6 +133,16 @@ struct BoundaryEdge {
     piece: u32,
 }
 
+impl BoundaryEdge {
+    /// The edge's box.
+    fn bounds(&self) -> Box2 {
+        Box2 {
+            min: self.a.min(self.b),
+            max: self.a.max(self.b),
+        }
+    }
+}
+
 /// Per-frame buffers of the coverage test, kept between frames (steady frames allocate
 /// nothing). Filed once per frame by [`file`](Self::file), then asked per piece by
 /// [`alone`](Self::alone).
@@ -311,12 +321,13 @@ impl Coverage {
 
     /// The cells an edge's box touches.
     fn cells_of_edge(&self, e: &BoundaryEdge) -> (usize, usize, usize, usize) {
+        let b = e.bounds();
         cells_of(
             self.origin,
             self.inverse_cell,
             (self.columns, self.rows),
-            e.a.min(e.b),
-            e.a.max(e.b),
+            b.min,
+            b.max,
         )
     }
 
@@ -379,7 +390,8 @@ impl Coverage {
         }) {
             return true;
         }
-        let turn = signed_area_2d(corners).signum();
+        // Its turn, filed from the same projection.
+        let turn = f64::from(self.turn[piece as usize]);
         if turn == 0.0 {
             return false;
         }
@@ -392,10 +404,7 @@ impl Coverage {
                         continue;
                     }
                     // An edge whose box misses the piece's cannot enter it.
-                    let (lo, hi) = (e.a.min(e.b), e.a.max(e.b));
-                    let apart =
-                        hi.x < b.min.x || lo.x > b.max.x || hi.y < b.min.y || lo.y > b.max.y;
-                    if !apart && enters(corners, turn, e.a, e.b) {
+                    if e.bounds().touches(b) && enters(corners, turn, e.a, e.b) {
                         return false;
                     }
                 }

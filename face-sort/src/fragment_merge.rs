@@ -27,7 +27,7 @@ use std::ops::ControlFlow;
 use glam::DVec2;
 
 use crate::coverage::{Coverage, NONE};
-use crate::polygon::{Box2, clip_convex_2d, separated_2d, signed_area_2d};
+use crate::polygon::{Box2, overlap_exceeds, separated_2d};
 use crate::polygon_set::PolygonSet;
 use crate::screen_grid::ScreenGrid;
 use crate::tolerance::OVERLAP_AREA;
@@ -201,11 +201,7 @@ impl FragmentMerge {
         if self.pending.is_empty() {
             return;
         }
-        let mut all = Box2::EMPTY;
-        for b in &self.boxes {
-            all.min = all.min.min(b.min);
-            all.max = all.max.max(b.max);
-        }
+        let all = self.boxes.iter().fold(Box2::EMPTY, |all, &b| all.union(b));
         self.grid.reset(all, self.drawn.len());
         for (j, b) in self.boxes.iter().enumerate() {
             self.grid.insert(j as u32, b);
@@ -232,8 +228,13 @@ impl FragmentMerge {
                 {
                     return ControlFlow::Continue(());
                 }
-                clip_convex_2d(polygon(jq), polygon(j as usize), clip_out, clip_scratch);
-                hidden = clip_out.len() >= 3 && signed_area_2d(clip_out).abs() > min_area;
+                hidden = overlap_exceeds(
+                    polygon(jq),
+                    polygon(j as usize),
+                    min_area,
+                    clip_out,
+                    clip_scratch,
+                );
                 if hidden {
                     ControlFlow::Break(())
                 } else {

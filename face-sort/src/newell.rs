@@ -7,7 +7,7 @@ use glam::{DVec2, DVec3};
 
 use crate::coverage::Coverage;
 use crate::plane::{Plane, Side};
-use crate::polygon::{Box2, clip_convex_2d, signed_area_2d, split_polygon};
+use crate::polygon::{Box2, overlap_exceeds, split_polygon};
 use crate::screen_grid::ScreenGrid;
 use crate::tolerance::{OVERLAP_AREA, PLANE_SIDE};
 use crate::view::Viewer;
@@ -250,8 +250,13 @@ impl Newell {
             [wp.projected_start as usize..(wp.projected_start + wp.projected_len) as usize];
         let b = &self.projected
             [wq.projected_start as usize..(wq.projected_start + wq.projected_len) as usize];
-        clip_convex_2d(a, b, &mut self.clip_out, &mut self.clip_scratch);
-        self.clip_out.len() >= 3 && signed_area_2d(&self.clip_out).abs() > self.min_area
+        overlap_exceeds(
+            a,
+            b,
+            self.min_area,
+            &mut self.clip_out,
+            &mut self.clip_scratch,
+        )
     }
 
     /// What to do with candidate `p`, scanning the remaining items from `first`.
@@ -513,14 +518,9 @@ impl FaceSorter for Newell {
             .sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
         self.remaining.clear();
         self.remaining.extend(self.keyed.iter().map(|&(_, w)| w));
-        let mut all = Box2::EMPTY;
-        for &w in &self.remaining {
-            let w = &self.work[w as usize];
-            if w.projected_len > 0 {
-                all.min = all.min.min(w.bounds.min);
-                all.max = all.max.max(w.bounds.max);
-            }
-        }
+        let all = (self.remaining.iter()).fold(Box2::EMPTY, |all, &w| {
+            all.union(self.work[w as usize].bounds)
+        });
         self.grid.reset(all, self.remaining.len());
         for &w in &self.remaining {
             self.grid.insert(w, &self.work[w as usize].bounds);

@@ -6,7 +6,7 @@
 
 use glam::{DVec2, DVec3};
 
-use crate::polygon::{Box2, clip_convex_2d, signed_area_2d};
+use crate::polygon::{Box2, overlap_exceeds};
 use crate::tolerance::{ORACLE_DEPTH, ORACLE_INTERIOR, OVERLAP_AREA};
 use crate::{DrawList, PixelRays, ProjectionScratch, View};
 
@@ -103,8 +103,7 @@ fn for_each_violation(view: &View, list: &DrawList, mut report: impl FnMut(Viola
             if !box_a.overlaps(&box_b) {
                 continue;
             }
-            clip_convex_2d(poly(a), poly(b), &mut overlap, &mut scratch);
-            if overlap.len() < 3 || signed_area_2d(&overlap).abs() <= min_area {
+            if !overlap_exceeds(poly(a), poly(b), min_area, &mut overlap, &mut scratch) {
                 continue;
             }
             let (earlier, later) = if a < b { (a, b) } else { (b, a) };

@@ -251,7 +251,7 @@ impl Plan {
             // A tree over its fragment budget (BspOptions) would cost more than it saves:
             // Newell is exact too and needs no tree.
             _ => Bsp::new_or_fallback(geometry, &BspOptions::DEFAULT, BspFallback::Newell)
-                .unwrap_or_else(|_| Box::new(Newell::new(geometry))),
+                .expect("the Newell fallback is never refused"),
         }
     }
 }

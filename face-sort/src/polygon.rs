@@ -87,6 +87,20 @@ pub(crate) fn separated_2d(a: &[DVec2], b: &[DVec2]) -> bool {
     by_edge_of(a) || by_edge_of(b)
 }
 
+/// Whether convex polygons `a` and `b` overlap by more than `min_area`: their exact convex
+/// intersection (left in `out`) has three corners or more and more than that area. The
+/// overlap test of Newell, the oracle and the fragment merge.
+pub(crate) fn overlap_exceeds(
+    a: &[DVec2],
+    b: &[DVec2],
+    min_area: f64,
+    out: &mut Vec<DVec2>,
+    scratch: &mut Vec<DVec2>,
+) -> bool {
+    clip_convex_2d(a, b, out, scratch);
+    out.len() >= 3 && signed_area_2d(out).abs() > min_area
+}
+
 /// Clips the convex polygon `subject` by the convex polygon `clip` (either winding),
 /// writing the intersection to `out` (cleared first). `scratch` is a reusable buffer.
 pub fn clip_convex_2d(
@@ -149,6 +163,26 @@ impl Box2 {
             b.max = b.max.max(p);
         }
         b
+    }
+
+    /// The smallest box holding both (either may be [`EMPTY`](Self::EMPTY)).
+    #[inline]
+    #[must_use]
+    pub fn union(self, other: Box2) -> Box2 {
+        Box2 {
+            min: self.min.min(other.min),
+            max: self.max.max(other.max),
+        }
+    }
+
+    /// Whether the two closed boxes meet (touching counts).
+    #[inline]
+    #[must_use]
+    pub fn touches(&self, other: &Box2) -> bool {
+        self.min.x <= other.max.x
+            && other.min.x <= self.max.x
+            && self.min.y <= other.max.y
+            && other.min.y <= self.max.y
     }
 
     /// Whether the two boxes overlap with positive width and height.
