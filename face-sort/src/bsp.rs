@@ -98,7 +98,7 @@ struct Node {
     leaf: bool,
 }
 
-/// An inner node as the per-view pass reads it: its plane row and its layout, one cache line.
+/// An inner node as the per-view pass reads it: its plane row and its layout, 64 bytes.
 #[derive(Clone, Copy, Debug)]
 struct Inner {
     row: [f64; 4],
