@@ -12,6 +12,7 @@ use crate::cells::{AngleRange, Bake, BakeCell, Breakpoint, Method, cell_bytes};
 use crate::event::EventFn;
 use crate::source::{Event, EventSource};
 use crate::tolerance::SAME_ROOT_RAD;
+use crate::verify::polygons_of;
 
 /// How far a bake has got: `done` of `total` draw lists computed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -122,7 +123,7 @@ pub(crate) fn lists_at<T: Sync>(
                 .iter()
                 .map(|point| {
                     sorter.sort(&view(point), &mut list);
-                    list.items().iter().map(|i| i.polygon).collect::<Vec<u32>>()
+                    polygons_of(&list)
                 })
                 .collect::<Vec<_>>()
         })
@@ -340,7 +341,7 @@ pub fn bake_sampled(
             while hi - lo > tolerance {
                 let mid = 0.5 * (lo + hi);
                 sorter.sort(&spin.view_at(mid), &mut list);
-                let order: Vec<u32> = list.items().iter().map(|i| i.polygon).collect();
+                let order = polygons_of(&list);
                 if order == lists[k] {
                     lo = mid;
                 } else {

@@ -179,9 +179,7 @@ impl CentroidSource {
             centroids,
         }
     }
-}
 
-impl CentroidSource {
     /// Each piece's facing row: [`Centroid`] culls with `n·(e − v₀)` (perspective) or `n·d`,
     /// the row `[n, n·v₀]`.
     fn facing_rows(&self) -> impl Iterator<Item = [f64; 4]> + '_ {
