@@ -130,13 +130,11 @@ pub struct BspTree {
     plane_rows: Vec<[f64; 4]>,
     /// The pieces' planes, likewise, for the per-view cull pass.
     piece_rows: Vec<[f64; 4]>,
-    /// Source face of each fragment.
+    /// Source face and piece of each fragment.
     fragment_face: Vec<[u32; 2]>,
     nodes: Vec<Node>,
     /// Fragments in pre-order: node by node, each node's own fragments contiguous.
     fragments: Arc<PolygonSet>,
-    /// Piece each fragment was cut from.
-    fragment_piece: Vec<u32>,
     pieces: Arc<PolygonSet>,
     /// Per node, a sphere `[x, y, z, r]` (centred model space) around every fragment of its
     /// subtree, for skipping subtrees outside the image.
@@ -317,7 +315,6 @@ impl BspTree {
             spheres,
             nodes: builder.nodes,
             fragments: Arc::new(builder.fragments),
-            fragment_piece: builder.fragment_piece,
             pieces,
             build_ms: start.elapsed().as_secs_f64() * 1e3,
             depth,
@@ -379,7 +376,6 @@ impl BspTree {
             + self.fragment_face.capacity() * 8
             + self.nodes.capacity() * size_of::<Node>()
             + self.fragments.heap_bytes()
-            + self.fragment_piece.capacity() * 4
             + (self.whole.capacity() + self.fragments_of.capacity()) * 4
             + self.inners.capacity() * size_of::<Inner>()
             + self.leaf_runs.capacity() * size_of::<LeafRun>()
@@ -973,8 +969,8 @@ impl Bsp {
                 let input = MergeInput {
                     pieces: &tree.pieces,
                     whole: &tree.whole,
-                    fragment_count: &tree.fragments_of,
-                    fragment_piece: &tree.fragment_piece,
+                    fragments_of: &tree.fragments_of,
+                    fragment_face: &tree.fragment_face,
                     diagonal: tree.diagonal,
                 };
                 merge.merge(view, &input, &items[..drawn], out.items_mut());

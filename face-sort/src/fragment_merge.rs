@@ -40,9 +40,9 @@ pub(crate) struct MergeInput<'a> {
     /// Per piece, the index of its whole polygon in the draw list's set (`NONE`: not split),
     /// and its number of fragments.
     pub whole: &'a [u32],
-    pub fragment_count: &'a [u32],
-    /// Per fragment, its piece.
-    pub fragment_piece: &'a [u32],
+    pub fragments_of: &'a [u32],
+    /// Per fragment, its face and piece.
+    pub fragment_face: &'a [[u32; 2]],
     /// The model's diagonal `L`.
     pub diagonal: f64,
 }
@@ -113,7 +113,7 @@ impl FragmentMerge {
         self.drawn.clear();
         self.split.clear();
         for (i, item) in items.iter().enumerate() {
-            let p = input.fragment_piece[item.polygon as usize] as usize;
+            let p = input.fragment_face[item.polygon as usize][1] as usize;
             if self.seen[p] != frame {
                 self.seen[p] = frame;
                 self.dense[p] = self.drawn.len() as u32;
@@ -124,7 +124,7 @@ impl FragmentMerge {
             self.count[p] += 1;
             // Only pieces with every fragment drawn: one culled off the image leaves part of
             // the piece unordered against what it would overlap there.
-            if self.count[p] == input.fragment_count[p] && input.whole[p] != NONE {
+            if self.count[p] == input.fragments_of[p] && input.whole[p] != NONE {
                 self.split.push(p as u32);
             }
             self.last[p] = i as u32;
@@ -136,7 +136,7 @@ impl FragmentMerge {
             self.nothing_between(OVERLAP_AREA * l * l);
         }
         for (i, item) in items.iter().enumerate() {
-            let p = input.fragment_piece[item.polygon as usize] as usize;
+            let p = input.fragment_face[item.polygon as usize][1] as usize;
             if self.merged[p] != frame {
                 out.push(*item);
             } else if self.last[p] == i as u32 {
