@@ -113,7 +113,7 @@ enum Action {
 
 impl Newell {
     /// A Newell sorter over a geometry's pieces, with their edge neighbours for the coverage
-    /// test (0.3–1.2 µs per piece: 1.9 ms on spot's 5,854 pieces, `cargo run --release -p
+    /// test (0.3–1.2 µs per piece: 1.9–2.1 ms on spot's 5,854 pieces, `cargo run --release -p
     /// face-sort --example stats`; 1.2 s on the million-face torus, `cargo xtask bench
     /// --full`).
     #[must_use]

@@ -95,7 +95,7 @@ impl Strategy {
 /// per piece and level grew from 986 ns (spot) to 1,937 ns (a 40k-piece torus): the model
 /// under-predicts the build of very large meshes, which only delays the switch to BSP. The
 /// break-even is about 110 frames for spot. `Newell`'s own set-up (its pieces' edge
-/// neighbours, 0.3–1.2 µs per piece: 1.9 ms on spot, 1.2 s on a million faces) is left out:
+/// neighbours, 0.3–1.2 µs per piece: 1.9–2.1 ms on spot, 1.2 s on a million faces) is left out:
 /// counted, it would move spot's break-even from about 111 to about 109 frames.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CostModel {
@@ -145,7 +145,7 @@ pub struct Plan {
 }
 
 /// From this many frames on, the planner's [`Newell`] finds its pieces' edge neighbours for
-/// the coverage test. They pay for themselves after about 2.9 frames on spot (1.9 ms once,
+/// the coverage test. They pay for themselves after about 3 frames on spot (1.9–2.1 ms once,
 /// `cargo run --release -p face-sort --example stats`, against 0.65 ms saved a frame, `cargo
 /// bench -p face-sort --bench sorters`: 1.45 ms before the test, 0.80 ms with it), 5.3 on
 /// the bumpy 1k torus (0.52 ms once in a one-off timing, against 98 µs a frame: 432 → 334 µs)
