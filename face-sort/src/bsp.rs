@@ -252,26 +252,7 @@ impl BspTree {
         budget: usize,
     ) -> Result<Self, BspError> {
         let start = Instant::now();
-        let mut builder = Builder {
-            work: PolygonSet::new(),
-            work_piece: Vec::new(),
-            nodes: Vec::new(),
-            planes: Vec::new(),
-            fragments: PolygonSet::new(),
-            fragment_piece: Vec::new(),
-            tolerance,
-            options: *options,
-            corners_front: Vec::new(),
-            corners_back: Vec::new(),
-            live: pieces.len(),
-            budget,
-        };
-        for i in 0..pieces.len() {
-            builder
-                .work
-                .push(pieces.corners(i), pieces.face(i), *pieces.plane(i));
-            builder.work_piece.push(i as u32);
-        }
+        let mut builder = Builder::new(&pieces, tolerance, options, budget);
         let depth = builder
             .build_all((0..pieces.len() as u32).collect())
             .map_err(|()| BspError::FragmentBudget {
@@ -416,6 +397,9 @@ fn pass_layout(nodes: &[Node], planes: &[Plane]) -> (Vec<Inner>, Vec<LeafRun>) {
 struct Builder {
     work: PolygonSet,
     work_piece: Vec<u32>,
+    /// Per work polygon, a sphere `[x, y, z, r]` around its corners, for
+    /// [`side`](Self::side).
+    work_sphere: Vec<[f64; 4]>,
     nodes: Vec<Node>,
     planes: Vec<Plane>,
     fragments: PolygonSet,
@@ -438,6 +422,34 @@ struct Task {
 }
 
 impl Builder {
+    /// A builder whose work polygons are `pieces`.
+    fn new(pieces: &PolygonSet, tolerance: f64, options: &BspOptions, budget: usize) -> Self {
+        let mut builder = Builder {
+            work: PolygonSet::new(),
+            work_piece: Vec::new(),
+            work_sphere: Vec::new(),
+            nodes: Vec::new(),
+            planes: Vec::new(),
+            fragments: PolygonSet::new(),
+            fragment_piece: Vec::new(),
+            tolerance,
+            options: *options,
+            corners_front: Vec::new(),
+            corners_back: Vec::new(),
+            live: pieces.len(),
+            budget,
+        };
+        for i in 0..pieces.len() {
+            builder.push_work(
+                pieces.corners(i),
+                pieces.face(i),
+                *pieces.plane(i),
+                i as u32,
+            );
+        }
+        builder
+    }
+
     /// Builds every node; `Err` when the fragment budget is exceeded.
     fn build_all(&mut self, all: Vec<u32>) -> Result<usize, ()> {
         let mut stack = vec![Task {
@@ -495,7 +507,7 @@ impl Builder {
                 let side = if p == splitter {
                     Side::On
                 } else {
-                    plane.side_of_polygon(self.work.corners(p as usize), self.tolerance)
+                    self.side(&plane, p)
                 };
                 match side {
                     Side::On => {
@@ -580,30 +592,53 @@ impl Builder {
         let face = self.work.face(p as usize);
         let own_plane = *self.work.plane(p as usize);
         let piece = self.work_piece[p as usize];
-        let add = |corners: &Vec<DVec3>, work: &mut PolygonSet, work_piece: &mut Vec<u32>| {
-            if corners.len() >= 3 {
-                work_piece.push(piece);
-                Some(work.push(corners, face, own_plane))
-            } else {
-                None
-            }
-        };
-        let f = add(&self.corners_front, &mut self.work, &mut self.work_piece);
-        let b = add(&self.corners_back, &mut self.work, &mut self.work_piece);
+        let front = std::mem::take(&mut self.corners_front);
+        let back = std::mem::take(&mut self.corners_back);
+        let f = (front.len() >= 3).then(|| self.push_work(&front, face, own_plane, piece));
+        let b = (back.len() >= 3).then(|| self.push_work(&back, face, own_plane, piece));
+        (self.corners_front, self.corners_back) = (front, back);
         (f, b)
+    }
+
+    /// Adds a work polygon (a piece, or a fragment of piece `piece`) and its sphere.
+    fn push_work(&mut self, corners: &[DVec3], face: u32, plane: Plane, piece: u32) -> u32 {
+        let centre = corners.iter().copied().sum::<DVec3>() / corners.len() as f64;
+        let radius = corners
+            .iter()
+            .map(|&c| c.distance(centre))
+            .fold(0.0, f64::max);
+        self.work_sphere
+            .push([centre.x, centre.y, centre.z, radius]);
+        self.work_piece.push(piece);
+        self.work.push(corners, face, plane)
+    }
+
+    /// [`Plane::side_of_polygon`] of work polygon `p`, the same answer, mostly from its
+    /// sphere alone: when the sphere's centre lies farther from `plane` than its radius plus
+    /// twice the tolerance, every corner lies beyond the tolerance on the centre's side (one
+    /// tolerance is the test's, the other far exceeds round-off, about `1e-16 · L` in centred
+    /// coordinates). Most polygons lie far from most planes: the build's classifications
+    /// then cost one dot product instead of one per corner.
+    fn side(&self, plane: &Plane, p: u32) -> Side {
+        let [x, y, z, radius] = self.work_sphere[p as usize];
+        let d = plane.signed_distance(DVec3::new(x, y, z));
+        let reach = radius + 2.0 * self.tolerance;
+        if d > reach {
+            Side::Front
+        } else if d < -reach {
+            Side::Back
+        } else {
+            plane.side_of_polygon(self.work.corners(p as usize), self.tolerance)
+        }
     }
 
     /// Whether every polygon lies on or behind every other's plane.
     fn is_convex(&self, polygons: &[u32]) -> bool {
         polygons.iter().all(|&p| {
             let plane = self.work.plane(p as usize);
-            polygons.iter().all(|&q| {
-                q == p
-                    || matches!(
-                        plane.side_of_polygon(self.work.corners(q as usize), self.tolerance),
-                        Side::Back | Side::On
-                    )
-            })
+            polygons
+                .iter()
+                .all(|&q| q == p || matches!(self.side(plane, q), Side::Back | Side::On))
         })
     }
 
@@ -615,23 +650,27 @@ impl Builder {
         let candidates = self.options.candidates.max(1).min(n);
         let sample = self.options.score_sample.max(1).min(n);
         let mut best = (f64::INFINITY, polygons[0]);
+        // The polygons scored: all of them, or an evenly spread sample (`s · n / sample`).
+        let sampled = |s: usize| {
+            if sample == n {
+                polygons[s]
+            } else {
+                polygons[(s * n) / sample]
+            }
+        };
         for c in 0..candidates {
             // Evenly spread, deterministic candidates.
             let candidate = polygons[(c * n) / candidates + (n / candidates) / 2];
             let plane = self.work.plane(candidate as usize);
-            let (mut front, mut back, mut splits) = (0usize, 0usize, 0usize);
+            // Per side (in `Side`'s order: front, back, on, spanning), without a branch.
+            let mut count = [0usize; 4];
             for s in 0..sample {
-                let p = polygons[(s * n) / sample];
-                if p == candidate {
-                    continue;
-                }
-                match plane.side_of_polygon(self.work.corners(p as usize), self.tolerance) {
-                    Side::Front => front += 1,
-                    Side::Back => back += 1,
-                    Side::Spanning => splits += 1,
-                    Side::On => {}
+                let p = sampled(s);
+                if p != candidate {
+                    count[self.side(plane, p) as usize] += 1;
                 }
             }
+            let [front, back, _, splits] = count;
             let score = self.options.split_weight * splits as f64 + front.abs_diff(back) as f64;
             if score < best.0 {
                 best = (score, candidate);
@@ -985,4 +1024,48 @@ impl Bsp {
 #[inline]
 fn facing(row: &[f64; 4], point: DVec3, w: f64) -> f64 {
     row[0] * point.x + row[1] * point.y + row[2] * point.z - w * row[3]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::generate;
+
+    /// The builder's sphere shortcut gives `side_of_polygon`'s answer, on planes through
+    /// neighbouring pieces (corners on the plane), planes nudged by about the tolerance, and
+    /// planes far from most pieces, on a model far from the origin (moved, then centred).
+    #[test]
+    fn sphere_classification_is_side_of_polygon() {
+        let torus = generate::torus(400);
+        let away = DVec3::new(1e6, -3e5, 2e6);
+        let positions = torus.positions().iter().map(|&p| p + away).collect();
+        let mesh = crate::PolygonMesh::new(positions, torus.faces()).expect("valid torus");
+        let geometry = Geometry::new(&mesh).expect("valid torus");
+        let tolerance = PLANE_SIDE * geometry.bounds().diagonal();
+        let pieces = geometry.pieces();
+        let builder = Builder::new(pieces, tolerance, &BspOptions::DEFAULT, usize::MAX);
+        let mut shortcut = 0;
+        for a in (0..pieces.len()).step_by(7) {
+            let own = *pieces.plane(a);
+            for nudge in [0.0, 0.5, 1.0, 1.5, 2.0, 3.0, -1.0, -2.5] {
+                let offset = own.offset() + nudge * tolerance;
+                let plane = Plane::try_from_point_normal(own.normal() * offset, own.normal())
+                    .expect("unit normal");
+                for b in 0..pieces.len() {
+                    let exact = plane.side_of_polygon(pieces.corners(b), tolerance);
+                    assert_eq!(
+                        builder.side(&plane, b as u32),
+                        exact,
+                        "plane of {a}, piece {b}"
+                    );
+                    let [x, y, z, r] = builder.work_sphere[b];
+                    shortcut += usize::from(
+                        plane.signed_distance(DVec3::new(x, y, z)).abs() > r + 2.0 * tolerance,
+                    );
+                }
+            }
+        }
+        // The shortcut decides most classifications: the test covers both of its branches.
+        assert!(shortcut > 0, "no classification took the shortcut");
+    }
 }

@@ -92,13 +92,12 @@ impl Plane {
     /// lie strictly on both sides.
     #[must_use]
     pub fn side_of_polygon(&self, corners: &[DVec3], tolerance: f64) -> Side {
+        // `side_of_point` per corner, without a branch per corner.
         let (mut front, mut back) = (false, false);
         for &p in corners {
-            match self.side_of_point(p, tolerance) {
-                Side::Front => front = true,
-                Side::Back => back = true,
-                _ => {}
-            }
+            let d = self.signed_distance(p);
+            front |= d > tolerance;
+            back |= d < -tolerance;
         }
         match (front, back) {
             (true, true) => Side::Spanning,
