@@ -10,14 +10,14 @@
 //! ```
 //!
 //! `MODEL` is a path under `assets/models`; `PERSP=1` views in perspective (eye 512 px away,
-//! as the bench's).
+//! as the bench's); `CULL=none` draws back faces too (default: back faces culled).
 
 #[path = "../tests/common/mod.rs"]
 mod common;
 
 use std::time::Instant;
 
-use face_sort::{DrawList, Geometry, SorterKind, View};
+use face_sort::{CullMode, DrawList, Geometry, SorterKind, View};
 
 fn main() {
     let name = std::env::args().nth(1).unwrap_or_else(|| "bsp".into());
@@ -40,6 +40,14 @@ fn main() {
     let mut base = View::fit(&geometry.bounds(), 512, 512);
     if std::env::var_os("PERSP").is_some() {
         base = base.with_perspective(512.0);
+    }
+    match std::env::var("CULL").as_deref() {
+        Ok("none") => base = base.with_cull(CullMode::None),
+        Ok("back") | Err(_) => {}
+        Ok(other) => {
+            eprintln!("CULL must be none or back, not {other:?}");
+            std::process::exit(2);
+        }
     }
     let views: Vec<View> = (0..400)
         .map(|k| base.with_yaw_pitch_roll(f64::from(k) * step, 20.0, 0.0))

@@ -693,8 +693,6 @@ pub struct Bsp {
     base: Vec<u32>,
     /// Per slot of `scratch`, whether its fragment is drawn this frame.
     keep: Vec<u8>,
-    /// A convex leaf's slots while they are put facing away first.
-    leaf_buffer: Vec<(crate::DrawItem, u8)>,
     piece_drawn: Vec<bool>,
     piece_facing: Vec<bool>,
     /// Per node, for the current frame: its subtree lies outside the image.
@@ -751,7 +749,6 @@ impl Bsp {
         Bsp {
             base: vec![0; tree.nodes.len() + 1],
             keep: vec![0; tree.fragment_count],
-            leaf_buffer: Vec::new(),
             merge: None,
             piece_drawn: vec![false; tree.pieces.len()],
             piece_facing: vec![false; tree.pieces.len()],
@@ -809,7 +806,6 @@ impl FaceSorter for Bsp {
             cached_bytes: self.tree.heap_bytes()
                 + self.base.capacity() * 4
                 + self.keep.capacity()
-                + self.leaf_buffer.capacity() * size_of::<(crate::DrawItem, u8)>()
                 + self.piece_drawn.capacity()
                 + self.piece_facing.capacity()
                 + self.merge.as_ref().map_or(0, |m| m.heap_bytes()),
@@ -833,7 +829,11 @@ impl Bsp {
     /// first) from its subtree's start without a branch on the viewer's side, then one over
     /// the leaves. Each slot gets the fragment's item and whether it is drawn (its piece is,
     /// and with `FRUSTUM` its node is not culled). Fragments are read in storage order.
-    fn place<const FRUSTUM: bool>(&mut self, point: DVec3, w: f64) {
+    ///
+    /// With `away_first` (back faces are drawn), each convex leaf's fragments facing away
+    /// from the viewer fill its slots from the start and those facing it from the end: its
+    /// front faces never overlap, nor do its back faces, so either part may go in any order.
+    fn place<const FRUSTUM: bool>(&mut self, point: DVec3, w: f64, away_first: bool) {
         let tree = &*self.tree;
         let (base, slots, keep) = (
             &mut self.base[..],
@@ -841,11 +841,12 @@ impl Bsp {
             &mut self.keep[..],
         );
         let (culled, piece_drawn) = (&self.node_culled[..], &self.piece_drawn[..]);
+        let piece_facing = &self.piece_facing[..];
         let shown = |node: u32| !FRUSTUM || !culled[node as usize];
-        let mut put = |slot: usize, f: u32, shown: bool| {
+        let mut put = |slot: u32, f: u32, shown: bool| {
             let [face, piece] = tree.fragment_face[f as usize];
-            slots[slot] = crate::DrawItem { polygon: f, face };
-            keep[slot] = u8::from(piece_drawn[piece as usize] & shown);
+            slots[slot as usize] = crate::DrawItem { polygon: f, face };
+            keep[slot as usize] = u8::from(piece_drawn[piece as usize] & shown);
         };
         base[0] = 0;
         for inner in &tree.inners {
@@ -860,55 +861,30 @@ impl Bsp {
             let shown = shown(inner.node);
             let same_base = own_base + t * inner.opposite;
             for j in 0..inner.same {
-                put((same_base + j) as usize, inner.first + j, shown);
+                put(same_base + j, inner.first + j, shown);
             }
             let opposite_base = own_base + (1 - t) * inner.same;
             for j in 0..inner.opposite {
-                put(
-                    (opposite_base + j) as usize,
-                    inner.first + inner.same + j,
-                    shown,
-                );
+                put(opposite_base + j, inner.first + inner.same + j, shown);
             }
         }
         for run in &tree.leaf_runs {
             let b = base[run.node as usize];
             let shown = shown(run.node);
-            for j in 0..run.count {
-                put((b + j) as usize, run.first + j, shown);
-            }
-        }
-    }
-
-    /// When back faces are drawn, each convex leaf's fragments facing away from the viewer go
-    /// first (its front faces never overlap, nor do its back faces).
-    fn leaves_away_first(&mut self) {
-        let tree = &*self.tree;
-        for run in &tree.leaf_runs {
-            let b = self.base[run.node as usize] as usize;
-            let range = b..b + run.count as usize;
-            // The leaf's slots hold its fragments in storage order, each with its drawn flag.
-            let facing = |item: &crate::DrawItem| {
-                let [_, piece] = tree.fragment_face[item.polygon as usize];
-                self.piece_facing[piece as usize]
-            };
-            self.leaf_buffer.clear();
-            self.leaf_buffer.extend(
-                self.scratch[range.clone()]
-                    .iter()
-                    .zip(&self.keep[range.clone()])
-                    .map(|(&item, &keep)| (item, keep)),
-            );
-            // Facing away, then facing the viewer, each in storage order (a stable partition
-            // without the allocation of a stable sort).
-            let away = self.leaf_buffer.iter().filter(|(item, _)| !facing(item));
-            let toward = self.leaf_buffer.iter().filter(|(item, _)| facing(item));
-            for ((slot, keep), &(item, drawn)) in self.scratch[range.clone()]
-                .iter_mut()
-                .zip(&mut self.keep[range])
-                .zip(away.chain(toward))
-            {
-                (*slot, *keep) = (item, drawn);
+            let fragments = run.first..run.first + run.count;
+            if away_first {
+                let (mut away, mut toward) = (b, b + run.count);
+                for f in fragments {
+                    let [_, piece] = tree.fragment_face[f as usize];
+                    let faces_viewer = u32::from(piece_facing[piece as usize]);
+                    toward -= faces_viewer;
+                    put(if faces_viewer == 1 { toward } else { away }, f, shown);
+                    away += 1 - faces_viewer;
+                }
+            } else {
+                for (slot, f) in (b..).zip(fragments) {
+                    put(slot, f, shown);
+                }
             }
         }
     }
@@ -988,12 +964,9 @@ impl Bsp {
             }
         }
         if frustum.is_some() {
-            self.place::<true>(point, w);
+            self.place::<true>(point, w, !only_toward);
         } else {
-            self.place::<false>(point, w);
-        }
-        if !only_toward {
-            self.leaves_away_first();
+            self.place::<false>(point, w, !only_toward);
         }
         out.begin(&tree.fragments);
         // Branch-free compaction in place: write every slot, advance past the drawn ones only.
