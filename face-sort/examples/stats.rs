@@ -2,8 +2,9 @@
 //!
 //! `cargo run --release -p face-sort --example stats`
 //!
-//! With arguments `WEIGHT,CANDIDATES,SAMPLE …` it instead builds spot's BSP with those splitter
-//! options and prints fragments, depth and build time for each (the tuning behind the README):
+//! With arguments `WEIGHT,CANDIDATES,SAMPLE …` it instead builds the BSP of each real model of
+//! the bench (spot, blub, suzanne, fandisk) with those splitter options and prints fragments,
+//! depth and build time for each (the tuning behind the README):
 //! `cargo run --release -p face-sort --example stats -- 8,12,1024 8,48,8000 32,12,1024`
 
 #[path = "../tests/common/mod.rs"]
@@ -55,24 +56,32 @@ fn main() {
 }
 
 fn tune_bsp(tunings: &[Vec<f64>]) {
-    let mesh = common::read_obj(&common::asset("keenan-crane/spot/spot_quadrangulated.obj"));
-    let geometry = Geometry::new(&mesh).expect("valid model");
-    let pieces = geometry.pieces().len() as f64;
-    for t in tunings {
-        let [weight, candidates, sample] = t[..] else {
-            panic!("expected WEIGHT,CANDIDATES,SAMPLE, got {t:?}");
-        };
-        let mut options = face_sort::BspOptions::DEFAULT;
-        options.split_weight = weight;
-        options.candidates = candidates as usize;
-        options.score_sample = sample as usize;
-        let tree = face_sort::BspTree::build(&geometry, &options);
-        println!(
-            "spot bsp weight {weight} candidates {candidates} sample {sample}: {:.2}x pieces, depth {}, {} nodes, build {:.1} ms",
-            tree.fragment_count() as f64 / pieces,
-            tree.depth(),
-            tree.node_count(),
-            tree.build_ms()
-        );
+    for (name, model) in [
+        ("spot", "keenan-crane/spot/spot_quadrangulated.obj"),
+        ("blub", "keenan-crane/blub/blub_quadrangulated.obj"),
+        ("suzanne", "suzanne/suzanne.obj"),
+        ("fandisk", "fandisk-quads/fandisk_quads.converted.obj"),
+    ] {
+        let mesh = common::read_obj(&common::asset(model));
+        let geometry = Geometry::new(&mesh).expect("valid model");
+        let pieces = geometry.pieces().len() as f64;
+        for t in tunings {
+            let [weight, candidates, sample] = t[..] else {
+                panic!("expected WEIGHT,CANDIDATES,SAMPLE, got {t:?}");
+            };
+            let mut options = face_sort::BspOptions::DEFAULT;
+            options.split_weight = weight;
+            options.candidates = candidates as usize;
+            options.score_sample = sample as usize;
+            let tree = face_sort::BspTree::build(&geometry, &options);
+            println!(
+                "{name} bsp weight {weight} candidates {candidates} sample {sample}: {:.3}x pieces, depth {}, {} nodes, build {:.1} ms ({:.2} µs per piece)",
+                tree.fragment_count() as f64 / pieces,
+                tree.depth(),
+                tree.node_count(),
+                tree.build_ms(),
+                tree.build_ms() * 1e3 / pieces
+            );
+        }
     }
 }

@@ -409,6 +409,10 @@ struct Builder {
     /// Per work polygon, a sphere `[x, y, z, r]` around its corners, for
     /// [`side`](Self::side).
     work_sphere: Vec<[f64; 4]>,
+    /// The splitter scoring's buffers: the polygons scored with their spheres, and which of
+    /// them lie near the plane scored.
+    scored: Vec<(u32, [f64; 4])>,
+    near: Vec<u32>,
     nodes: Vec<Node>,
     planes: Vec<Plane>,
     fragments: PolygonSet,
@@ -452,6 +456,8 @@ impl Builder {
             work: PolygonSet::new(),
             work_piece: Vec::new(),
             work_sphere: Vec::new(),
+            scored: Vec::new(),
+            near: Vec::new(),
             nodes: Vec::new(),
             planes: Vec::new(),
             fragments: PolygonSet::new(),
@@ -743,28 +749,48 @@ impl Builder {
     /// When the best is a peel (every other polygon scored strictly on one side of its plane),
     /// the other candidates that are peels too go to `peels`: each still is one for any
     /// subset, so the sets below split by them without scoring again.
-    fn choose_splitter(&self, polygons: &[u32], peels: &mut Vec<Peel>) -> (u32, Plane) {
+    fn choose_splitter(&mut self, polygons: &[u32], peels: &mut Vec<Peel>) -> (u32, Plane) {
         let n = polygons.len();
         if n <= 2 {
             return (polygons[0], *self.work.plane(polygons[0] as usize));
         }
         let candidates = self.options.candidates.max(1).min(n);
         let sample = self.options.score_sample.max(1).min(n);
-        // The polygons scored: all of them, or an evenly spread sample (`s · n / sample`).
-        let sampled = |s: usize| {
-            if sample == n {
+        // The polygons scored, all of them or an evenly spread sample (`s · n / sample`),
+        // with their spheres side by side and the spheres' reach grown by twice the tolerance
+        // (see `side`).
+        let mut scored = std::mem::take(&mut self.scored);
+        scored.clear();
+        scored.extend((0..sample).map(|s| {
+            let p = if sample == n {
                 polygons[s]
             } else {
                 polygons[(s * n) / sample]
-            }
-        };
-        // Per side (in `Side`'s order: front, back, on, spanning), without a branch.
-        let count = |plane: &Plane, candidate: u32| {
+            };
+            let [x, y, z, radius] = self.work_sphere[p as usize];
+            (p, [x, y, z, radius + 2.0 * self.tolerance])
+        }));
+        let mut near = std::mem::take(&mut self.near);
+        near.clear();
+        near.resize(scored.len(), 0);
+        // Per side (in `Side`'s order: front, back, on, spanning): first by the spheres alone
+        // without a branch, then the polygons near the plane corner by corner.
+        let mut count = |plane: &Plane, candidate: u32| {
             let mut count = [0usize; 4];
-            for s in 0..sample {
-                let p = sampled(s);
+            let mut nears = 0;
+            let (normal, offset) = (plane.normal(), plane.offset());
+            for (k, (_, [x, y, z, reach])) in scored.iter().enumerate() {
+                let d = normal.x * x + normal.y * y + normal.z * z - offset;
+                count[0] += usize::from(d > *reach);
+                count[1] += usize::from(d < -reach);
+                near[nears] = k as u32;
+                nears += usize::from(d.abs() <= *reach);
+            }
+            for &k in &near[..nears] {
+                let p = scored[k as usize].0;
                 if p != candidate {
-                    count[self.side(plane, p) as usize] += 1;
+                    let side = plane.side_of_polygon(self.work.corners(p as usize), self.tolerance);
+                    count[side as usize] += 1;
                 }
             }
             count
@@ -807,6 +833,8 @@ impl Builder {
         } else {
             peels.clear();
         }
+        self.scored = scored;
+        self.near = near;
         (best.1, best.2)
     }
 }
