@@ -54,6 +54,7 @@ mod small;
 mod sorter;
 #[cfg(any(test, feature = "proptest"))]
 pub mod strategies;
+mod t_junctions;
 pub mod tolerance;
 mod topological;
 mod view;
