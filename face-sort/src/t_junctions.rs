@@ -25,20 +25,34 @@ pub(crate) fn conform(fragments: &PolygonSet, piece_of: &[u32], tolerance: f64) 
         .map(|f| fragments.corners(f).to_vec())
         .collect();
     let mut on_edge: Vec<(f64, DVec3)> = Vec::new();
+    let mut boxes: Vec<(DVec3, DVec3)> = Vec::new();
     for group in by_piece.chunk_by(|&a, &b| piece_of[a as usize] == piece_of[b as usize]) {
         if group.len() < 2 {
             continue;
         }
-        for &f in group {
+        // Boxes grown by the tolerance: only fragments whose boxes touch can share a seam.
+        boxes.clear();
+        boxes.extend(group.iter().map(|&f| {
+            let corners = fragments.corners(f as usize);
+            let lo = corners.iter().fold(DVec3::INFINITY, |lo, &c| lo.min(c));
+            let hi = corners.iter().fold(DVec3::NEG_INFINITY, |hi, &c| hi.max(c));
+            (lo - tolerance, hi + tolerance)
+        }));
+        for (i, &f) in group.iter().enumerate() {
             let own = fragments.corners(f as usize);
+            let (lo, hi) = boxes[i];
+            let touching = |j: usize| {
+                let (other_lo, other_hi) = boxes[j];
+                j != i && lo.cmple(other_hi).all() && other_lo.cmple(hi).all()
+            };
             let mut conformed = Vec::with_capacity(own.len());
             for (a, b) in edges(own) {
                 conformed.push(a);
                 let along = b - a;
                 let length_squared = along.length_squared();
                 on_edge.clear();
-                for &g in group {
-                    if g == f {
+                for (j, &g) in group.iter().enumerate() {
+                    if !touching(j) {
                         continue;
                     }
                     for &c in fragments.corners(g as usize) {
