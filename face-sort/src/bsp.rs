@@ -55,8 +55,8 @@ pub struct BspOptions {
     /// Fragment budget of the fallible builds ([`BspTree::try_build`], [`Bsp::try_new`],
     /// [`Bsp::new_or_fallback`]): a build that would hold more than
     /// `max(max_fragments_per_piece · pieces, min_fragment_budget)` fragments stops with
-    /// [`BspError::FragmentBudget`]. Default: 16 (real models need about 2: spot 1.86,
-    /// blub 1.93). The infallible [`BspTree::build`] and [`Bsp::new`] ignore it.
+    /// [`BspError::FragmentBudget`]. Default: 16 (real models need about 2: spot 1.75,
+    /// blub 1.80). The infallible [`BspTree::build`] and [`Bsp::new`] ignore it.
     pub max_fragments_per_piece: f64,
     /// Floor of the fragment budget, so that small scenes, whose worst case is quadratic
     /// (`n` crossing polygons can need about `n²/2` fragments), are not refused. Default: 4096.
@@ -971,8 +971,8 @@ impl Bsp {
     /// This sorter drawing each split piece whole, per view, where nothing drawn between its
     /// fragments overlaps it on screen (`merge` true), or as the tree cut it (false, the
     /// default). Exact either way. Merged lists hold about as many items as the centroid
-    /// sort's (spot: 1.07× instead of 1.86×) for a per-view cost of many BSP traversals (15×
-    /// the centroid sort's on spot, docs/bench.md):
+    /// sort's (spot: 1.06–1.07× instead of 1.75×) for a per-view cost of many BSP traversals
+    /// (13–14× the centroid sort's on spot, docs/bench.md):
     /// every sink pays per item, so exporters (SVG, PDF, HTML, plotters) gain; an animation
     /// whose sink is cheap per item may not. Only [`FaceSorter::sort`] merges (it needs the
     /// projection), not [`Bsp::sort_culled`]. The name becomes `"bsp-merged"`.
