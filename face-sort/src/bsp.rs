@@ -31,7 +31,7 @@ const SMALL_SET: usize = 32;
 
 /// Larger sets rank `PRESELECT` times [`BspOptions::candidates`] evenly spread candidates by
 /// their score on `PRESELECT_SAMPLE` of their polygons, and score the best in full. With
-/// [`SMALL_SET`], 1.741x fragments on spot instead of 1.831x for 12 candidates scored in full
+/// [`SMALL_SET`], 1.751x fragments on spot instead of 1.831x for 12 candidates scored in full
 /// (`face-sort/README.md`).
 const PRESELECT: usize = 4;
 
