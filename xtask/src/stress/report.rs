@@ -19,11 +19,13 @@ pub fn markdown(reports: &[CaseReport], size: u32) -> String {
     );
     let _ = writeln!(
         s,
-        "| group | case | pieces | views | px | bsp | bsp-merged | newell | auto | centroid | NaN, fb | status |"
+        "| group | case | pieces | views | px | {} | NaN, fb | status |",
+        SORTERS.join(" | ")
     );
     let _ = writeln!(
         s,
-        "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |"
+        "| --- | --- | ---: | ---: | ---: | {}---: | --- |",
+        "---: | ".repeat(SORTERS.len())
     );
     for r in reports {
         let head = format!(
@@ -48,7 +50,7 @@ pub fn markdown(reports: &[CaseReport], size: u32) -> String {
                 .find(|o| o.sorter == name)
                 .map_or_else(String::new, |o| match &o.panic {
                     Some(_) => "panic".to_owned(),
-                    None if name == "centroid" => format!("{} / {}", o.violations, o.wrong_pixels),
+                    None if name == REFERENCE => format!("{} / {}", o.violations, o.wrong_pixels),
                     None if name == "bsp-merged" => format!(
                         "{} / {} / {} / {:.1}",
                         o.violations, o.wrong_pixels, o.drawn_max, o.ms
@@ -75,15 +77,8 @@ pub fn markdown(reports: &[CaseReport], size: u32) -> String {
         } else {
             "**FAIL**".to_owned()
         };
-        let _ = writeln!(
-            s,
-            "{head} {pixels} | {} | {} | {} | {} | {} | {nan}, {fb} | {status} |",
-            cell("bsp"),
-            cell("bsp-merged"),
-            cell("newell"),
-            cell("auto"),
-            cell("centroid"),
-        );
+        let cells = SORTERS.map(cell).join(" | ");
+        let _ = writeln!(s, "{head} {pixels} | {cells} | {nan}, {fb} | {status} |");
     }
     s
 }
