@@ -19,6 +19,18 @@ fn views(geometry: &Geometry) -> Vec<View> {
         .collect()
 }
 
+/// `auto` and the sorters of `kinds`, each with its name.
+fn with_auto(
+    auto: Auto,
+    kinds: &[SorterKind],
+    geometry: &Geometry,
+) -> Vec<(&'static str, Box<dyn FaceSorter>)> {
+    let built = kinds.iter().map(|k| (k.name(), k.build(geometry)));
+    std::iter::once(("auto", Box::new(auto) as Box<dyn FaceSorter>))
+        .chain(built)
+        .collect()
+}
+
 /// One benchmark per sorter, cycling through `views`.
 fn time_sorters(
     group: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
@@ -44,11 +56,7 @@ fn convex(c: &mut Criterion) {
     let mut group = c.benchmark_group("convex/sphere-8k");
     let auto = Auto::new(&geometry, PlanHint::ANIMATION);
     assert_eq!(auto.plan().strategy, Strategy::CullOnly);
-    let mut sorters: Vec<(&str, Box<dyn FaceSorter>)> = vec![
-        ("auto", Box::new(auto)),
-        ("centroid", SorterKind::Centroid.build(&geometry)),
-        ("bsp", SorterKind::Bsp.build(&geometry)),
-    ];
+    let mut sorters = with_auto(auto, &[SorterKind::Centroid, SorterKind::Bsp], &geometry);
     time_sorters(&mut group, &mut sorters, &views);
     // Culling alone: the floor any order costs.
     let pieces = geometry.pieces();
@@ -95,12 +103,8 @@ fn parts(c: &mut Criterion) {
     let mut group = c.benchmark_group("parts/64-spheres");
     let auto = Auto::new(&geometry, PlanHint::ANIMATION);
     assert_eq!(auto.plan().strategy, Strategy::ConvexParts);
-    let mut sorters: Vec<(&str, Box<dyn FaceSorter>)> = vec![
-        ("auto", Box::new(auto)),
-        ("centroid", SorterKind::Centroid.build(&geometry)),
-        ("bsp", SorterKind::Bsp.build(&geometry)),
-        ("newell", SorterKind::Newell.build(&geometry)),
-    ];
+    let kinds = [SorterKind::Centroid, SorterKind::Bsp, SorterKind::Newell];
+    let mut sorters = with_auto(auto, &kinds, &geometry);
     time_sorters(&mut group, &mut sorters, &views);
     group.finish();
 }
