@@ -22,8 +22,9 @@ const CONVEX_LEAF_MAX: usize = 48;
 /// the widest axis of their centres, through the median. Face planes of a smooth surface
 /// mostly cut off a few polygons each (a peel: trees thousands deep, builds growing far
 /// faster than `n log n`); the median plane splits a large set in halves for a few splits.
-/// At 256 it won on every real model (fewer fragments, faster builds) against 128, 512, 1,024
-/// and never (`face-sort/README.md`).
+/// Measured before the candidate pre-selection, 256 gave fewer fragments than 128, 512 and
+/// 1,024 on spot and blub, and than 512 and no median plane on all four real models
+/// (`face-sort/README.md`).
 const MEDIAN_CANDIDATE_MIN: usize = 256;
 
 /// Sets of at most this many polygons score every one of them as a splitter.
@@ -551,34 +552,49 @@ impl Builder {
                 continue;
             }
             let mut peels = task.peels;
-            let (splitter, plane, peel) = match peels.pop() {
-                Some(peel) => (
-                    peel.polygon,
-                    *self.work.plane(peel.polygon as usize),
-                    Some(peel),
-                ),
-                None => {
-                    let (splitter, plane) = self.choose_splitter(&task.polygons, &mut peels);
-                    (splitter, plane, None)
+            let mut median = true;
+            let (plane, same, opposite, front, back) = loop {
+                let (splitter, plane, peel) = match peels.pop() {
+                    Some(peel) => (
+                        peel.polygon,
+                        *self.work.plane(peel.polygon as usize),
+                        Some(peel),
+                    ),
+                    None => {
+                        let (splitter, plane) =
+                            self.choose_splitter(&task.polygons, &mut peels, median);
+                        (splitter, plane, None)
+                    }
+                };
+                let (same, opposite, front, back) = match peel {
+                    // Every other polygon's side is known from the scoring: no classification.
+                    Some(Peel {
+                        exact: true,
+                        rest_in_front,
+                        ..
+                    }) => {
+                        let rest = task.polygons.iter().copied().filter(|&p| p != splitter);
+                        let rest: Vec<u32> = rest.collect();
+                        let (front, back) = if rest_in_front {
+                            (rest, Vec::new())
+                        } else {
+                            (Vec::new(), rest)
+                        };
+                        (vec![splitter], Vec::new(), front, back)
+                    }
+                    _ => self.partition(&task.polygons, splitter, &plane)?,
+                };
+                // A median plane (scored on a sample) that leaves every polygon on one side
+                // would be chosen again for the same set: take a face plane instead, which
+                // always keeps at least its own polygon.
+                let stuck = splitter == NONE
+                    && same.is_empty()
+                    && opposite.is_empty()
+                    && (front.is_empty() || back.is_empty());
+                if !stuck {
+                    break (plane, same, opposite, front, back);
                 }
-            };
-            let (same, opposite, front, back) = match peel {
-                // Every other polygon's side is known from the scoring: no classification.
-                Some(Peel {
-                    exact: true,
-                    rest_in_front,
-                    ..
-                }) => {
-                    let rest = task.polygons.iter().copied().filter(|&p| p != splitter);
-                    let rest: Vec<u32> = rest.collect();
-                    let (front, back) = if rest_in_front {
-                        (rest, Vec::new())
-                    } else {
-                        (Vec::new(), rest)
-                    };
-                    (vec![splitter], Vec::new(), front, back)
-                }
-                _ => self.partition(&task.polygons, splitter, &plane)?,
+                median = false;
             };
             let first = self.fragments.len() as u32;
             for &p in same.iter().chain(&opposite) {
@@ -765,11 +781,18 @@ impl Builder {
     }
 
     /// The best candidate splitter by score: evenly spread polygons of the set and, for
-    /// large sets, the median plane ([`MEDIAN_CANDIDATE_MIN`]); `NONE` for the median plane.
+    /// large sets and with `median`, the median plane ([`MEDIAN_CANDIDATE_MIN`]); `NONE` for
+    /// the median plane. The spheres are finite (a geometry's positions are), so each
+    /// polygon scored lands in exactly one side's count, as in [`side`](Self::side).
     /// When the best is a peel (every other polygon scored strictly on one side of its plane),
     /// the other candidates that are peels too go to `peels`: each still is one for any
     /// subset, so the sets below split by them without scoring again.
-    fn choose_splitter(&mut self, polygons: &[u32], peels: &mut Vec<Peel>) -> (u32, Plane) {
+    fn choose_splitter(
+        &mut self,
+        polygons: &[u32],
+        peels: &mut Vec<Peel>,
+        median: bool,
+    ) -> (u32, Plane) {
         let n = polygons.len();
         if n <= 2 {
             return (polygons[0], *self.work.plane(polygons[0] as usize));
@@ -857,7 +880,7 @@ impl Builder {
                 });
             }
         }
-        if n >= MEDIAN_CANDIDATE_MIN {
+        if median && n >= MEDIAN_CANDIDATE_MIN {
             let plane = self.median_plane(polygons);
             let sides = count(&plane, NONE, 1);
             if score(sides) < best.0 {

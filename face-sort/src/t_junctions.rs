@@ -15,8 +15,11 @@ use crate::polygon_set::PolygonSet;
 
 /// `fragments` with, in every fragment, each corner of another fragment of the same piece
 /// (`piece_of`) that lies inside one of its edges (within `tolerance` of the edge's line,
-/// strictly between its ends) inserted there, in order along the edge. Faces, planes and the
-/// fragments' order are kept; corners are copied bit for bit.
+/// farther than `tolerance` from its ends) inserted there, in order along the edge, corners
+/// within `tolerance` of each other once. Faces, planes and the fragments' order are kept;
+/// corners are copied bit for bit. Seams between fragments of different pieces (a cut corner
+/// on a mesh edge whose neighbour was not cut there) are left as they are: they lie on piece
+/// edges, which CONVENTIONS.md's 0.75 px margin keeps out of the pixel error.
 pub(crate) fn conform(fragments: &PolygonSet, piece_of: &[u32], tolerance: f64) -> PolygonSet {
     // Fragments grouped by piece, in fragment order within each.
     let mut by_piece: Vec<u32> = (0..fragments.len() as u32).collect();
@@ -26,6 +29,7 @@ pub(crate) fn conform(fragments: &PolygonSet, piece_of: &[u32], tolerance: f64) 
         .collect();
     let mut on_edge: Vec<(f64, DVec3)> = Vec::new();
     let mut boxes: Vec<(DVec3, DVec3)> = Vec::new();
+    let mut touching: Vec<usize> = Vec::new();
     for group in by_piece.chunk_by(|&a, &b| piece_of[a as usize] == piece_of[b as usize]) {
         if group.len() < 2 {
             continue;
@@ -41,30 +45,33 @@ pub(crate) fn conform(fragments: &PolygonSet, piece_of: &[u32], tolerance: f64) 
         for (i, &f) in group.iter().enumerate() {
             let own = fragments.corners(f as usize);
             let (lo, hi) = boxes[i];
-            let touching = |j: usize| {
+            touching.clear();
+            touching.extend((0..group.len()).filter(|&j| {
                 let (other_lo, other_hi) = boxes[j];
                 j != i && lo.cmple(other_hi).all() && other_lo.cmple(hi).all()
-            };
+            }));
             let mut conformed = Vec::with_capacity(own.len());
             for (a, b) in edges(own) {
                 conformed.push(a);
                 let along = b - a;
                 let length_squared = along.length_squared();
                 on_edge.clear();
-                for (j, &g) in group.iter().enumerate() {
-                    if !touching(j) {
-                        continue;
-                    }
-                    for &c in fragments.corners(g as usize) {
+                for &j in &touching {
+                    for &c in fragments.corners(group[j] as usize) {
                         let t = (c - a).dot(along) / length_squared;
                         let off_line = (c - (a + along * t)).length();
-                        if t > 0.0 && t < 1.0 && off_line <= tolerance && c != a && c != b {
+                        let inside = t > 0.0 && t < 1.0;
+                        let apart = a.distance(c) > tolerance && b.distance(c) > tolerance;
+                        if inside && apart && off_line <= tolerance {
                             on_edge.push((t, c));
                         }
                     }
                 }
                 on_edge.sort_by(|x, y| x.0.total_cmp(&y.0));
-                on_edge.dedup_by(|x, y| x.1 == y.1);
+                // One corner per point: two siblings cut by one plane compute its corner on
+                // their shared seam from opposite ends, a rounding apart, and both inserted
+                // would make an edge of no length in any direction (a reflex turn).
+                on_edge.dedup_by(|x, y| x.1.distance(y.1) <= tolerance);
                 conformed.extend(on_edge.iter().map(|&(_, c)| c));
             }
             corners_of[f as usize] = conformed;
@@ -121,5 +128,30 @@ mod tests {
             assert_eq!(conformed.corners(f), fragments.corners(f));
             assert_eq!(conformed.face(f), fragments.face(f));
         }
+    }
+
+    /// Two siblings cut by one plane put its corner on their shared seam a rounding apart:
+    /// the fragment across gets one of them, not both (an edge of no length between them
+    /// could turn any way).
+    #[test]
+    fn corners_a_rounding_apart_are_inserted_once() {
+        let p = |x: f64, y: f64| DVec3::new(x, y, 0.0);
+        let plane = Plane::try_from_polygon(&[p(0.0, 0.0), p(1.0, 0.0), p(1.0, 1.0)]).unwrap();
+        let mut fragments = PolygonSet::new();
+        fragments.push(
+            &[p(0.0, 0.0), p(0.5, 0.0), p(0.5, 1.0), p(0.0, 1.0)],
+            7,
+            plane,
+        );
+        let nudged = p(0.5, 0.5 + 1e-16);
+        fragments.push(
+            &[p(0.5, 0.0), p(1.0, 0.0), p(1.0, 0.5), p(0.5, 0.5)],
+            7,
+            plane,
+        );
+        fragments.push(&[nudged, p(1.0, 0.5), p(1.0, 1.0), p(0.5, 1.0)], 7, plane);
+        let conformed = conform(&fragments, &[0, 0, 0], 1e-12);
+        assert_eq!(conformed.corners(0).len(), 5);
+        assert_eq!(conformed.corners(0)[2], p(0.5, 0.5));
     }
 }
