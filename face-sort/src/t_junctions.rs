@@ -89,29 +89,32 @@ mod tests {
     use super::*;
     use crate::plane::Plane;
 
-    /// A unit square cut in two by x = 0.5, then its right half cut by y = 0.5: the left half
-    /// gains the corner (0.5, 0.5) on its right edge, which both right quarters have.
-    #[test]
-    fn a_corner_on_a_siblings_edge_is_inserted() {
-        let p = |x: f64, y: f64| DVec3::new(x, y, 0.0);
+    fn p(x: f64, y: f64) -> DVec3 {
+        DVec3::new(x, y, 0.0)
+    }
+
+    /// A unit square (face 7) cut in two by x = 0.5, then its right half cut by y = 0.5:
+    /// the left half, and the lower and upper right quarters, whose shared corner on the
+    /// seam is `(0.5, 0.5)` for the lower and `upper_corner` for the upper one.
+    fn cut_square(upper_corner: DVec3) -> PolygonSet {
         let plane = Plane::try_from_polygon(&[p(0.0, 0.0), p(1.0, 0.0), p(1.0, 1.0)]).unwrap();
         let mut fragments = PolygonSet::new();
-        fragments.push(
-            &[p(0.0, 0.0), p(0.5, 0.0), p(0.5, 1.0), p(0.0, 1.0)],
-            7,
-            plane,
-        );
-        fragments.push(
-            &[p(0.5, 0.0), p(1.0, 0.0), p(1.0, 0.5), p(0.5, 0.5)],
-            7,
-            plane,
-        );
-        fragments.push(
-            &[p(0.5, 0.5), p(1.0, 0.5), p(1.0, 1.0), p(0.5, 1.0)],
-            7,
-            plane,
-        );
+        let left = [p(0.0, 0.0), p(0.5, 0.0), p(0.5, 1.0), p(0.0, 1.0)];
+        let lower = [p(0.5, 0.0), p(1.0, 0.0), p(1.0, 0.5), p(0.5, 0.5)];
+        let upper = [upper_corner, p(1.0, 0.5), p(1.0, 1.0), p(0.5, 1.0)];
+        for corners in [&left, &lower, &upper] {
+            fragments.push(corners, 7, plane);
+        }
+        fragments
+    }
+
+    /// The left half gains the corner (0.5, 0.5) on its right edge, which both right
+    /// quarters have.
+    #[test]
+    fn a_corner_on_a_siblings_edge_is_inserted() {
+        let mut fragments = cut_square(p(0.5, 0.5));
         // Another piece's fragment with a corner on the left half's edge: not inserted.
+        let plane = *fragments.plane(0);
         fragments.push(&[p(0.5, 0.25), p(2.0, 0.0), p(2.0, 1.0)], 8, plane);
         let conformed = conform(&fragments, &[0, 0, 0, 1], 1e-12);
         assert_eq!(
@@ -135,21 +138,7 @@ mod tests {
     /// could turn any way).
     #[test]
     fn corners_a_rounding_apart_are_inserted_once() {
-        let p = |x: f64, y: f64| DVec3::new(x, y, 0.0);
-        let plane = Plane::try_from_polygon(&[p(0.0, 0.0), p(1.0, 0.0), p(1.0, 1.0)]).unwrap();
-        let mut fragments = PolygonSet::new();
-        fragments.push(
-            &[p(0.0, 0.0), p(0.5, 0.0), p(0.5, 1.0), p(0.0, 1.0)],
-            7,
-            plane,
-        );
-        let nudged = p(0.5, 0.5 + 1e-16);
-        fragments.push(
-            &[p(0.5, 0.0), p(1.0, 0.0), p(1.0, 0.5), p(0.5, 0.5)],
-            7,
-            plane,
-        );
-        fragments.push(&[nudged, p(1.0, 0.5), p(1.0, 1.0), p(0.5, 1.0)], 7, plane);
+        let fragments = cut_square(p(0.5, 0.5 + 1e-16));
         let conformed = conform(&fragments, &[0, 0, 0], 1e-12);
         assert_eq!(conformed.corners(0).len(), 5);
         assert_eq!(conformed.corners(0)[2], p(0.5, 0.5));
