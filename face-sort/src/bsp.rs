@@ -424,8 +424,8 @@ fn pass_layout(nodes: &[Node], planes: &[Plane]) -> (Vec<Inner>, Vec<LeafRun>) {
 struct Builder {
     work: PolygonSet,
     work_piece: Vec<u32>,
-    /// Per work polygon, a sphere `[x, y, z, r]` around its corners, for
-    /// [`side`](Self::side).
+    /// Per work polygon, its corners' centre and its reach `[x, y, z, r + 2 · tolerance]`
+    /// (`r` the largest distance of a corner from the centre), for [`side`](Self::side).
     work_sphere: Vec<[f64; 4]>,
     /// The splitter scoring's buffers: the polygons scored with their spheres, and which of
     /// them lie near the plane scored.
@@ -725,8 +725,8 @@ impl Builder {
             .iter()
             .map(|&c| c.distance(centre))
             .fold(0.0, f64::max);
-        self.work_sphere
-            .push([centre.x, centre.y, centre.z, radius]);
+        let reach = radius + 2.0 * self.tolerance;
+        self.work_sphere.push([centre.x, centre.y, centre.z, reach]);
         self.work_piece.push(piece);
         self.work.push(corners, face, plane)
     }
@@ -738,9 +738,8 @@ impl Builder {
     /// coordinates). Most polygons lie far from most planes: the build's classifications
     /// then cost one dot product instead of one per corner.
     fn side(&self, plane: &Plane, p: u32) -> Side {
-        let [x, y, z, radius] = self.work_sphere[p as usize];
+        let [x, y, z, reach] = self.work_sphere[p as usize];
         let d = plane.signed_distance(DVec3::new(x, y, z));
-        let reach = radius + 2.0 * self.tolerance;
         if d > reach {
             Side::Front
         } else if d < -reach {
@@ -800,8 +799,7 @@ impl Builder {
         let candidates = self.options.candidates.max(1).min(n);
         let sample = self.options.score_sample.max(1).min(n);
         // The polygons scored, all of them or an evenly spread sample (`s · n / sample`),
-        // with their spheres side by side and the spheres' reach grown by twice the tolerance
-        // (see `side`).
+        // with their spheres side by side (see `side`).
         let mut scored = std::mem::take(&mut self.scored);
         scored.clear();
         scored.extend((0..sample).map(|s| {
@@ -810,8 +808,7 @@ impl Builder {
             } else {
                 polygons[(s * n) / sample]
             };
-            let [x, y, z, radius] = self.work_sphere[p as usize];
-            (p, [x, y, z, radius + 2.0 * self.tolerance])
+            (p, self.work_sphere[p as usize])
         }));
         let mut near = std::mem::take(&mut self.near);
         near.clear();
@@ -1251,10 +1248,9 @@ mod tests {
                         exact,
                         "plane of {a}, piece {b}"
                     );
-                    let [x, y, z, r] = builder.work_sphere[b];
-                    shortcut += usize::from(
-                        plane.signed_distance(DVec3::new(x, y, z)).abs() > r + 2.0 * tolerance,
-                    );
+                    let [x, y, z, reach] = builder.work_sphere[b];
+                    shortcut +=
+                        usize::from(plane.signed_distance(DVec3::new(x, y, z)).abs() > reach);
                 }
             }
         }
