@@ -47,8 +47,8 @@ struct Work {
 /// (on a closed mesh, all but those where the surface folds over itself in this view) are
 /// drawn first, in piece order, found by a [`Coverage`] test over the pieces' edge
 /// neighbours, found when the sorter is made. For one picture they cost more than they save:
-/// [`Newell::without_coverage`] skips them, and the planner makes that one for a single frame
-/// (`cargo xtask oneshot` on a 69k-triangle blob: 1.47× the centroid sort's whole-process
+/// [`Newell::without_coverage`] skips them, and the planner makes that one for fewer frames
+/// than it takes them to pay back (`cargo xtask oneshot` on a 69k-triangle blob: 1.47× the centroid sort's whole-process
 /// time with them found by a hash map, 1.16× without).
 ///
 /// Exact: the property tests and the book grid check zero order violations. Cost grows with
@@ -113,9 +113,9 @@ enum Action {
 
 impl Newell {
     /// A Newell sorter over a geometry's pieces, with their edge neighbours for the coverage
-    /// test (0.3–1.2 µs per piece: 1.9–2.1 ms on spot's 5,854 pieces, `cargo run --release -p
-    /// face-sort --example stats`; 1.2 s on the million-face torus, `cargo xtask bench
-    /// --full`).
+    /// test (0.3–1.1 µs per piece: 1.9–2.1 ms on spot's 5,854 pieces, `cargo run --release -p
+    /// face-sort --example stats`; 1.1 s on the million-face torus, `cargo xtask bench
+    /// --full`, docs/bench.md).
     #[must_use]
     pub fn new(geometry: &Geometry) -> Self {
         Newell {

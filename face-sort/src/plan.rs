@@ -94,8 +94,8 @@ impl Strategy {
 /// generated tori, orthographic; the example prints these medians). On that run the build
 /// per piece and level stayed within 436–474 ns from 5,854 to 40,000 pieces: the `n log n`
 /// model fits since large sets may split at a median plane. The break-even is about 47
-/// frames for spot. `Newell`'s own set-up (its pieces' edge neighbours, 0.3–1.2 µs per piece:
-/// 1.9–2.1 ms on spot, 1.2 s on a million faces) is left out: counted, it would move spot's
+/// frames for spot. `Newell`'s own set-up (its pieces' edge neighbours, 0.3–1.1 µs per piece:
+/// 1.9–2.1 ms on spot, 1.1 s on a million faces) is left out: counted, it would move spot's
 /// break-even from about 47 to about 44 frames.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CostModel {
@@ -146,12 +146,13 @@ pub struct Plan {
 
 /// From this many frames on, the planner's [`Newell`] finds its pieces' edge neighbours for
 /// the coverage test. They pay for themselves after about 3 frames on spot (1.9–2.1 ms once,
-/// `cargo run --release -p face-sort --example stats`, against 0.65 ms saved a frame, `cargo
-/// bench -p face-sort --bench sorters`: 1.45 ms before the test, 0.80 ms with it), 5.3 on
-/// the bumpy 1k torus (0.52 ms once in a one-off timing, against 98 µs a frame: 432 → 334 µs)
-/// and 5.1 on the million-face planar torus (1.2 s once against 233 ms a frame, `cargo
-/// xtask bench --full`); on 64 separate spheres they never do (the planner orders those as
-/// convex parts).
+/// `cargo run --release -p face-sort --example stats`, against 0.69 ms saved a frame, `cargo
+/// bench -p face-sort --bench sorters`: 1.45 ms before the test, 0.76 ms with it in the run
+/// of stop 23), 4.8 on the bumpy 1k torus (0.52 ms once in a one-off timing, against 109 µs a
+/// frame: 432 → 323 µs, the same runs) and 4.8 on the million-face planar torus (1.1 s once
+/// against 233 ms a frame: `cargo xtask bench --full`, docs/bench.md, 48 ms a frame against
+/// 281 ms in the run before the test, f568887); on 64 separate spheres they never do (the
+/// planner orders those as convex parts).
 const NEWELL_COVERAGE_FRAMES: u64 = 6;
 
 /// What a [`Plan`]'s analysis found for its sorter.

@@ -59,13 +59,12 @@ pub fn signed_area_2d(corners: &[DVec2]) -> f64 {
     edges(corners).map(|(a, b)| a.perp_dot(b)).sum::<f64>() * 0.5
 }
 
-/// Whether the line through an edge of one convex polygon (either winding; a segment counts as
-/// a polygon of two corners) has one polygon on one side and the other on the other, touching
-/// allowed, and some corner strictly off it: then their intersection lies in that line and
-/// has no area. Each line is checked against both polygons, so that a line badly defined (a
-/// zero or tiny edge, repeated corners) never separates what overlaps. A cheap first test
-/// before [`clip_convex_2d`]; `!separated_2d(polygon, &[a, b])` says that segment `a`–`b`
-/// meets the polygon's interior.
+/// Whether the line through an edge of one convex polygon (either winding) has one polygon on
+/// one side and the other on the other, touching allowed, and some corner strictly off it:
+/// then their intersection lies in that line and has no area. Each line is checked against
+/// both polygons, so that a line badly defined (a zero or tiny edge, repeated corners) never
+/// separates what overlaps. A cheap first test before [`clip_convex_2d`]. (Whether a segment
+/// enters a polygon of known turn is the coverage test's own, stricter `enters`.)
 #[must_use]
 pub(crate) fn separated_2d(a: &[DVec2], b: &[DVec2]) -> bool {
     let by_edge_of = |p: &[DVec2]| {
