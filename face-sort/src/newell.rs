@@ -31,6 +31,8 @@ struct Work {
     projected_start: u32,
     projected_len: u32,
     marked: bool,
+    /// Whether a corner lay behind the near plane (its projection is the clipped polygon).
+    clipped: bool,
 }
 
 /// The classic cascade per pair (depth extents, screen boxes, plane sides both ways, exact 2D
@@ -89,8 +91,6 @@ pub struct Newell {
     coverage: Option<Box<Coverage>>,
     drawn: Vec<u32>,
     clipped: bool,
-    /// Whether the last work item added was clipped by the near plane.
-    last_clipped: bool,
     tolerance: f64,
     min_area: f64,
     fallbacks: usize,
@@ -153,7 +153,6 @@ impl Newell {
             coverage: None,
             drawn: Vec::new(),
             clipped: false,
-            last_clipped: false,
             tolerance: PLANE_SIDE * l,
             min_area: OVERLAP_AREA * l * l,
             fallbacks: 0,
@@ -163,7 +162,7 @@ impl Newell {
 
     /// Adds a work item: the polygon's depth extent, its projection in view units (pixels / s,
     /// like the oracle) and screen box, in one pass over its corners; the near-plane clipped
-    /// projection when a corner lies behind the near plane (then `last_clipped` is set).
+    /// projection when a corner lies behind the near plane (then its `clipped` is set).
     fn add_work(&mut self, view: &View, out: &DrawList, polygon: u32, face: u32) -> u32 {
         let corners = out.corners(DrawItem { polygon, face });
         let inv_scale = 1.0 / view.scale();
@@ -201,7 +200,6 @@ impl Newell {
                 Box2::from_points(projected)
             };
         }
-        self.last_clipped = behind;
         self.work.push(Work {
             polygon,
             face,
@@ -211,6 +209,7 @@ impl Newell {
             projected_start: start as u32,
             projected_len: (self.projected.len() - start) as u32,
             marked: false,
+            clipped: behind,
         });
         self.done.push(false);
         (self.work.len() - 1) as u32
@@ -492,13 +491,9 @@ impl FaceSorter for Newell {
         for i in 0..self.pieces.len() {
             if cull.is_drawn(self.pieces.plane(i), self.pieces.corners(i)[0]) {
                 let w = self.add_work(view, out, i as u32, self.pieces.face(i));
-                let bounds = self.work[w as usize].bounds;
-                let in_image = bounds.min.x < image.max.x
-                    && image.min.x < bounds.max.x
-                    && bounds.min.y < image.max.y
-                    && image.min.y < bounds.max.y;
-                if in_image {
-                    self.clipped |= self.last_clipped;
+                let added = self.work[w as usize];
+                if added.bounds.overlaps(&image) {
+                    self.clipped |= added.clipped;
                     self.remaining.push(w);
                 } else {
                     let start = self.work[w as usize].projected_start as usize;
