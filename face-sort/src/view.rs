@@ -335,12 +335,10 @@ impl View {
         let view = &mut scratch.view;
         view.clear();
         view.extend(corners.iter().map(|&p| self.to_view(p)));
-        scratch.clipped = false;
         if let Projection::Perspective { distance } = self.projection {
             // Keep w ≥ NEAR_W  ⇔  z ≤ (1 − NEAR_W)·d/s.
             let z_max = (1.0 - NEAR_W) * distance / self.scale;
             if view.iter().any(|v| v.z > z_max) {
-                scratch.clipped = true;
                 let near = Plane::try_from_point_normal(DVec3::new(0.0, 0.0, z_max), -DVec3::Z)
                     .expect("a unit normal is never zero");
                 scratch.kept.clear();
@@ -522,16 +520,6 @@ pub struct ProjectionScratch {
     view: Vec<DVec3>,
     kept: Vec<DVec3>,
     dropped: Vec<DVec3>,
-    clipped: bool,
-}
-
-impl ProjectionScratch {
-    /// Whether the last [`View::project_polygon`] clipped its polygon by the near plane
-    /// (then its projection's corners are not the polygon's).
-    #[must_use]
-    pub fn clipped(&self) -> bool {
-        self.clipped
-    }
 }
 
 /// Pixel rays of one view: where the ray through a pixel point meets a plane, in f64. The one
