@@ -696,7 +696,9 @@ impl Builder {
         Ok((same, opposite, front, back))
     }
 
-    /// Splits work polygon `p` by `plane`; returns the new front and back polygon ids.
+    /// Splits work polygon `p` by `plane`; returns the new front and back polygon ids (a part
+    /// of fewer than three corners is dropped, as Newell's `cut` drops it: change both
+    /// together).
     fn split(&mut self, p: u32, plane: &Plane) -> (Option<u32>, Option<u32>) {
         self.corners_front.clear();
         self.corners_back.clear();

@@ -388,7 +388,8 @@ impl Newell {
     }
 
     /// Cuts `item` by `plane` into new frame polygons of `out`, keeping its face and plane:
-    /// the parts in front and behind (`None` for a part with fewer than three corners).
+    /// the parts in front and behind (`None` for a part with fewer than three corners). The
+    /// BSP builder's `split` applies the same rule to its work polygons: change both together.
     fn cut(
         &mut self,
         out: &mut DrawList,
