@@ -12,7 +12,7 @@ use crate::cells::{AngleRange, Bake, BakeCell, Breakpoint, Method, cell_bytes};
 use crate::event::EventFn;
 use crate::source::{Event, EventSource};
 use crate::tolerance::SAME_ROOT_RAD;
-use crate::verify::polygons_of;
+use crate::verify::{polygons_of, same_order};
 
 /// How far a bake has got: `done` of `total` draw lists computed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -341,12 +341,11 @@ pub fn bake_sampled(
             while hi - lo > tolerance {
                 let mid = 0.5 * (lo + hi);
                 sorter.sort(&spin.view_at(mid), &mut list);
-                let order = polygons_of(&list);
-                if order == lists[k] {
+                if same_order(&list, &lists[k]) {
                     lo = mid;
                 } else {
                     hi = mid;
-                    right = order;
+                    right = polygons_of(&list);
                 }
             }
             (hi, right)

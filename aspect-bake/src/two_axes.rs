@@ -51,7 +51,7 @@ use crate::tolerance::{
     CHART_POLE, CONTINUE_GAP_RAD, IDENTICALLY_ZERO, PARALLEL_SIN, ROOT_NOISE, SAME_ROOT_RAD,
     VERIFY_MIN_GAP_RAD, VERIFY_MIN_SIDE_RAD,
 };
-use crate::verify::{cell_state, changes_sign, inside, polygons_of, side_of, unit};
+use crate::verify::{INTERIOR_MARGIN, cell_state, changes_sign, inside, same_order, side_of, unit};
 
 /// The event set `{d : normal·d = offset}` of one sign condition, `d` the unit vector toward
 /// the viewer in centred model space.
@@ -747,9 +747,9 @@ pub fn verify_two_axes(
         .map_init(
             || (source.sorter(), DrawList::new()),
             |(sorter, list), cell| {
-                let mut live = |y: f64, p: f64| {
+                let mut live_is = |y: f64, p: f64, order: &[u32]| {
                     sorter.sort(&domain.view_at(y.to_degrees(), p.to_degrees()), list);
-                    polygons_of(list)
+                    same_order(list, order)
                 };
                 let mut state = cell_state(seed, cell);
                 let mut report = Verify2Report::default();
@@ -759,7 +759,7 @@ pub fn verify_two_axes(
                         mine[((unit(state) * mine.len() as f64) as usize).min(mine.len() - 1)];
                     let slab = &bake.slabs[s as usize];
                     let (plo, phi) = (slab.lo.to_radians(), slab.hi.to_radians());
-                    let p = plo + (phi - plo) * (0.01 + 0.98 * unit(state));
+                    let p = plo + (phi - plo) * inside(state, 0.01);
                     (s as usize, k as usize, p)
                 };
                 for _ in 0..per_cell {
@@ -768,14 +768,14 @@ pub fn verify_two_axes(
                     if hi - lo <= VERIFY_MIN_GAP_RAD {
                         continue;
                     }
-                    let y = lo + (hi - lo) * inside(&mut state);
+                    let y = lo + (hi - lo) * inside(&mut state, INTERIOR_MARGIN);
                     let fail = |what: &str| Verify2Error::Interior {
                         cell,
                         yaw: y.to_degrees(),
                         pitch: p.to_degrees(),
                         what: what.to_owned(),
                     };
-                    if live(y, p) != bake.cells[cell] {
+                    if !live_is(y, p, &bake.cells[cell]) {
                         return Err(fail("the live list differs"));
                     }
                     if bake.cell_at(y.to_degrees(), p.to_degrees()) != Some(cell) {
@@ -809,10 +809,10 @@ pub fn verify_two_axes(
                         "its circle does not change sign ({before:e}, {after:e})"
                     )));
                 }
-                if live(y - side, p) != bake.cells[slab.cells[k] as usize] {
+                if !live_is(y - side, p, &bake.cells[slab.cells[k] as usize]) {
                     return Err(fail("the live list just before is not the cell's".into()));
                 }
-                if live(y + side, p) != bake.cells[slab.cells[k + 1] as usize] {
+                if !live_is(y + side, p, &bake.cells[slab.cells[k + 1] as usize]) {
                     return Err(fail("the live list just after is not the cell's".into()));
                 }
                 report.curve_checks += 1;
@@ -876,7 +876,6 @@ mod tests {
             offset: -0.2,
         };
         let found = circle_crossings(&a, &b).expect("two crossings");
-        assert_eq!(found.len(), 2);
         for d in found {
             assert!((d.length() - 1.0).abs() < 1e-14);
             assert!((a.normal.dot(d) - a.offset).abs() < 1e-14);

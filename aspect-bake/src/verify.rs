@@ -50,10 +50,13 @@ pub(crate) fn cell_state(seed: u64, k: usize) -> u64 {
     seed ^ (k as u64).wrapping_mul(0x2545_F491_4F6C_DD1D)
 }
 
-/// A random fraction strictly inside `(0, 1)`, away from both ends by a margin (0.1 %).
-pub(crate) fn inside(state: &mut u64) -> f64 {
-    0.001 + 0.998 * unit(state)
+/// A random fraction strictly inside `(0, 1)`, away from both ends by `margin` (a fraction).
+pub(crate) fn inside(state: &mut u64, margin: f64) -> f64 {
+    margin + (1.0 - 2.0 * margin) * unit(state)
 }
+
+/// The margin of [`inside`] for the verifiers' interior points (0.1 %).
+pub(crate) const INTERIOR_MARGIN: f64 = 0.001;
 
 /// How far on each side of a boundary to evaluate: [`VERIFY_SIDE_RAD`], or a quarter of the
 /// narrower of the two widths beside it (radians).
@@ -70,6 +73,14 @@ pub(crate) fn changes_sign(before: f64, after: f64) -> bool {
 /// The polygons of a draw list, in order (what a cell stores).
 pub(crate) fn polygons_of(list: &DrawList) -> Vec<u32> {
     list.items().iter().map(|i| i.polygon).collect()
+}
+
+/// Whether a draw list holds exactly the polygons `order`, in order (no list built).
+pub(crate) fn same_order(list: &DrawList, order: &[u32]) -> bool {
+    list.items()
+        .iter()
+        .map(|i| i.polygon)
+        .eq(order.iter().copied())
 }
 
 /// SplitMix64: a few random interior angles per cell, reproducible from a seed.
@@ -104,13 +115,13 @@ pub fn verify(
             |(sorter, list), k| {
                 let cell = &bake.cells[k];
                 let mut state = cell_state(seed, k);
-                let mut live = |degrees: f64| {
+                let mut live_is = |degrees: f64, order: &[u32]| {
                     sorter.sort(&spin.view_at(degrees.to_radians()), list);
-                    polygons_of(list)
+                    same_order(list, order)
                 };
                 for _ in 0..per_cell {
-                    let degrees = cell.range.lerp(inside(&mut state));
-                    if live(degrees) != cell.order {
+                    let degrees = cell.range.lerp(inside(&mut state, INTERIOR_MARGIN));
+                    if !live_is(degrees, &cell.order) {
                         return Err(VerifyError::Interior {
                             cell: k,
                             lo: cell.range.lo,
@@ -163,16 +174,16 @@ pub fn verify(
                         "its event does not change sign ({before:e} before, {after:e} after)"
                     )));
                 }
-                let mut live = |theta: f64| {
+                let mut live_is = |theta: f64, order: &[u32]| {
                     sorter.sort(&spin.view_at(theta), list);
-                    polygons_of(list)
+                    same_order(list, order)
                 };
-                if live(t - side) != bake.cells[left].order {
+                if !live_is(t - side, &bake.cells[left].order) {
                     return Err(fail(
                         "the live list just before is not the left cell's".into(),
                     ));
                 }
-                if live(t + side) != bake.cells[right].order {
+                if !live_is(t + side, &bake.cells[right].order) {
                     return Err(fail(
                         "the live list just after is not the right cell's".into(),
                     ));
