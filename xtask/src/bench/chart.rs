@@ -10,7 +10,7 @@ use face_sort::SorterKind;
 use super::{PEER, Row, ScalingRow};
 
 /// One colour per sorter: the workspace's sorters in `SorterKind::ALL`'s order, then the peer.
-const COLOURS: [RGBColor; 6] = [
+const COLOURS: [RGBColor; SorterKind::ALL.len() + 1] = [
     RGBColor(0x7f, 0x7f, 0x7f),
     RGBColor(0x1f, 0x77, 0xb4),
     RGBColor(0x2c, 0xa0, 0x2c),
@@ -38,7 +38,7 @@ fn colour_of(sorter: &str) -> RGBColor {
         .chain([PEER])
         .position(|n| n == sorter)
         .unwrap_or(0);
-    COLOURS[place % COLOURS.len()]
+    COLOURS[place]
 }
 
 /// Chart size in pixels.
@@ -78,7 +78,6 @@ pub(super) fn chart_svg(rows: &[Row]) -> Result<String> {
         .max(1e-4)
         * 100.0;
     let y_max = nice_ceiling(max_error);
-    let colour = colour_of;
 
     let mut svg = String::new();
     {
@@ -104,7 +103,7 @@ pub(super) fn chart_svg(rows: &[Row]) -> Result<String> {
             .draw()
             .map_err(|e| err(&e))?;
         for &name in &sorters {
-            let c = colour(name);
+            let c = colour_of(name);
             let mine: Vec<&&Row> = points.iter().filter(|r| r.sorter == name).collect();
             let at = |r: &Row| (r.frame_us, r.pixel_error.unwrap_or(0.0) * 100.0);
             chart
@@ -179,7 +178,6 @@ pub(super) fn scaling_svg(rows: &[ScalingRow]) -> Result<String> {
         decade_below(fy0),
         decade_above(fy1).max(decade_below(fy0) * 10.0) * 1e3,
     );
-    let colour = colour_of;
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
@@ -204,7 +202,7 @@ pub(super) fn scaling_svg(rows: &[ScalingRow]) -> Result<String> {
             .draw()
             .map_err(|e| err(&e))?;
         for &name in &sorters {
-            let c = colour(name);
+            let c = colour_of(name);
             let mine: Vec<&ScalingRow> = rows.iter().filter(|r| r.sorter == name).collect();
             let builds: Vec<(f64, f64)> = mine.iter().filter_map(|r| build_us(r)).collect();
             if !builds.is_empty() {

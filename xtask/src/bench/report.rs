@@ -4,6 +4,7 @@
 use std::fmt::Write as _;
 
 use anyhow::{Result, bail};
+use face_sort::SorterKind;
 use serde::Serialize;
 
 use super::timing::TURN_PER_FRAME_DEG;
@@ -184,8 +185,9 @@ pub(super) fn markdown(
 
 /// The centroid baseline's row of the same scene and projection as `r`.
 fn centroid_of<'a>(rows: &'a [Row], r: &Row) -> Option<&'a Row> {
+    let centroid = SorterKind::Centroid.name();
     rows.iter()
-        .find(|c| c.sorter == "centroid" && c.scene == r.scene && c.projection == r.projection)
+        .find(|c| c.sorter == centroid && c.scene == r.scene && c.projection == r.projection)
 }
 
 /// The geometric mean (1 for none).

@@ -206,7 +206,7 @@ pub(super) fn bench_scene(scene: &Scene, budget: &Budget, resolution: u32) -> Re
             );
             scene_rows.push(row);
         }
-        let centroid = scene_rows.iter().find(|r| r.sorter == "centroid");
+        let centroid = (scene_rows.iter()).find(|r| r.sorter == SorterKind::Centroid.name());
         let (base, same_view_base) =
             centroid.map_or((f64::NAN, f64::NAN), |r| (r.frame_us, r.same_view_us));
         for row in &mut scene_rows {
