@@ -12,6 +12,15 @@ mod common;
 
 use face_sort::{DrawList, Geometry, SorterKind, View};
 
+/// The bench's real models (name, path under `assets/models`); the full table covers the
+/// first two.
+const MODELS: [(&str, &str); 4] = [
+    ("spot", "keenan-crane/spot/spot_quadrangulated.obj"),
+    ("blub", "keenan-crane/blub/blub_quadrangulated.obj"),
+    ("suzanne", "suzanne/suzanne.obj"),
+    ("fandisk", "fandisk-quads/fandisk_quads.converted.obj"),
+];
+
 fn main() {
     let tunings: Vec<Vec<f64>> = std::env::args()
         .skip(1)
@@ -25,10 +34,7 @@ fn main() {
         tune_bsp(&tunings);
         return;
     }
-    for model in [
-        "keenan-crane/spot/spot_quadrangulated.obj",
-        "keenan-crane/blub/blub_quadrangulated.obj",
-    ] {
+    for (_, model) in &MODELS[..2] {
         let mesh = common::read_obj(&common::asset(model));
         let geometry = Geometry::new(&mesh).expect("valid model");
         let faces = geometry.face_count();
@@ -56,12 +62,7 @@ fn main() {
 }
 
 fn tune_bsp(tunings: &[Vec<f64>]) {
-    for (name, model) in [
-        ("spot", "keenan-crane/spot/spot_quadrangulated.obj"),
-        ("blub", "keenan-crane/blub/blub_quadrangulated.obj"),
-        ("suzanne", "suzanne/suzanne.obj"),
-        ("fandisk", "fandisk-quads/fandisk_quads.converted.obj"),
-    ] {
+    for (name, model) in MODELS {
         let mesh = common::read_obj(&common::asset(model));
         let geometry = Geometry::new(&mesh).expect("valid model");
         let pieces = geometry.pieces().len() as f64;
