@@ -266,18 +266,19 @@ impl Newell {
         let mut candidates = std::mem::take(&mut self.candidates);
         candidates.clear();
         {
+            // The grid's lists are in `z_min` order: each is read up to P's `z_max`.
             let (work, done) = (&self.work, &self.done);
-            self.grid.for_each_candidate(&wp.bounds, |q| {
-                let wq = &work[q as usize];
-                if q != p
-                    && !done[q as usize]
-                    && wq.z_min < wp.z_max
-                    && wp.bounds.overlaps(&wq.bounds)
-                {
-                    candidates.push(q);
-                }
-                std::ops::ControlFlow::Continue(())
-            });
+            self.grid.for_each_ordered_candidate(
+                &wp.bounds,
+                |q| done[q as usize],
+                |q| work[q as usize].z_min >= wp.z_max,
+                |q| {
+                    let wq = &work[q as usize];
+                    if q != p && wq.z_min < wp.z_max && wp.bounds.overlaps(&wq.bounds) {
+                        candidates.push(q);
+                    }
+                },
+            );
         }
         let action = self.decide_among(out, p, &plane_p, &candidates, viewer);
         self.candidates = candidates;
@@ -417,10 +418,15 @@ impl Newell {
         (add(&self.split_front), add(&self.split_back))
     }
 
-    /// Adds a final fragment of [`untangle`](Self::untangle) back into the cascade.
+    /// Adds a new polygon (a split part, a fragment of [`untangle`](Self::untangle)) to the
+    /// cascade: a work item, in the grid's lists and the remaining list in `z_min` order.
     fn add_fragment(&mut self, view: &View, out: &DrawList, item: DrawItem, first: usize) {
         let new = self.add_work(view, out, item.polygon, item.face);
-        self.grid.insert(new, &self.work[new as usize].bounds);
+        let (work, z) = (&self.work, self.work[new as usize].z_min);
+        self.grid
+            .insert_ordered(new, &work[new as usize].bounds, |other| {
+                work[other as usize].z_min.total_cmp(&z).is_le()
+            });
         self.insert_sorted(first, new);
     }
 
@@ -568,9 +574,7 @@ impl FaceSorter for Newell {
                     };
                     let (front, back) = self.cut(out, item, &by);
                     for part in front.into_iter().chain(back) {
-                        let new = self.add_work(view, out, part.polygon, part.face);
-                        self.grid.insert(new, &self.work[new as usize].bounds);
-                        self.insert_sorted(first, new);
+                        self.add_fragment(view, out, part, first);
                     }
                 }
             }

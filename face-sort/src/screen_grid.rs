@@ -23,6 +23,9 @@ pub(crate) struct ScreenGrid {
     columns: usize,
     rows: usize,
     cells: Vec<Vec<u32>>,
+    /// Per cell, how many items at the front of its list are retired for good (see
+    /// [`for_each_ordered_candidate`](Self::for_each_ordered_candidate)).
+    heads: Vec<u32>,
     /// Query stamp per item, to visit each once per query.
     stamp: Vec<u32>,
     query: u32,
@@ -47,6 +50,8 @@ impl ScreenGrid {
         for cell in &mut self.cells[..columns * rows] {
             cell.clear();
         }
+        self.heads.clear();
+        self.heads.resize(columns * rows, 0);
         self.stamp.clear();
         self.query = 0;
     }
@@ -81,6 +86,74 @@ impl ScreenGrid {
         }
     }
 
+    /// Adds item `item` with screen box `b` into each of its cells' lists after the items
+    /// that `before` says go ahead of it (and after the retired ones): callers that insert
+    /// in key order and then out of order this way keep every list in key order.
+    pub(crate) fn insert_ordered(&mut self, item: u32, b: &Box2, before: impl Fn(u32) -> bool) {
+        if self.stamp.len() <= item as usize {
+            self.stamp.resize(item as usize + 1, 0);
+        }
+        if let Some((x0, x1, y0, y1)) = self.range(b) {
+            for y in y0..=y1 {
+                for c in y * self.columns + x0..=y * self.columns + x1 {
+                    let (cell, head) = (&mut self.cells[c], self.heads[c] as usize);
+                    let at = head + cell[head..].partition_point(|&other| before(other));
+                    cell.insert(at, item);
+                }
+            }
+        }
+    }
+
+    /// Calls `f` once for every item in a cell that `b` touches that `retired` does not say
+    /// is gone for good, reading each cell's list in order up to the first item that `past`
+    /// says ends it (with lists in key order and `past` a key bound, the rest are past it
+    /// too). Retired items at a list's front are skipped for every later query too.
+    pub(crate) fn for_each_ordered_candidate(
+        &mut self,
+        b: &Box2,
+        retired: impl Fn(u32) -> bool,
+        past: impl Fn(u32) -> bool,
+        mut f: impl FnMut(u32),
+    ) {
+        let Some((x0, x1, y0, y1)) = self.range(b) else {
+            return;
+        };
+        let query = self.next_query();
+        for y in y0..=y1 {
+            for c in y * self.columns + x0..=y * self.columns + x1 {
+                let cell = &self.cells[c];
+                let mut head = self.heads[c] as usize;
+                while head < cell.len() && retired(cell[head]) {
+                    head += 1;
+                }
+                self.heads[c] = head as u32;
+                for &item in &cell[head..] {
+                    if past(item) {
+                        break;
+                    }
+                    if retired(item) {
+                        continue;
+                    }
+                    let seen = &mut self.stamp[item as usize];
+                    if *seen != query {
+                        *seen = query;
+                        f(item);
+                    }
+                }
+            }
+        }
+    }
+
+    /// A new query stamp (restamping every item when the counter wraps).
+    fn next_query(&mut self) -> u32 {
+        self.query = self.query.wrapping_add(1);
+        if self.query == 0 {
+            self.stamp.iter_mut().for_each(|s| *s = 0);
+            self.query = 1;
+        }
+        self.query
+    }
+
     /// Calls `f` once for every item inserted in a cell that `b` touches, until `f` breaks.
     pub(crate) fn for_each_candidate(
         &mut self,
@@ -90,12 +163,7 @@ impl ScreenGrid {
         let Some((x0, x1, y0, y1)) = self.range(b) else {
             return;
         };
-        self.query = self.query.wrapping_add(1);
-        if self.query == 0 {
-            self.stamp.iter_mut().for_each(|s| *s = 0);
-            self.query = 1;
-        }
-        let query = self.query;
+        let query = self.next_query();
         let stamp = &mut self.stamp;
         for row in self.cells.chunks(self.columns).take(y1 + 1).skip(y0) {
             for cell in &row[x0..=x1] {
@@ -150,6 +218,68 @@ mod tests {
             for (j, b) in boxes.iter().enumerate() {
                 if b.overlaps(query) {
                     assert!(found.contains(&(j as u32)), "{i} misses {j}");
+                }
+            }
+        }
+    }
+
+    /// Items inserted in key order, then some out of order with `insert_ordered`, some
+    /// retired: an ordered query finds each live item whose box overlaps and whose key is
+    /// below the bound exactly once, and never a retired one.
+    #[test]
+    fn ordered_queries_find_live_items_below_the_bound() {
+        let n = 60;
+        let box_of = |i: usize| {
+            let p = DVec2::new((i * 7 % 10) as f64, (i * 3 % 6) as f64);
+            Box2 {
+                min: p,
+                max: p + DVec2::splat(1.5 + (i % 3) as f64),
+            }
+        };
+        // Keys: the first 40 inserted ascending, the last 20 out of order.
+        let key = |i: usize| {
+            if i < 40 {
+                i as f64
+            } else {
+                ((i * 13) % 40) as f64 + 0.5
+            }
+        };
+        let all = Box2 {
+            min: DVec2::ZERO,
+            max: DVec2::new(14.0, 10.0),
+        };
+        let mut grid = ScreenGrid::default();
+        grid.reset(all, n);
+        for i in 0..40 {
+            grid.insert(i as u32, &box_of(i));
+        }
+        for i in 40..n {
+            grid.insert_ordered(i as u32, &box_of(i), |o| key(o as usize) <= key(i));
+        }
+        let retired = |i: u32| i % 5 == 0;
+        for bound in [3.0, 17.5, 41.0] {
+            for q in 0..n {
+                let query = box_of(q);
+                let mut found = Vec::new();
+                grid.for_each_ordered_candidate(
+                    &query,
+                    |i| retired(i),
+                    |i| key(i as usize) >= bound,
+                    |i| found.push(i),
+                );
+                let mut unique = found.clone();
+                unique.sort_unstable();
+                unique.dedup();
+                assert_eq!(unique.len(), found.len(), "visited twice");
+                for i in 0..n {
+                    let expected =
+                        !retired(i as u32) && key(i) < bound && box_of(i).overlaps(&query);
+                    if expected {
+                        assert!(found.contains(&(i as u32)), "bound {bound}: {q} misses {i}");
+                    }
+                    if retired(i as u32) {
+                        assert!(!found.contains(&(i as u32)), "{q} finds retired {i}");
+                    }
                 }
             }
         }
