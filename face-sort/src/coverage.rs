@@ -29,6 +29,9 @@ use crate::polygon_set::PolygonSet;
 /// "No neighbour" in [`EdgeNeighbours`].
 pub(crate) const NONE: u32 = u32::MAX;
 
+/// A cell's winding number where it is not constant or not known (above every `m ≤ 1`).
+const UNKNOWN_WINDING: i32 = i32::MAX;
+
 /// Most cells along either side of the boundary edges' grid.
 const MAX_SIDE: usize = 256;
 
@@ -172,9 +175,11 @@ pub(crate) struct Coverage {
     cell_edges: Vec<u32>,
     row_start: Vec<u32>,
     row_edges: Vec<u32>,
-    /// Per cell: no boundary edge's box touches it and `m ≤ 1` there (`m` is constant in
-    /// such a cell), so a piece inside such cells alone covers its projection.
-    cell_alone: Vec<bool>,
+    /// Per cell: `m`, constant in a cell that no boundary edge's box touches, or
+    /// [`UNKNOWN_WINDING`] (an edge's box touches it, or `m` is unknown on its row). A piece
+    /// inside cells where `m ≤ 1` alone covers its projection; one with an inner point in a
+    /// cell where `m` is known and not 1 does not.
+    cell_winding: Vec<i32>,
     /// One row's crossings `(x, ±1)` of the boundary edges with the row's middle line.
     crossings: Vec<(f64, i32)>,
 }
@@ -337,11 +342,11 @@ impl Coverage {
     }
 
     /// Per row, `m` at each cell's centre from the boundary edges crossing the row's middle
-    /// line to its right; a cell is alone when no edge touches it and `m ≤ 1`.
+    /// line to its right, kept for the cells that no edge touches (`m` is constant there).
     fn find_alone_cells(&mut self) {
         let (columns, rows) = (self.columns, self.rows);
-        self.cell_alone.clear();
-        self.cell_alone.resize(columns * rows, false);
+        self.cell_winding.clear();
+        self.cell_winding.resize(columns * rows, UNKNOWN_WINDING);
         let cell = DVec2::ONE / self.inverse_cell;
         for row in 0..rows {
             let y = self.origin.y + (row as f64 + 0.5) * cell.y;
@@ -367,8 +372,8 @@ impl Coverage {
                     next += 1;
                 }
                 let c = row * columns + column;
-                self.cell_alone[c] =
-                    !poisoned && m <= 1 && self.cell_start[c] == self.cell_start[c + 1];
+                let constant = !poisoned && self.cell_start[c] == self.cell_start[c + 1];
+                self.cell_winding[c] = if constant { m } else { UNKNOWN_WINDING };
             }
         }
     }
@@ -376,8 +381,9 @@ impl Coverage {
     /// Whether drawn piece `piece`, projecting to `corners` with screen box `bounds`, alone
     /// covers its projection: it lies in alone cells, or it has area, no boundary edge enters
     /// it (its own edges lie on its outline and are not tested), and the winding number over
-    /// the boundary edges at its centroid is 1. Only after [`file`](Self::file) returned
-    /// `true` for the frame.
+    /// the boundary edges at its centroid is 1 (its cell's `m` where that is known, else
+    /// summed along its row; a known `m` other than 1 decides before any edge is tested).
+    /// Only after [`file`](Self::file) returned `true` for the frame.
     pub(crate) fn alone(&self, piece: u32, corners: &[DVec2], bounds: &Box2) -> bool {
         let b = bounds;
         let (x0, x1, y0, y1) = cells_of(
@@ -389,15 +395,28 @@ impl Coverage {
         );
         let columns = self.columns;
         if (y0..=y1).all(|y| {
-            self.cell_alone[y * columns + x0..=y * columns + x1]
+            self.cell_winding[y * columns + x0..=y * columns + x1]
                 .iter()
-                .all(|&a| a)
+                .all(|&m| m <= 1)
         }) {
             return true;
         }
         // Its turn, filed from the same projection.
         let turn = f64::from(self.turn[piece as usize]);
         if turn == 0.0 {
+            return false;
+        }
+        // An inner point; where its cell's `m` is known, that is `m` there.
+        let inside = corners.iter().copied().sum::<DVec2>() / corners.len() as f64;
+        let (column, _, row, _) = cells_of(
+            self.origin,
+            self.inverse_cell,
+            (self.columns, self.rows),
+            inside,
+            inside,
+        );
+        let known = self.cell_winding[row * columns + column];
+        if known != UNKNOWN_WINDING && known != 1 {
             return false;
         }
         for y in y0..=y1 {
@@ -415,9 +434,9 @@ impl Coverage {
                 }
             }
         }
-        let inside = corners.iter().copied().sum::<DVec2>() / corners.len() as f64;
-        let row = (((inside.y - self.origin.y) * self.inverse_cell.y).max(0.0) as usize)
-            .min(self.rows - 1);
+        if known == 1 {
+            return true;
+        }
         let list = self.row_start[row] as usize..self.row_start[row + 1] as usize;
         let (mut m, mut finite) = (0, true);
         for &e in &self.row_edges[list] {
@@ -437,7 +456,7 @@ impl Coverage {
         self.neighbours.heap_bytes()
             + self.seen.capacity() * 4
             + self.turn.capacity()
-            + self.cell_alone.capacity()
+            + self.cell_winding.capacity() * 4
             + (self.cell_start.capacity()
                 + self.cell_edges.capacity()
                 + self.row_start.capacity()
