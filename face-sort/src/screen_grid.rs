@@ -256,14 +256,14 @@ mod tests {
         for i in 40..n {
             grid.insert_ordered(i as u32, &box_of(i), |o| key(o as usize) <= key(i));
         }
-        let retired = |i: u32| i % 5 == 0;
+        let retired = |i: u32| i.is_multiple_of(5);
         for bound in [3.0, 17.5, 41.0] {
             for q in 0..n {
                 let query = box_of(q);
                 let mut found = Vec::new();
                 grid.for_each_ordered_candidate(
                     &query,
-                    |i| retired(i),
+                    retired,
                     |i| key(i as usize) >= bound,
                     |i| found.push(i),
                 );
