@@ -206,11 +206,12 @@ impl Coverage {
 
     /// Files the boundary edges of this frame's drawn pieces, `drawn[j]` projecting to
     /// `polygon(j)` (any consistent screen units; every corner projected, none clipped);
-    /// `false` when there is none (then no piece is proved alone).
+    /// `false` when there is none, or more than `max_edges` (then no piece is proved alone).
     pub(crate) fn file<'a>(
         &mut self,
         drawn: &[u32],
         polygon: impl Fn(usize) -> &'a [DVec2],
+        max_edges: usize,
     ) -> bool {
         self.frame = self.frame.wrapping_add(1);
         if self.frame == 0 {
@@ -257,6 +258,9 @@ impl Coverage {
                         piece: p as u32,
                     });
                 }
+            }
+            if self.edges.len() > max_edges {
+                return false;
             }
         }
         !self.edges.is_empty() && self.file_edges(drawn.len())
@@ -640,7 +644,7 @@ mod tests {
                             projected.push(out);
                         }
                     }
-                    assert!(coverage.file(&drawn, |j| &projected[j]));
+                    assert!(coverage.file(&drawn, |j| &projected[j], usize::MAX));
                     let (mut clip, mut scratch) = (Vec::new(), Vec::new());
                     for (j, a) in projected.iter().enumerate() {
                         if !coverage.alone(drawn[j], a, &Box2::from_points(a)) {

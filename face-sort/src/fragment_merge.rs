@@ -180,7 +180,7 @@ impl FragmentMerge {
         self.pending.clear();
         let (projected, starts) = (&self.projected, &self.projected_start);
         let polygon = |j: usize| &projected[starts[j] as usize..starts[j + 1] as usize];
-        if !self.coverage.file(&self.drawn, polygon) {
+        if !self.coverage.file(&self.drawn, polygon, usize::MAX) {
             self.pending.extend_from_slice(&self.split);
             return;
         }

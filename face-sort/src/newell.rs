@@ -20,6 +20,16 @@ use crate::{
 /// centroid sort on the book, cornell box and boxes scenes, 9–48 pieces; 24–34× without).
 const COVERAGE_MIN_PIECES: usize = 64;
 
+/// Frames with more boundary edges (silhouettes, the mesh's own boundary) than this per
+/// drawn piece stop the coverage test once it has found them: the surface folds over itself
+/// in much of the picture, few pieces are alone, and the test costs more than the cascade
+/// it spares. Per frame, over 400 frames (`target/release/examples/profile_frame newell`,
+/// `MODEL=…`): suzanne has 0.42–0.88 boundary edges per drawn piece and 14–32 % of its
+/// pieces alone, and stopping the test there took it from 340 to 275 µs; fandisk has
+/// 0.35–0.72 and 27–70 %, 177 to 169 µs; spot has 0.13–0.20 (56–79 % alone) and blub
+/// 0.05–0.11 (53–88 %), and keep the test.
+const COVERAGE_MAX_EDGES_PER_PIECE: f64 = 0.3;
+
 /// Per-frame data of one polygon in the working list.
 #[derive(Clone, Copy, Debug)]
 struct Work {
@@ -51,7 +61,10 @@ struct Work {
 /// neighbours, found when the sorter is made. For one picture they cost more than they save:
 /// [`Newell::without_coverage`] skips them, and the planner makes that one for fewer frames
 /// than it takes them to pay back (`cargo xtask oneshot` on a 69k-triangle blob: 1.47× the centroid sort's whole-process
-/// time with them found by a hash map, 1.16× without).
+/// time with them found by a hash map, 1.16× without). A frame where the surface folds over
+/// itself in much of the picture (many boundary edges per drawn piece) stops the test early
+/// and sends every piece through the cascade; [`SorterStats::drawn_alone`] counts the
+/// pieces the test spared.
 ///
 /// Exact: the property tests and the book grid check zero order violations. Cost grows with
 /// the number of overlapped pieces and of pairs whose depth extents overlap; nothing carries
@@ -91,6 +104,7 @@ pub struct Newell {
     coverage: Option<Box<Coverage>>,
     drawn: Vec<u32>,
     clipped: bool,
+    drawn_alone: usize,
     tolerance: f64,
     min_area: f64,
     fallbacks: usize,
@@ -153,6 +167,7 @@ impl Newell {
             coverage: None,
             drawn: Vec::new(),
             clipped: false,
+            drawn_alone: 0,
             tolerance: PLANE_SIDE * l,
             min_area: OVERLAP_AREA * l * l,
             fallbacks: 0,
@@ -431,7 +446,7 @@ impl Newell {
     }
 
     /// Draws the remaining work items that no other drawn piece overlaps on screen, and
-    /// removes them from `remaining`.
+    /// removes them from `remaining` (counted in `drawn_alone`).
     fn draw_alone(&mut self, out: &mut DrawList) {
         let Some(coverage) = &mut self.coverage else {
             return;
@@ -447,10 +462,15 @@ impl Newell {
         self.drawn
             .extend(self.remaining.iter().map(|&w| work[w as usize].polygon));
         let remaining = &self.remaining;
-        if !coverage.file(&self.drawn, |j| polygon(&work[remaining[j] as usize])) {
+        let max_edges = (COVERAGE_MAX_EDGES_PER_PIECE * self.drawn.len() as f64) as usize;
+        if !coverage.file(
+            &self.drawn,
+            |j| polygon(&work[remaining[j] as usize]),
+            max_edges,
+        ) {
             return;
         }
-        let done = &mut self.done;
+        let (done, before) = (&mut self.done, self.remaining.len());
         self.remaining.retain(|&w| {
             let wk = &work[w as usize];
             let alone = coverage.alone(wk.polygon, polygon(wk), &wk.bounds);
@@ -460,6 +480,7 @@ impl Newell {
             }
             !alone
         });
+        self.drawn_alone = before - self.remaining.len();
     }
 
     /// Inserts work item `w` into the remaining list at or after `first`, keeping it sorted.
@@ -488,6 +509,7 @@ impl FaceSorter for Newell {
         self.clipped = false;
         self.fallbacks = 0;
         self.cycles = 0;
+        self.drawn_alone = 0;
         // Frustum culling: a piece whose projection misses the image (in view units, like
         // the work boxes) covers no pixel and orders nothing that is seen; it is not drawn.
         let inv_scale = 1.0 / view.scale();
@@ -590,6 +612,7 @@ impl FaceSorter for Newell {
             cached_bytes: self.coverage.as_ref().map_or(0, |c| c.heap_bytes()),
             fallbacks: self.fallbacks,
             cycles: self.cycles,
+            drawn_alone: self.drawn_alone,
             ..SorterStats::default()
         }
     }

@@ -18,6 +18,9 @@ pub struct SorterStats {
     pub fallbacks: usize,
     /// Cycles broken by cutting in the last frame (Newell; exactness kept).
     pub cycles: usize,
+    /// Pieces drawn in the last frame without entering the sort, because a coverage test
+    /// proved that no other drawn piece overlaps them on screen (Newell).
+    pub drawn_alone: usize,
 }
 
 /// Culls and orders a mesh's pieces for a view, back to front.

@@ -78,20 +78,22 @@ fn sorting_again_allocates_nothing() {
         .chain([(SorterKind::Newell.build(&torus), views_of(&torus))])
         // Newell breaking cycles (suzanne's interpenetrating parts).
         .chain([(SorterKind::Newell.build(&split), views_of(&split))]);
-    let mut newell_cycles = 0;
+    let (mut newell_cycles, mut newell_alone) = (0, 0);
     for (mut sorter, views) in sorters {
         let mut list = DrawList::new();
         // Warm-up: buffers grow to the largest frame (Newell's splits vary by view).
         for view in &views {
             sorter.sort(view, &mut list);
         }
-        let (before, mut cycles) = (ALLOCATIONS.load(Ordering::Relaxed), 0);
+        let (before, mut cycles, mut alone) = (ALLOCATIONS.load(Ordering::Relaxed), 0, 0);
         for view in &views {
             sorter.sort(view, &mut list);
             cycles += sorter.stats().cycles;
+            alone += sorter.stats().drawn_alone;
         }
         let after = ALLOCATIONS.load(Ordering::Relaxed);
         newell_cycles += cycles;
+        newell_alone += alone;
         assert_eq!(
             after - before,
             0,
@@ -99,7 +101,12 @@ fn sorting_again_allocates_nothing() {
             sorter.name()
         );
     }
-    // The cycle-breaking path ran (suzanne's views give Newell cycles).
+    // Newell's coverage test proved pieces alone (the torus), and the cycle-breaking path
+    // ran (suzanne's views give Newell cycles).
+    assert!(
+        newell_alone > 0,
+        "no piece was proved alone: the test does not cover the coverage test"
+    );
     assert!(
         newell_cycles > 0,
         "no cycle was broken: the test does not cover it"
