@@ -5,39 +5,15 @@ use std::time::Instant;
 
 use glam::DVec3;
 
+use crate::bsp_builder;
 use crate::fragment_merge::{FragmentMerge, MergeInput};
-use crate::plane::{Plane, Side};
-use crate::polygon::split_polygon;
+use crate::plane::Plane;
 use crate::t_junctions;
 use crate::tolerance::PLANE_SIDE;
 use crate::{BspError, DrawList, FaceSorter, Geometry, Newell, PolygonSet, SorterStats, View};
 
-const NONE: u32 = u32::MAX;
-
-/// Sets of at most this many polygons are tested for convexity (every polygon on or behind
-/// every other's plane); a convex set becomes a leaf and is not split further.
-const CONVEX_LEAF_MAX: usize = 48;
-
-/// Sets of at least this many polygons also score one plane that is no polygon's: across
-/// the widest axis of their centres, through the median. Face planes of a smooth surface
-/// mostly cut off a few polygons each (a peel: trees thousands deep, builds growing far
-/// faster than `n log n`); the median plane splits a large set in halves for a few splits.
-/// Measured before the candidate pre-selection, 256 gave fewer fragments than 128, 512 and
-/// 1,024 on spot and blub, and than 512 and no median plane on all four real models
-/// (`face-sort/README.md`).
-const MEDIAN_CANDIDATE_MIN: usize = 256;
-
-/// Sets of at most this many polygons score every one of them as a splitter.
-const SMALL_SET: usize = 32;
-
-/// Larger sets rank `PRESELECT` times [`BspOptions::candidates`] evenly spread candidates by
-/// their score on `PRESELECT_SAMPLE` of their polygons, and score the best in full. With
-/// [`SMALL_SET`], 1.751x fragments on spot instead of 1.831x for 12 candidates scored in full
-/// (`face-sort/README.md`).
-const PRESELECT: usize = 4;
-
-/// See [`PRESELECT`].
-const PRESELECT_SAMPLE: usize = 16;
+/// "No node" (a child slot), "no polygon".
+pub(crate) const NONE: u32 = u32::MAX;
 
 /// How the splitter of each node is chosen.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -106,20 +82,20 @@ impl Default for BspOptions {
 
 /// One node, in pre-order (node, front subtree, back subtree).
 #[derive(Clone, Copy, Debug)]
-struct Node {
+pub(crate) struct Node {
     /// Fragments lying in the node's plane: `[first, first + same)` face the plane's way,
     /// `[first + same, first + same + opposite)` face the other way.
-    first: u32,
-    same: u32,
-    opposite: u32,
-    front_child: u32,
-    back_child: u32,
+    pub first: u32,
+    pub same: u32,
+    pub opposite: u32,
+    pub front_child: u32,
+    pub back_child: u32,
     /// Fragments in the front and back subtrees.
-    front_size: u32,
-    back_size: u32,
+    pub front_size: u32,
+    pub back_size: u32,
     /// A convex leaf: its `same` fragments need no order among themselves beyond "facing away
     /// first" (front faces of a convex set never overlap, nor do its back faces).
-    leaf: bool,
+    pub leaf: bool,
 }
 
 /// An inner node as the per-view pass reads it: its plane row and its layout, 64 bytes.
@@ -276,13 +252,14 @@ impl BspTree {
         budget: usize,
     ) -> Result<Self, BspError> {
         let start = Instant::now();
-        let mut builder = Builder::new(&pieces, tolerance, options, budget);
-        let depth = builder
-            .build_all((0..pieces.len() as u32).collect())
-            .map_err(|()| BspError::FragmentBudget {
-                pieces: pieces.len(),
-                budget,
+        let mut builder =
+            bsp_builder::build(&pieces, tolerance, options, budget).map_err(|()| {
+                BspError::FragmentBudget {
+                    pieces: pieces.len(),
+                    budget,
+                }
             })?;
+        let depth = builder.depth;
         // Exporters hand fragments to other rasterisers: no T-junctions between siblings.
         builder.fragments =
             t_junctions::conform(&builder.fragments, &builder.fragment_piece, tolerance);
@@ -419,484 +396,6 @@ fn pass_layout(nodes: &[Node], planes: &[Plane]) -> (Vec<Inner>, Vec<LeafRun>) {
         }
     }
     (inners, leaves)
-}
-
-struct Builder {
-    work: PolygonSet,
-    work_piece: Vec<u32>,
-    /// Per work polygon, its corners' centre and its reach `[x, y, z, r + 2 · tolerance]`
-    /// (`r` the largest distance of a corner from the centre), for [`side`](Self::side).
-    work_sphere: Vec<[f64; 4]>,
-    /// The splitter scoring's buffers: the polygons scored with their spheres, and which of
-    /// them lie near the plane scored.
-    scored: Vec<(u32, [f64; 4])>,
-    near: Vec<u32>,
-    /// The candidates scored in full, with their preliminary scores.
-    chosen: Vec<(f64, u32)>,
-    nodes: Vec<Node>,
-    planes: Vec<Plane>,
-    fragments: PolygonSet,
-    fragment_piece: Vec<u32>,
-    tolerance: f64,
-    options: BspOptions,
-    corners_front: Vec<DVec3>,
-    corners_back: Vec<DVec3>,
-    /// Fragments the finished tree would hold so far: pieces plus one per two-sided split.
-    live: usize,
-    /// Largest allowed `live`.
-    budget: usize,
-}
-
-struct Task {
-    polygons: Vec<u32>,
-    parent: u32,
-    is_front: bool,
-    depth: usize,
-    /// Peels of `polygons` found while scoring an ancestor: each splits this set without
-    /// a score of its own.
-    peels: Vec<Peel>,
-}
-
-/// A candidate splitter that left every other polygon scored strictly on one side of its
-/// plane (none on it, none cut): it still does for any subset of them.
-#[derive(Clone, Copy, Debug)]
-struct Peel {
-    polygon: u32,
-    /// Whether the others lie in front of its plane (else behind).
-    rest_in_front: bool,
-    /// Whether every polygon was scored (not a sample): then the sides are known without
-    /// classifying again; a sampled peel is only likely one.
-    exact: bool,
-}
-
-impl Builder {
-    /// A builder whose work polygons are `pieces`.
-    fn new(pieces: &PolygonSet, tolerance: f64, options: &BspOptions, budget: usize) -> Self {
-        let mut builder = Builder {
-            work: PolygonSet::new(),
-            work_piece: Vec::new(),
-            work_sphere: Vec::new(),
-            scored: Vec::new(),
-            near: Vec::new(),
-            chosen: Vec::new(),
-            nodes: Vec::new(),
-            planes: Vec::new(),
-            fragments: PolygonSet::new(),
-            fragment_piece: Vec::new(),
-            tolerance,
-            options: *options,
-            corners_front: Vec::new(),
-            corners_back: Vec::new(),
-            live: pieces.len(),
-            budget,
-        };
-        for i in 0..pieces.len() {
-            builder.push_work(
-                pieces.corners(i),
-                pieces.face(i),
-                *pieces.plane(i),
-                i as u32,
-            );
-        }
-        builder
-    }
-
-    /// Builds every node; `Err` when the fragment budget is exceeded.
-    fn build_all(&mut self, all: Vec<u32>) -> Result<usize, ()> {
-        let mut stack = vec![Task {
-            polygons: all,
-            parent: NONE,
-            is_front: false,
-            depth: 1,
-            peels: Vec::new(),
-        }];
-        let mut max_depth = 0;
-        while let Some(task) = stack.pop() {
-            if task.polygons.is_empty() {
-                continue;
-            }
-            max_depth = max_depth.max(task.depth);
-            let index = self.nodes.len() as u32;
-            if task.parent != NONE {
-                let parent = &mut self.nodes[task.parent as usize];
-                if task.is_front {
-                    parent.front_child = index;
-                } else {
-                    parent.back_child = index;
-                }
-            }
-            if task.polygons.len() <= CONVEX_LEAF_MAX && self.is_convex(&task.polygons) {
-                let first = self.fragments.len() as u32;
-                for &p in &task.polygons {
-                    let p = p as usize;
-                    self.fragments.push(
-                        self.work.corners(p),
-                        self.work.face(p),
-                        *self.work.plane(p),
-                    );
-                    self.fragment_piece.push(self.work_piece[p]);
-                }
-                // A leaf has no plane of its own; keep the arrays aligned with a dummy.
-                self.planes
-                    .push(*self.work.plane(task.polygons[0] as usize));
-                self.nodes.push(Node {
-                    first,
-                    same: task.polygons.len() as u32,
-                    opposite: 0,
-                    front_child: NONE,
-                    back_child: NONE,
-                    front_size: 0,
-                    back_size: 0,
-                    leaf: true,
-                });
-                continue;
-            }
-            let mut peels = task.peels;
-            let mut median = true;
-            let (plane, same, opposite, front, back) = loop {
-                let (splitter, plane, peel) = match peels.pop() {
-                    Some(peel) => (
-                        peel.polygon,
-                        *self.work.plane(peel.polygon as usize),
-                        Some(peel),
-                    ),
-                    None => {
-                        let (splitter, plane) =
-                            self.choose_splitter(&task.polygons, &mut peels, median);
-                        (splitter, plane, None)
-                    }
-                };
-                let (same, opposite, front, back) = match peel {
-                    // Every other polygon's side is known from the scoring: no classification.
-                    Some(Peel {
-                        exact: true,
-                        rest_in_front,
-                        ..
-                    }) => {
-                        let rest = task.polygons.iter().copied().filter(|&p| p != splitter);
-                        let rest: Vec<u32> = rest.collect();
-                        let (front, back) = if rest_in_front {
-                            (rest, Vec::new())
-                        } else {
-                            (Vec::new(), rest)
-                        };
-                        (vec![splitter], Vec::new(), front, back)
-                    }
-                    _ => self.partition(&task.polygons, splitter, &plane)?,
-                };
-                // A median plane (scored on a sample) that leaves every polygon on one side
-                // would be chosen again for the same set: take a face plane instead, which
-                // always keeps at least its own polygon.
-                let stuck = splitter == NONE
-                    && same.is_empty()
-                    && opposite.is_empty()
-                    && (front.is_empty() || back.is_empty());
-                if !stuck {
-                    break (plane, same, opposite, front, back);
-                }
-                median = false;
-            };
-            let first = self.fragments.len() as u32;
-            for &p in same.iter().chain(&opposite) {
-                let p = p as usize;
-                self.fragments
-                    .push(self.work.corners(p), self.work.face(p), *self.work.plane(p));
-                self.fragment_piece.push(self.work_piece[p]);
-            }
-            self.planes.push(plane);
-            self.nodes.push(Node {
-                first,
-                same: same.len() as u32,
-                opposite: opposite.len() as u32,
-                front_child: NONE,
-                back_child: NONE,
-                front_size: 0,
-                back_size: 0,
-                leaf: false,
-            });
-            // Back pushed first so that the front subtree is built (numbered) first: pre-order.
-            // A peel leaves one side empty: the other inherits the remaining peels.
-            let (front_peels, back_peels) = if front.is_empty() {
-                (Vec::new(), peels)
-            } else if back.is_empty() {
-                (peels, Vec::new())
-            } else {
-                (Vec::new(), Vec::new())
-            };
-            stack.push(Task {
-                polygons: back,
-                parent: index,
-                is_front: false,
-                depth: task.depth + 1,
-                peels: back_peels,
-            });
-            stack.push(Task {
-                polygons: front,
-                parent: index,
-                is_front: true,
-                depth: task.depth + 1,
-                peels: front_peels,
-            });
-        }
-        // Subtree sizes, children after parents in pre-order.
-        let mut size = vec![0u32; self.nodes.len()];
-        for k in (0..self.nodes.len()).rev() {
-            let node = self.nodes[k];
-            let child_size = |c: u32| if c == NONE { 0 } else { size[c as usize] };
-            let front_size = child_size(node.front_child);
-            let back_size = child_size(node.back_child);
-            self.nodes[k].front_size = front_size;
-            self.nodes[k].back_size = back_size;
-            size[k] = node.same + node.opposite + front_size + back_size;
-        }
-        Ok(max_depth)
-    }
-
-    /// The polygons on `plane` (facing its way, and the other way), in front of it and
-    /// behind it, those spanning it split; `splitter` (or `NONE`) is on it by definition.
-    /// `Err` when the splits exceed the fragment budget.
-    #[allow(clippy::type_complexity)]
-    fn partition(
-        &mut self,
-        polygons: &[u32],
-        splitter: u32,
-        plane: &Plane,
-    ) -> Result<(Vec<u32>, Vec<u32>, Vec<u32>, Vec<u32>), ()> {
-        let (mut same, mut opposite, mut front, mut back) =
-            (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-        for &p in polygons {
-            let side = if p == splitter {
-                Side::On
-            } else {
-                self.side(plane, p)
-            };
-            match side {
-                Side::On => {
-                    if self.work.plane(p as usize).normal().dot(plane.normal()) >= 0.0 {
-                        same.push(p);
-                    } else {
-                        opposite.push(p);
-                    }
-                }
-                Side::Front => front.push(p),
-                Side::Back => back.push(p),
-                Side::Spanning => {
-                    let (f, b) = self.split(p, plane);
-                    if f.is_some() && b.is_some() {
-                        self.live += 1;
-                        if self.live > self.budget {
-                            return Err(());
-                        }
-                    }
-                    front.extend(f);
-                    back.extend(b);
-                }
-            }
-        }
-        Ok((same, opposite, front, back))
-    }
-
-    /// Splits work polygon `p` by `plane`; returns the new front and back polygon ids (a part
-    /// of fewer than three corners is dropped, as Newell's `cut` drops it: change both
-    /// together).
-    fn split(&mut self, p: u32, plane: &Plane) -> (Option<u32>, Option<u32>) {
-        self.corners_front.clear();
-        self.corners_back.clear();
-        split_polygon(
-            self.work.corners(p as usize),
-            plane,
-            self.tolerance,
-            &mut self.corners_front,
-            &mut self.corners_back,
-        );
-        let face = self.work.face(p as usize);
-        let own_plane = *self.work.plane(p as usize);
-        let piece = self.work_piece[p as usize];
-        let front = std::mem::take(&mut self.corners_front);
-        let back = std::mem::take(&mut self.corners_back);
-        let f = (front.len() >= 3).then(|| self.push_work(&front, face, own_plane, piece));
-        let b = (back.len() >= 3).then(|| self.push_work(&back, face, own_plane, piece));
-        (self.corners_front, self.corners_back) = (front, back);
-        (f, b)
-    }
-
-    /// Adds a work polygon (a piece, or a fragment of piece `piece`) and its sphere.
-    fn push_work(&mut self, corners: &[DVec3], face: u32, plane: Plane, piece: u32) -> u32 {
-        let centre = corners.iter().copied().sum::<DVec3>() / corners.len() as f64;
-        let radius = corners
-            .iter()
-            .map(|&c| c.distance(centre))
-            .fold(0.0, f64::max);
-        let reach = radius + 2.0 * self.tolerance;
-        self.work_sphere.push([centre.x, centre.y, centre.z, reach]);
-        self.work_piece.push(piece);
-        self.work.push(corners, face, plane)
-    }
-
-    /// [`Plane::side_of_polygon`] of work polygon `p`, the same answer, mostly from its
-    /// sphere alone: when the sphere's centre lies farther from `plane` than its radius plus
-    /// twice the tolerance, every corner lies beyond the tolerance on the centre's side (one
-    /// tolerance is the test's, the other far exceeds round-off, about `1e-16 · L` in centred
-    /// coordinates). Most polygons lie far from most planes: the build's classifications
-    /// then cost one dot product instead of one per corner.
-    fn side(&self, plane: &Plane, p: u32) -> Side {
-        let [x, y, z, reach] = self.work_sphere[p as usize];
-        let d = plane.signed_distance(DVec3::new(x, y, z));
-        if d > reach {
-            Side::Front
-        } else if d < -reach {
-            Side::Back
-        } else {
-            plane.side_of_polygon(self.work.corners(p as usize), self.tolerance)
-        }
-    }
-
-    /// Whether every polygon lies on or behind every other's plane.
-    fn is_convex(&self, polygons: &[u32]) -> bool {
-        polygons.iter().all(|&p| {
-            let plane = self.work.plane(p as usize);
-            polygons
-                .iter()
-                .all(|&q| q == p || matches!(self.side(plane, q), Side::Back | Side::On))
-        })
-    }
-
-    /// The plane across the widest axis of the polygons' centres, through their median.
-    fn median_plane(&self, polygons: &[u32]) -> Plane {
-        let centre = |p: u32| {
-            let [x, y, z, _] = self.work_sphere[p as usize];
-            DVec3::new(x, y, z)
-        };
-        let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
-        for &p in polygons {
-            lo = lo.min(centre(p));
-            hi = hi.max(centre(p));
-        }
-        let axis = (hi - lo).max_position();
-        let mut along: Vec<f64> = polygons.iter().map(|&p| centre(p)[axis]).collect();
-        let middle = along.len() / 2;
-        let (_, &mut median, _) = along.select_nth_unstable_by(middle, f64::total_cmp);
-        let mut normal = DVec3::ZERO;
-        normal[axis] = 1.0;
-        Plane::try_from_point_normal(normal * median, normal).expect("unit normal")
-    }
-
-    /// The best candidate splitter by score: evenly spread polygons of the set and, for
-    /// large sets and with `median`, the median plane ([`MEDIAN_CANDIDATE_MIN`]); `NONE` for
-    /// the median plane. The spheres are finite (a geometry's positions are), so each
-    /// polygon scored lands in exactly one side's count, as in [`side`](Self::side).
-    /// When the best is a peel (every other polygon scored strictly on one side of its plane),
-    /// the other candidates that are peels too go to `peels`: each still is one for any
-    /// subset, so the sets below split by them without scoring again.
-    fn choose_splitter(
-        &mut self,
-        polygons: &[u32],
-        peels: &mut Vec<Peel>,
-        median: bool,
-    ) -> (u32, Plane) {
-        let n = polygons.len();
-        if n <= 2 {
-            return (polygons[0], *self.work.plane(polygons[0] as usize));
-        }
-        let candidates = self.options.candidates.max(1).min(n);
-        let sample = self.options.score_sample.max(1).min(n);
-        // The polygons scored, all of them or an evenly spread sample (`s · n / sample`),
-        // with their spheres side by side (see `side`).
-        let mut scored = std::mem::take(&mut self.scored);
-        scored.clear();
-        scored.extend((0..sample).map(|s| {
-            let p = if sample == n {
-                polygons[s]
-            } else {
-                polygons[(s * n) / sample]
-            };
-            (p, self.work_sphere[p as usize])
-        }));
-        let mut near = std::mem::take(&mut self.near);
-        near.clear();
-        near.resize(scored.len(), 0);
-        // Per side (in `Side`'s order: front, back, on, spanning): first by the spheres alone
-        // without a branch, then the polygons near the plane corner by corner.
-        // On every `stride`-th polygon scored.
-        let mut count = |plane: &Plane, candidate: u32, stride: usize| {
-            let mut count = [0usize; 4];
-            let mut nears = 0;
-            let (normal, offset) = (plane.normal(), plane.offset());
-            for (k, (_, [x, y, z, reach])) in scored.iter().enumerate().step_by(stride) {
-                let d = normal.x * x + normal.y * y + normal.z * z - offset;
-                count[0] += usize::from(d > *reach);
-                count[1] += usize::from(d < -reach);
-                near[nears] = k as u32;
-                nears += usize::from(d.abs() <= *reach);
-            }
-            for &k in &near[..nears] {
-                let p = scored[k as usize].0;
-                if p != candidate {
-                    let side = plane.side_of_polygon(self.work.corners(p as usize), self.tolerance);
-                    count[side as usize] += 1;
-                }
-            }
-            count
-        };
-        let score = |[front, back, _, splits]: [usize; 4]| {
-            self.options.split_weight * splits as f64 + front.abs_diff(back) as f64
-        };
-        let mut best = (
-            f64::INFINITY,
-            polygons[0],
-            *self.work.plane(polygons[0] as usize),
-        );
-        // The candidates: every polygon of a small set; otherwise the `candidates` best of
-        // `PRESELECT` times as many evenly spread ones, ranked by their score on
-        // `PRESELECT_SAMPLE` of the polygons scored (best first, ties by polygon).
-        let mut chosen = std::mem::take(&mut self.chosen);
-        chosen.clear();
-        if n <= SMALL_SET {
-            chosen.extend(polygons.iter().map(|&p| (0.0, p)));
-        } else {
-            let wide = (candidates * PRESELECT).min(n);
-            let stride = (scored.len() / PRESELECT_SAMPLE).max(1);
-            for c in 0..wide {
-                let candidate = polygons[(c * n) / wide + (n / wide) / 2];
-                let plane = *self.work.plane(candidate as usize);
-                chosen.push((score(count(&plane, candidate, stride)), candidate));
-            }
-            chosen.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-            chosen.truncate(candidates);
-        }
-        for &(_, candidate) in &chosen {
-            let plane = *self.work.plane(candidate as usize);
-            let sides = count(&plane, candidate, 1);
-            if score(sides) < best.0 {
-                best = (score(sides), candidate, plane);
-            }
-            let [front, back, on, splits] = sides;
-            if on == 0 && splits == 0 && (front == 0 || back == 0) {
-                peels.push(Peel {
-                    polygon: candidate,
-                    rest_in_front: back == 0,
-                    exact: sample == n,
-                });
-            }
-        }
-        if median && n >= MEDIAN_CANDIDATE_MIN {
-            let plane = self.median_plane(polygons);
-            let sides = count(&plane, NONE, 1);
-            if score(sides) < best.0 {
-                best = (score(sides), NONE, plane);
-            }
-        }
-        // Only when the best is a peel; it is drawn from the list, the others stay.
-        if peels.iter().any(|peel| peel.polygon == best.1) {
-            peels.retain(|peel| peel.polygon != best.1);
-        } else {
-            peels.clear();
-        }
-        self.scored = scored;
-        self.near = near;
-        self.chosen = chosen;
-        (best.1, best.2)
-    }
 }
 
 /// Exact back-to-front order from a BSP tree built once per geometry.
@@ -1216,47 +715,4 @@ impl Bsp {
 #[inline]
 fn facing(row: &[f64; 4], point: DVec3, w: f64) -> f64 {
     row[0] * point.x + row[1] * point.y + row[2] * point.z - w * row[3]
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::generate;
-
-    /// The builder's sphere shortcut gives `side_of_polygon`'s answer, on planes through
-    /// neighbouring pieces (corners on the plane), planes nudged by about the tolerance, and
-    /// planes far from most pieces, on a model far from the origin (moved, then centred).
-    #[test]
-    fn sphere_classification_is_side_of_polygon() {
-        let torus = generate::torus(400);
-        let away = DVec3::new(1e6, -3e5, 2e6);
-        let positions = torus.positions().iter().map(|&p| p + away).collect();
-        let mesh = crate::PolygonMesh::new(positions, torus.faces()).expect("valid torus");
-        let geometry = Geometry::new(&mesh).expect("valid torus");
-        let tolerance = PLANE_SIDE * geometry.bounds().diagonal();
-        let pieces = geometry.pieces();
-        let builder = Builder::new(pieces, tolerance, &BspOptions::DEFAULT, usize::MAX);
-        let mut shortcut = 0;
-        for a in (0..pieces.len()).step_by(7) {
-            let own = *pieces.plane(a);
-            for nudge in [0.0, 0.5, 1.0, 1.5, 2.0, 3.0, -1.0, -2.5] {
-                let offset = own.offset() + nudge * tolerance;
-                let plane = Plane::try_from_point_normal(own.normal() * offset, own.normal())
-                    .expect("unit normal");
-                for b in 0..pieces.len() {
-                    let exact = plane.side_of_polygon(pieces.corners(b), tolerance);
-                    assert_eq!(
-                        builder.side(&plane, b as u32),
-                        exact,
-                        "plane of {a}, piece {b}"
-                    );
-                    let [x, y, z, reach] = builder.work_sphere[b];
-                    shortcut +=
-                        usize::from(plane.signed_distance(DVec3::new(x, y, z)).abs() > reach);
-                }
-            }
-        }
-        // The shortcut decides most classifications: the test covers both of its branches.
-        assert!(shortcut > 0, "no classification took the shortcut");
-    }
 }

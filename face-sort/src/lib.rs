@@ -33,6 +33,7 @@
 //!   any sorter against the oracle.
 
 mod bsp;
+mod bsp_builder;
 mod centroid;
 pub mod colours;
 mod coverage;
