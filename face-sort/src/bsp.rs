@@ -38,6 +38,10 @@ pub struct BspOptions {
     /// Floor of the fragment budget, so that small scenes, whose worst case is quadratic
     /// (`n` crossing polygons can need about `n²/2` fragments), are not refused. Default: 4096.
     pub min_fragment_budget: usize,
+    /// Threads a build of 4,096 pieces or more may use, the calling one included; 0: one per
+    /// core ([`std::thread::available_parallelism`]). The tree is the same, bit for bit, on
+    /// any number. Default: 0.
+    pub threads: usize,
 }
 
 impl BspOptions {
@@ -48,6 +52,7 @@ impl BspOptions {
         score_sample: 1024,
         max_fragments_per_piece: 16.0,
         min_fragment_budget: 4096,
+        threads: 0,
     };
 
     /// The fragment budget for `pieces` pieces: `max(max_fragments_per_piece · pieces,
@@ -81,7 +86,7 @@ impl Default for BspOptions {
 }
 
 /// One node, in pre-order (node, front subtree, back subtree).
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Node {
     /// Fragments lying in the node's plane: `[first, first + same)` face the plane's way,
     /// `[first + same, first + same + opposite)` face the other way.

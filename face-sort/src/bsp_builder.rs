@@ -1,6 +1,9 @@
 //! The BSP builder: chooses each node's splitter, splits the polygons that span it, and lays
 //! the nodes and their fragments out in pre-order for [`BspTree`](crate::BspTree).
 
+use std::num::NonZeroUsize;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+
 use glam::DVec3;
 
 use crate::bsp::{NONE, Node};
@@ -44,26 +47,197 @@ pub(crate) struct Built {
     pub depth: usize,
 }
 
+/// Geometries of at least this many pieces build their tree on every available core: the
+/// top nodes on one, then the subtrees of at most [`SUBTREE_SHARE`] of the pieces side by
+/// side.
+const PARALLEL_MIN_PIECES: usize = 4096;
+
+/// See [`PARALLEL_MIN_PIECES`]: subtrees of at most `1 / SUBTREE_SHARE` of the pieces are
+/// built side by side.
+const SUBTREE_SHARE: usize = 16;
+
 /// Builds the nodes over `pieces` with plane tolerance `tolerance`; `Err` when the tree
 /// would hold more than `budget` fragments.
+///
+/// With several cores and enough pieces, the subtrees below the top nodes are built on
+/// their own threads, each by a builder holding copies of its polygons numbered in the same
+/// order: a subtree's choices depend only on its polygons, their order and their relative
+/// numbering, so the tree is the same, bit for bit, on any number of cores (a test builds
+/// it both ways).
 pub(crate) fn build(
     pieces: &PolygonSet,
     tolerance: f64,
     options: &BspOptions,
     budget: usize,
 ) -> Result<Built, ()> {
-    let mut builder = Builder::new(pieces, tolerance, options, budget);
-    let depth = builder.build_all((0..pieces.len() as u32).collect())?;
-    Ok(Built {
-        nodes: builder.nodes,
-        planes: builder.planes,
-        fragments: builder.fragments,
-        fragment_piece: builder.fragment_piece,
-        depth,
-    })
+    let threads = match options.threads {
+        0 => std::thread::available_parallelism().map_or(1, NonZeroUsize::get),
+        threads => threads,
+    };
+    build_on(pieces, tolerance, options, budget, threads)
 }
 
-struct Builder {
+/// [`build`] on at most `threads` threads.
+fn build_on(
+    pieces: &PolygonSet,
+    tolerance: f64,
+    options: &BspOptions,
+    budget: usize,
+    threads: usize,
+) -> Result<Built, ()> {
+    let live = AtomicUsize::new(pieces.len());
+    let mut top = Builder::new(pieces, tolerance, options, budget, &live);
+    let root = Task::root((0..pieces.len() as u32).collect());
+    let n = pieces.len();
+    if threads < 2 || n < PARALLEL_MIN_PIECES {
+        let depth = top.build_tasks(root, None)?;
+        return Ok(top.finish(depth));
+    }
+    let mut deferred = Vec::new();
+    let top_depth = top.build_tasks(root, Some((n / SUBTREE_SHARE, &mut deferred)))?;
+    let subtrees = build_subtrees(&top, &deferred, threads)?;
+    let depth = (subtrees.iter().map(|sub| sub.depth)).fold(top_depth, usize::max);
+    Ok(assemble(top, &subtrees, depth))
+}
+
+/// Builds each deferred task's subtree, largest first, on up to `threads` threads (the
+/// calling one included; a thread that cannot be spawned leaves its share to the others).
+fn build_subtrees(top: &Builder, deferred: &[Task], threads: usize) -> Result<Vec<Built>, ()> {
+    let mut by_size: Vec<usize> = (0..deferred.len()).collect();
+    by_size.sort_by_key(|&d| std::cmp::Reverse(deferred[d].polygons.len()));
+    let (next, failed) = (AtomicUsize::new(0), AtomicBool::new(false));
+    let work = || {
+        let mut done = Vec::new();
+        while !failed.load(Ordering::Relaxed) {
+            let Some(&d) = by_size.get(next.fetch_add(1, Ordering::Relaxed)) else {
+                break;
+            };
+            let built = top.build_subtree(&deferred[d]);
+            failed.fetch_or(built.is_err(), Ordering::Relaxed);
+            done.push((d, built));
+        }
+        done
+    };
+    let mut results: Vec<Option<Built>> = (0..deferred.len()).map(|_| None).collect();
+    std::thread::scope(|scope| {
+        let helpers: Vec<_> = (1..threads.min(deferred.len()))
+            .filter_map(|_| std::thread::Builder::new().spawn_scoped(scope, work).ok())
+            .collect();
+        let mut done = work();
+        for helper in helpers {
+            match helper.join() {
+                Ok(theirs) => done.extend(theirs),
+                Err(panic) => std::panic::resume_unwind(panic),
+            }
+        }
+        for (d, built) in done {
+            results[d] = built.ok();
+        }
+    });
+    results
+        .into_iter()
+        .collect::<Option<Vec<Built>>>()
+        .ok_or(())
+}
+
+/// The tree in pre-order: the top nodes and, where a deferred task hangs, its subtree's
+/// nodes (renumbered) and fragments.
+fn assemble(top: Builder, subtrees: &[Built], depth: usize) -> Built {
+    enum Item {
+        Top(u32),
+        Subtree(usize),
+    }
+    let mut out = Built {
+        nodes: Vec::with_capacity(
+            top.nodes.len() + subtrees.iter().map(|s| s.nodes.len()).sum::<usize>(),
+        ),
+        planes: Vec::new(),
+        fragments: PolygonSet::new(),
+        fragment_piece: Vec::new(),
+        depth,
+    };
+    let item_of = |child: u32| match child {
+        NONE => None,
+        c if c & DEFERRED != 0 => Some(Item::Subtree((c & !DEFERRED) as usize)),
+        c => Some(Item::Top(c)),
+    };
+    // Each item with the slot of its parent's child pointer (`NONE`: the root).
+    let mut stack = vec![(Item::Top(0), NONE, false)];
+    while let Some((item, parent, is_front)) = stack.pop() {
+        let index = out.nodes.len() as u32;
+        if parent != NONE {
+            let parent = &mut out.nodes[parent as usize];
+            *(if is_front {
+                &mut parent.front_child
+            } else {
+                &mut parent.back_child
+            }) = index;
+        }
+        match item {
+            Item::Top(k) => {
+                let node = top.nodes[k as usize];
+                let first = out.fragments.len() as u32;
+                for f in node.first..node.first + node.same + node.opposite {
+                    out.push_fragment(&top.fragments, f as usize, top.fragment_piece[f as usize]);
+                }
+                out.planes.push(top.planes[k as usize]);
+                out.nodes.push(Node {
+                    first,
+                    front_child: NONE,
+                    back_child: NONE,
+                    ..node
+                });
+                // Back pushed first: the front subtree comes first in pre-order.
+                stack.extend(item_of(node.back_child).map(|c| (c, index, false)));
+                stack.extend(item_of(node.front_child).map(|c| (c, index, true)));
+            }
+            Item::Subtree(d) => {
+                let sub = &subtrees[d];
+                let first = out.fragments.len() as u32;
+                let moved = |c: u32| if c == NONE { NONE } else { c + index };
+                out.nodes.extend(sub.nodes.iter().map(|node| Node {
+                    first: node.first + first,
+                    front_child: moved(node.front_child),
+                    back_child: moved(node.back_child),
+                    ..*node
+                }));
+                out.planes.extend_from_slice(&sub.planes);
+                for (f, &piece) in sub.fragment_piece.iter().enumerate() {
+                    out.push_fragment(&sub.fragments, f, piece);
+                }
+            }
+        }
+    }
+    fill_sizes(&mut out.nodes);
+    out
+}
+
+impl Built {
+    /// Appends fragment `f` of `fragments`, a part of piece `piece`.
+    fn push_fragment(&mut self, fragments: &PolygonSet, f: usize, piece: u32) {
+        self.fragments
+            .push(fragments.corners(f), fragments.face(f), *fragments.plane(f));
+        self.fragment_piece.push(piece);
+    }
+}
+
+/// Each node's front and back subtree sizes in fragments (children follow their parents in
+/// pre-order).
+fn fill_sizes(nodes: &mut [Node]) {
+    let mut size = vec![0u32; nodes.len()];
+    for k in (0..nodes.len()).rev() {
+        let node = nodes[k];
+        let child_size = |c: u32| if c == NONE { 0 } else { size[c as usize] };
+        nodes[k].front_size = child_size(node.front_child);
+        nodes[k].back_size = child_size(node.back_child);
+        size[k] = node.same + node.opposite + nodes[k].front_size + nodes[k].back_size;
+    }
+}
+
+/// Tag of a top node's child pointer that names a deferred task (its index), not a node.
+const DEFERRED: u32 = 1 << 31;
+
+struct Builder<'a> {
     work: PolygonSet,
     work_piece: Vec<u32>,
     /// Per work polygon, its corners' centre and its reach `[x, y, z, r + 2 · tolerance]`
@@ -83,8 +257,9 @@ struct Builder {
     options: BspOptions,
     corners_front: Vec<DVec3>,
     corners_back: Vec<DVec3>,
-    /// Fragments the finished tree would hold so far: pieces plus one per two-sided split.
-    live: usize,
+    /// Fragments the finished tree would hold so far: pieces plus one per two-sided split
+    /// (shared by the builders of one tree).
+    live: &'a AtomicUsize,
     /// Largest allowed `live`.
     budget: usize,
 }
@@ -111,10 +286,43 @@ struct Peel {
     exact: bool,
 }
 
-impl Builder {
+impl Task {
+    /// The task of a whole tree over `polygons`.
+    fn root(polygons: Vec<u32>) -> Vec<Task> {
+        vec![Task {
+            polygons,
+            parent: NONE,
+            is_front: false,
+            depth: 1,
+            peels: Vec::new(),
+        }]
+    }
+}
+
+impl<'a> Builder<'a> {
     /// A builder whose work polygons are `pieces`.
-    fn new(pieces: &PolygonSet, tolerance: f64, options: &BspOptions, budget: usize) -> Self {
-        let mut builder = Builder {
+    fn new(
+        pieces: &PolygonSet,
+        tolerance: f64,
+        options: &BspOptions,
+        budget: usize,
+        live: &'a AtomicUsize,
+    ) -> Self {
+        let mut builder = Builder::empty(tolerance, options, budget, live);
+        for i in 0..pieces.len() {
+            builder.push_work(
+                pieces.corners(i),
+                pieces.face(i),
+                *pieces.plane(i),
+                i as u32,
+            );
+        }
+        builder
+    }
+
+    /// A builder with no work polygons.
+    fn empty(tolerance: f64, options: &BspOptions, budget: usize, live: &'a AtomicUsize) -> Self {
+        Builder {
             work: PolygonSet::new(),
             work_piece: Vec::new(),
             work_sphere: Vec::new(),
@@ -129,36 +337,82 @@ impl Builder {
             options: *options,
             corners_front: Vec::new(),
             corners_back: Vec::new(),
-            live: pieces.len(),
+            live,
             budget,
-        };
-        for i in 0..pieces.len() {
-            builder.push_work(
-                pieces.corners(i),
-                pieces.face(i),
-                *pieces.plane(i),
-                i as u32,
-            );
         }
-        builder
     }
 
-    /// Builds every node; `Err` when the fragment budget is exceeded.
-    fn build_all(&mut self, all: Vec<u32>) -> Result<usize, ()> {
-        let mut stack = vec![Task {
-            polygons: all,
+    /// The subtree of a deferred `task` of this builder, built by a builder of its own over
+    /// copies of its polygons, numbered in this builder's order (so that ties between them
+    /// fall the same way), its peels renumbered likewise.
+    fn build_subtree(&self, task: &Task) -> Result<Built, ()> {
+        let mut ids = task.polygons.clone();
+        ids.sort_unstable();
+        let mut sub = Builder::empty(self.tolerance, &self.options, self.budget, self.live);
+        for &p in &ids {
+            let p = p as usize;
+            sub.push_work(
+                self.work.corners(p),
+                self.work.face(p),
+                *self.work.plane(p),
+                self.work_piece[p],
+            );
+        }
+        let local = |p: u32| ids.binary_search(&p).ok().map(|i| i as u32);
+        let root = Task {
+            polygons: task.polygons.iter().filter_map(|&p| local(p)).collect(),
             parent: NONE,
             is_front: false,
-            depth: 1,
-            peels: Vec::new(),
-        }];
+            depth: task.depth,
+            // A peel is one of the task's polygons (it left the others on one side, so the
+            // splitter above cut none of them).
+            peels: (task.peels.iter())
+                .filter_map(|peel| {
+                    Some(Peel {
+                        polygon: local(peel.polygon)?,
+                        ..*peel
+                    })
+                })
+                .collect(),
+        };
+        let depth = sub.build_tasks(vec![root], None)?;
+        Ok(sub.finish(depth))
+    }
+
+    /// The built tree, its subtree sizes filled in.
+    fn finish(mut self, depth: usize) -> Built {
+        fill_sizes(&mut self.nodes);
+        Built {
+            nodes: self.nodes,
+            planes: self.planes,
+            fragments: self.fragments,
+            fragment_piece: self.fragment_piece,
+            depth,
+        }
+    }
+
+    /// Builds the nodes of `stack`'s tasks and below in pre-order, and returns the tree's
+    /// depth; `Err` when the fragment budget is exceeded. With `defer`, tasks of at most
+    /// `limit` polygons are not built but set aside (in the order met), their parents'
+    /// child pointers naming them with [`DEFERRED`].
+    fn build_tasks(
+        &mut self,
+        mut stack: Vec<Task>,
+        mut defer: Option<(usize, &mut Vec<Task>)>,
+    ) -> Result<usize, ()> {
         let mut max_depth = 0;
         while let Some(task) = stack.pop() {
             if task.polygons.is_empty() {
                 continue;
             }
-            max_depth = max_depth.max(task.depth);
-            let index = self.nodes.len() as u32;
+            let deferred = match &mut defer {
+                Some((limit, deferred)) if task.polygons.len() <= *limit => Some(deferred),
+                _ => None,
+            };
+            let index = match &deferred {
+                Some(deferred) => DEFERRED | deferred.len() as u32,
+                None => self.nodes.len() as u32,
+            };
             if task.parent != NONE {
                 let parent = &mut self.nodes[task.parent as usize];
                 if task.is_front {
@@ -167,6 +421,11 @@ impl Builder {
                     parent.back_child = index;
                 }
             }
+            if let Some(deferred) = deferred {
+                deferred.push(task);
+                continue;
+            }
+            max_depth = max_depth.max(task.depth);
             if task.polygons.len() <= CONVEX_LEAF_MAX && self.is_convex(&task.polygons) {
                 let first = self.fragments.len() as u32;
                 for &p in &task.polygons {
@@ -280,17 +539,6 @@ impl Builder {
                 peels: front_peels,
             });
         }
-        // Subtree sizes, children after parents in pre-order.
-        let mut size = vec![0u32; self.nodes.len()];
-        for k in (0..self.nodes.len()).rev() {
-            let node = self.nodes[k];
-            let child_size = |c: u32| if c == NONE { 0 } else { size[c as usize] };
-            let front_size = child_size(node.front_child);
-            let back_size = child_size(node.back_child);
-            self.nodes[k].front_size = front_size;
-            self.nodes[k].back_size = back_size;
-            size[k] = node.same + node.opposite + front_size + back_size;
-        }
         Ok(max_depth)
     }
 
@@ -325,8 +573,8 @@ impl Builder {
                 Side::Spanning => {
                     let (f, b) = self.split(p, plane);
                     if f.is_some() && b.is_some() {
-                        self.live += 1;
-                        if self.live > self.budget {
+                        let live = self.live.fetch_add(1, Ordering::Relaxed) + 1;
+                        if live > self.budget {
                             return Err(());
                         }
                     }
@@ -559,7 +807,8 @@ mod tests {
         let geometry = Geometry::new(&mesh).expect("valid torus");
         let tolerance = PLANE_SIDE * geometry.bounds().diagonal();
         let pieces = geometry.pieces();
-        let builder = Builder::new(pieces, tolerance, &BspOptions::DEFAULT, usize::MAX);
+        let live = AtomicUsize::new(0);
+        let builder = Builder::new(pieces, tolerance, &BspOptions::DEFAULT, usize::MAX, &live);
         let mut shortcut = 0;
         for a in (0..pieces.len()).step_by(7) {
             let own = *pieces.plane(a);
@@ -582,5 +831,45 @@ mod tests {
         }
         // The shortcut decides most classifications: the test covers both of its branches.
         assert!(shortcut > 0, "no classification took the shortcut");
+    }
+
+    /// A tree built on two threads (top nodes, then subtrees side by side) is the tree built
+    /// on one, bit for bit; a budget too small fails both ways.
+    #[test]
+    fn subtrees_built_side_by_side_give_the_same_tree() {
+        let geometry = Geometry::new(&generate::torus(2400)).expect("valid torus");
+        let pieces = geometry.pieces();
+        assert!(
+            pieces.len() >= PARALLEL_MIN_PIECES,
+            "{} pieces",
+            pieces.len()
+        );
+        let tolerance = PLANE_SIDE * geometry.bounds().diagonal();
+        let options = BspOptions::DEFAULT;
+        let one = build_on(pieces, tolerance, &options, usize::MAX, 1).expect("unbounded");
+        let two = build_on(pieces, tolerance, &options, usize::MAX, 2).expect("unbounded");
+        assert_eq!(one.depth, two.depth);
+        assert_eq!(one.nodes, two.nodes);
+        assert_eq!(one.planes, two.planes);
+        assert_eq!(one.fragment_piece, two.fragment_piece);
+        assert_eq!(one.fragments.len(), two.fragments.len());
+        for f in 0..one.fragments.len() {
+            assert_eq!(
+                one.fragments.corners(f),
+                two.fragments.corners(f),
+                "fragment {f}"
+            );
+            assert_eq!(one.fragments.face(f), two.fragments.face(f), "fragment {f}");
+        }
+        // The torus splits: the subtrees hold fragments of their own.
+        assert!(one.fragments.len() > pieces.len());
+        let tight = pieces.len() + (one.fragments.len() - pieces.len()) / 2;
+        for threads in [1, 2] {
+            assert!(
+                build_on(pieces, tolerance, &options, tight, threads).is_err(),
+                "{threads} thread(s): {tight} fragments allowed, {} needed",
+                one.fragments.len()
+            );
+        }
     }
 }
