@@ -91,12 +91,14 @@ impl Strategy {
 /// which the planner predicts the cheaper one. Only their ratios matter.
 ///
 /// Measured with `cargo run --release -p face-sort --example plan_costs` (spot, blub and
-/// generated tori, orthographic; the example prints these medians). On that run the build
-/// per piece and level stayed within 436–474 ns from 5,854 to 40,000 pieces: the `n log n`
-/// model fits since large sets may split at a median plane. The break-even is about 47
-/// frames for spot. `Newell`'s own set-up (its pieces' edge neighbours, 0.3–1.1 µs per piece:
-/// 1.9–2.1 ms on spot, 1.1 s on a million faces) is left out: counted, it would move spot's
-/// break-even from about 47 to about 44 frames.
+/// generated tori, orthographic; the example prints these medians) on the reference
+/// machine's two cores: the BSP build uses every core ([`BspOptions::threads`]), so on one
+/// core it costs about 1.6× more (spot's whole build 33 ms against 22–27 ms on two). On that
+/// run the build per piece and level stayed within 251–292 ns from 5,854 to 40,000 pieces:
+/// the `n log n` model fits since large sets may split at a median plane. The break-even is
+/// about 40 frames for spot. `Newell`'s own set-up (its pieces' edge neighbours, 0.3–1.1 µs
+/// per piece: 1.9–2.1 ms on spot, 1.1 s on a million faces) is left out: counted, it would
+/// move spot's break-even from about 40 to about 36 frames.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CostModel {
     /// BSP build, per piece and per level (`n · log2 n` pieces·levels).
@@ -110,9 +112,9 @@ pub struct CostModel {
 impl CostModel {
     /// The constants measured on this repository's models (see the type's docs).
     pub const MEASURED: CostModel = CostModel {
-        bsp_build_per_piece_level: 466.0,
-        bsp_frame_per_piece: 7.1,
-        newell_frame_per_piece: 131.0,
+        bsp_build_per_piece_level: 262.0,
+        bsp_frame_per_piece: 5.8,
+        newell_frame_per_piece: 88.0,
     };
 
     /// Predicted nanoseconds for `pieces` pieces over `frames` frames.
