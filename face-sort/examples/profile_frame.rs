@@ -10,14 +10,17 @@
 //! ```
 //!
 //! `MODEL` is a path under `assets/models`; `PERSP=1` views in perspective (eye 512 px away,
-//! as the bench's); `CULL=none` draws back faces too (default: back faces culled).
+//! as the bench's); `CULL=none` draws back faces too (default: back faces culled);
+//! `COVERAGE=none` makes Newell's sorter without its coverage test (`Newell::without_coverage`,
+//! what the planner makes for a few frames). `MODEL` may also be an absolute path (a generated
+//! model: `cargo run --release -p face-sort --example torus_obj -- 1000 /tmp/torus1k.obj`).
 
 #[path = "../tests/common/mod.rs"]
 mod common;
 
 use std::time::Instant;
 
-use face_sort::{CullMode, DrawList, Geometry, SorterKind, View};
+use face_sort::{CullMode, DrawList, Geometry, Newell, SorterKind, View};
 
 fn main() {
     let name = std::env::args().nth(1).unwrap_or_else(|| "bsp".into());
@@ -36,7 +39,14 @@ fn main() {
     };
     let mesh = common::read_obj(&common::asset(&model));
     let geometry = Geometry::new(&mesh).expect("valid model");
-    let mut sorter = kind.build(&geometry);
+    let mut sorter = match std::env::var("COVERAGE").as_deref() {
+        Ok("none") if kind == SorterKind::Newell => Box::new(Newell::without_coverage(&geometry)),
+        Ok("none") | Ok("on") | Err(_) => kind.build(&geometry),
+        Ok(other) => {
+            eprintln!("COVERAGE must be none or on, not {other:?}");
+            std::process::exit(2);
+        }
+    };
     let mut base = View::fit(&geometry.bounds(), 512, 512);
     if std::env::var_os("PERSP").is_some() {
         base = base.with_perspective(512.0);

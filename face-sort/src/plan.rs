@@ -24,7 +24,7 @@
 //!   one culling pass; no fragments. Boxes that overlap (interlocking or nested parts) leave
 //!   the choice to the next rule.
 //! - **Otherwise the cheaper exact sorter for the frames the caller will draw.** [`Newell`]
-//!   needs no tree (for fewer than 6 frames, no build at all) and draws almost no extra items; [`Bsp`] pays a build once and then
+//!   needs no tree (for fewer than 10 frames, no build at all) and draws almost no extra items; [`Bsp`] pays a build once and then
 //!   traverses cheaply. [`PlanHint::frames`] says how many frames the build is spread over:
 //!   one picture (an export) is [`PlanHint::ONE_FRAME`]. The cost model and its measured
 //!   constants are [`CostModel`].
@@ -147,15 +147,18 @@ pub struct Plan {
 }
 
 /// From this many frames on, the planner's [`Newell`] finds its pieces' edge neighbours for
-/// the coverage test. They pay for themselves after about 3 frames on spot (1.9–2.1 ms once,
-/// `cargo run --release -p face-sort --example stats`, against 0.69 ms saved a frame, `cargo
-/// bench -p face-sort --bench sorters`: 1.45 ms before the test, 0.76 ms with it in the run
-/// of stop 23), 4.8 on the bumpy 1k torus (0.52 ms once in a one-off timing, against 109 µs a
-/// frame: 432 → 323 µs, the same runs) and 4.8 on the million-face planar torus (1.1 s once
-/// against 233 ms a frame: `cargo xtask bench --full`, docs/bench.md, 48 ms a frame against
-/// 281 ms in the run before the test, f568887); on 64 separate spheres they never do (the
-/// planner orders those as convex parts).
-const NEWELL_COVERAGE_FRAMES: u64 = 6;
+/// the coverage test. They pay for themselves after about 10 frames on spot (2.1 ms once,
+/// `cargo run --release -p face-sort --example stats`, against 0.20–0.24 ms saved a frame:
+/// 775–811 µs without the test, 575–580 µs with it, `target/release/examples/profile_frame
+/// newell` with and without `COVERAGE=none`, two runs each), about 6 on blub (5.3–5.4 ms once,
+/// 0.93–0.96 ms a frame: 2,069–2,071 against 1,108–1,139 µs), and about 7 on the bumpy 10k
+/// torus (0.7 ms a frame); on the bumpy 1k torus, fandisk and suzanne they barely pay or not
+/// at all (the test stops on meshes that fold over themselves, and small cascades are cheap),
+/// and on 64 separate spheres never (the planner orders those as convex parts). Since
+/// Newell's cascade queries its screen grid in depth order, a frame without the test costs
+/// far less than it did (spot 1.45 ms in stop 23), so the test pays back later than the 3–5
+/// frames it did then.
+const NEWELL_COVERAGE_FRAMES: u64 = 10;
 
 /// What a [`Plan`]'s analysis found for its sorter.
 #[derive(Clone, Debug, PartialEq)]
