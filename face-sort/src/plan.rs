@@ -151,8 +151,9 @@ pub struct Plan {
 /// `cargo run --release -p face-sort --example stats`, against 0.20–0.24 ms saved a frame:
 /// 775–811 µs without the test, 575–580 µs with it, `target/release/examples/profile_frame
 /// newell` with and without `COVERAGE=none`, two runs each), about 6 on blub (5.3–5.4 ms once,
-/// 0.93–0.96 ms a frame: 2,069–2,071 against 1,108–1,139 µs), and about 7 on the bumpy 10k
-/// torus (0.7 ms a frame); on the bumpy 1k torus, fandisk and suzanne they barely pay or not
+/// 0.93–0.96 ms a frame: 2,069–2,071 against 1,108–1,139 µs), and about 10 on the bumpy 10k
+/// torus (7.0–7.8 ms once in a one-off timing of `Newell::new`, 0.7 ms a frame: 2,474–2,496
+/// against 1,762–1,797 µs, `torus_obj 10000`); on the bumpy 1k torus, fandisk and suzanne they barely pay or not
 /// at all (the test stops on meshes that fold over themselves, and small cascades are cheap),
 /// and on 64 separate spheres never (the planner orders those as convex parts). Since
 /// Newell's cascade queries its screen grid in depth order, a frame without the test costs
