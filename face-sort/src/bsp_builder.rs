@@ -364,8 +364,8 @@ impl<'a> Builder<'a> {
             parent: NONE,
             is_front: false,
             depth: task.depth,
-            // A peel is one of the task's polygons (it left the others on one side, so the
-            // splitter above cut none of them).
+            // Every peel is one of the task's polygons (`build_tasks` hands down only those
+            // that the partition above put on the task's side).
             peels: (task.peels.iter())
                 .filter_map(|peel| {
                     Some(Peel {
@@ -516,11 +516,17 @@ impl<'a> Builder<'a> {
                 leaf: false,
             });
             // Back pushed first so that the front subtree is built (numbered) first: pre-order.
-            // A peel leaves one side empty: the other inherits the remaining peels.
+            // A peel leaves one side empty: the other inherits the remaining peels that went
+            // to it. A peel scored on a sample may lie on this node's plane or have been cut
+            // by it, as the partition (by the same classification) found: it is dropped then.
+            let inherit = |mut peels: Vec<Peel>, side: Side| {
+                peels.retain(|peel| self.side(&plane, peel.polygon) == side);
+                peels
+            };
             let (front_peels, back_peels) = if front.is_empty() {
-                (Vec::new(), peels)
+                (Vec::new(), inherit(peels, Side::Back))
             } else if back.is_empty() {
-                (peels, Vec::new())
+                (inherit(peels, Side::Front), Vec::new())
             } else {
                 (Vec::new(), Vec::new())
             };
@@ -837,7 +843,11 @@ mod tests {
     /// on one, bit for bit; a budget too small fails both ways.
     #[test]
     fn subtrees_built_side_by_side_give_the_same_tree() {
-        let geometry = Geometry::new(&generate::torus(2400)).expect("valid torus");
+        let faces: usize = std::env::var("TFACES")
+            .ok()
+            .and_then(|v| v.parse().ok())
+            .unwrap_or(2400);
+        let geometry = Geometry::new(&generate::torus(faces)).expect("valid torus");
         let pieces = geometry.pieces();
         assert!(
             pieces.len() >= PARALLEL_MIN_PIECES,
