@@ -224,8 +224,10 @@ mod tests {
     }
 
     /// Items inserted in key order, then some out of order with `insert_ordered`, some
-    /// retired: an ordered query finds each live item whose box overlaps and whose key is
-    /// below the bound exactly once, and never a retired one.
+    /// retired; queried; then more retired (the lists' heads move on) and more inserted out
+    /// of order, some with keys below the retired ones': an ordered query finds each live
+    /// item whose box overlaps and whose key is below the bound exactly once, and never a
+    /// retired one.
     #[test]
     fn ordered_queries_find_live_items_below_the_bound() {
         let n = 60;
@@ -236,7 +238,7 @@ mod tests {
                 max: p + DVec2::splat(1.5 + (i % 3) as f64),
             }
         };
-        // Keys: the first 40 inserted ascending, the last 20 out of order.
+        // Keys: the first 40 inserted ascending, the others out of order.
         let key = |i: usize| {
             if i < 40 {
                 i as f64
@@ -253,32 +255,49 @@ mod tests {
         for i in 0..40 {
             grid.insert(i as u32, &box_of(i));
         }
-        for i in 40..n {
-            grid.insert_ordered(i as u32, &box_of(i), |o| key(o as usize) <= key(i));
-        }
-        let retired = |i: u32| i.is_multiple_of(5);
-        for bound in [3.0, 17.5, 41.0] {
-            for q in 0..n {
-                let query = box_of(q);
-                let mut found = Vec::new();
-                grid.for_each_ordered_candidate(
-                    &query,
-                    retired,
-                    |i| key(i as usize) >= bound,
-                    |i| found.push(i),
-                );
-                let mut unique = found.clone();
-                unique.sort_unstable();
-                unique.dedup();
-                assert_eq!(unique.len(), found.len(), "visited twice");
-                for i in 0..n {
-                    let expected =
-                        !retired(i as u32) && key(i) < bound && box_of(i).overlaps(&query);
-                    if expected {
-                        assert!(found.contains(&(i as u32)), "bound {bound}: {q} misses {i}");
+        // (items inserted so far, the retired ones): the second round retires more, and
+        // inserts items keyed 7.5 to 36.5 after the first ten, keyed 0 to 9, are retired.
+        let rounds: [(usize, fn(u32) -> bool); 2] = [
+            (50, |i| i.is_multiple_of(5)),
+            (60, |i| i.is_multiple_of(5) || i < 10),
+        ];
+        let mut inserted = 40;
+        for (until, retired) in rounds {
+            // Queried before the round's inserts (the heads move past the newly retired
+            // items) and after them.
+            for insert in [false, true] {
+                if insert {
+                    for i in inserted..until {
+                        grid.insert_ordered(i as u32, &box_of(i), |o| key(o as usize) <= key(i));
                     }
-                    if retired(i as u32) {
-                        assert!(!found.contains(&(i as u32)), "{q} finds retired {i}");
+                    inserted = until;
+                }
+                for bound in [3.0, 17.5, 41.0] {
+                    for q in 0..n {
+                        let query = box_of(q);
+                        let mut found = Vec::new();
+                        grid.for_each_ordered_candidate(
+                            &query,
+                            retired,
+                            |i| key(i as usize) >= bound,
+                            |i| found.push(i),
+                        );
+                        let mut unique = found.clone();
+                        unique.sort_unstable();
+                        unique.dedup();
+                        assert_eq!(unique.len(), found.len(), "visited twice");
+                        for i in 0..inserted {
+                            let live = !retired(i as u32);
+                            if live && key(i) < bound && box_of(i).overlaps(&query) {
+                                assert!(
+                                    found.contains(&(i as u32)),
+                                    "bound {bound}: {q} misses {i}"
+                                );
+                            }
+                            if !live {
+                                assert!(!found.contains(&(i as u32)), "{q} finds retired {i}");
+                            }
+                        }
                     }
                 }
             }
