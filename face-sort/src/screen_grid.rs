@@ -257,7 +257,8 @@ mod tests {
         }
         // (items inserted so far, the retired ones): the second round retires more, and
         // inserts items keyed 7.5 to 36.5 after the first ten, keyed 0 to 9, are retired.
-        let rounds: [(usize, fn(u32) -> bool); 2] = [
+        type Retired = fn(u32) -> bool;
+        let rounds: [(usize, Retired); 2] = [
             (50, |i| i.is_multiple_of(5)),
             (60, |i| i.is_multiple_of(5) || i < 10),
         ];
