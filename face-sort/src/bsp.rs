@@ -369,6 +369,7 @@ impl BspTree {
             + (self.whole.capacity() + self.fragments_of.capacity()) * 4
             + self.inners.capacity() * size_of::<Inner>()
             + self.leaf_runs.capacity() * size_of::<LeafRun>()
+            + self.spheres.capacity() * size_of::<[f64; 4]>()
     }
 }
 
