@@ -542,7 +542,7 @@ impl FaceSorter for Bsp {
 impl Bsp {
     /// The painter's order for a viewer given by its cull test alone: the BSP needs no
     /// projection, only which side of each plane the viewer is on. With
-    /// [`CullTest::transformed`] one tree serves every placement of its geometry (a scene's
+    /// [`CullTest::transformed`](crate::CullTest::transformed) one tree serves every placement of its geometry (a scene's
     /// instances) without a rebuild.
     pub fn sort_culled(&mut self, cull: &crate::CullTest, out: &mut DrawList) {
         self.sort_in_view(cull, None, out);

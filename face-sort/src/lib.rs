@@ -29,7 +29,7 @@
 //! ```
 //!
 //! # Feature flags
-//! - `proptest`: public [`strategies`] (random convex polygons, scenes and views) for fuzzing
+//! - `proptest`: public `strategies` (random convex polygons, scenes and views) for fuzzing
 //!   any sorter against the oracle.
 
 mod bsp;

@@ -57,7 +57,7 @@ struct Work {
 ///
 /// Only the pieces that another drawn piece overlaps on screen enter the cascade: the others
 /// (on a closed mesh, all but those where the surface folds over itself in this view) are
-/// drawn first, in piece order, found by a [`Coverage`] test over the pieces' edge
+/// drawn first, in piece order, found by a coverage test (`coverage.rs`) over the pieces' edge
 /// neighbours, found when the sorter is made. For one picture they cost more than they save:
 /// [`Newell::without_coverage`] skips them, and the planner makes that one for fewer frames
 /// than it takes them to pay back (`cargo xtask oneshot` on a 69k-triangle blob: 1.47× the centroid sort's whole-process

@@ -263,7 +263,8 @@ impl Plan {
     }
 }
 
-/// The order of a geometry in convex position (see the [module docs](self)): drawn exit
+/// The order of a geometry in convex position (every piece's plane has all of its vertices
+/// on one side, so a ray meets its surface at most twice, entering and leaving): drawn exit
 /// pieces, then drawn entry pieces, each group in piece order, or grouped by brush
 /// ([`FaceSorter::group_by_brush`]). Built only by a [`Plan`] that
 /// proved convex position; exact for every view.
