@@ -91,13 +91,15 @@ fn build_on(
     let n = pieces.len();
     if threads < 2 || n < PARALLEL_MIN_PIECES {
         let depth = top.build_tasks(root, None)?;
-        return Ok(top.finish(depth));
+        let mut built = top.finish(depth);
+        fill_sizes(&mut built.nodes);
+        return Ok(built);
     }
     let mut deferred = Vec::new();
     let top_depth = top.build_tasks(root, Some((n / SUBTREE_SHARE, &mut deferred)))?;
     let subtrees = build_subtrees(&top, &deferred, threads)?;
     let depth = (subtrees.iter().map(|sub| sub.depth)).fold(top_depth, usize::max);
-    Ok(assemble(top, &subtrees, depth))
+    Ok(assemble(top.finish(top_depth), &subtrees, depth))
 }
 
 /// Builds each deferred task's subtree, largest first, on up to `threads` threads (the
@@ -142,7 +144,7 @@ fn build_subtrees(top: &Builder, deferred: &[Task], threads: usize) -> Result<Ve
 
 /// The tree in pre-order: the top nodes and, where a deferred task hangs, its subtree's
 /// nodes (renumbered) and fragments.
-fn assemble(top: Builder, subtrees: &[Built], depth: usize) -> Built {
+fn assemble(top: Built, subtrees: &[Built], depth: usize) -> Built {
     enum Item {
         Top(u32),
         Subtree(usize),
@@ -249,10 +251,8 @@ struct Builder<'a> {
     near: Vec<u32>,
     /// The candidates scored in full, with their preliminary scores.
     chosen: Vec<(f64, u32)>,
-    nodes: Vec<Node>,
-    planes: Vec<Plane>,
-    fragments: PolygonSet,
-    fragment_piece: Vec<u32>,
+    /// The nodes and fragments built so far.
+    out: Built,
     tolerance: f64,
     options: BspOptions,
     corners_front: Vec<DVec3>,
@@ -329,10 +329,13 @@ impl<'a> Builder<'a> {
             scored: Vec::new(),
             near: Vec::new(),
             chosen: Vec::new(),
-            nodes: Vec::new(),
-            planes: Vec::new(),
-            fragments: PolygonSet::new(),
-            fragment_piece: Vec::new(),
+            out: Built {
+                nodes: Vec::new(),
+                planes: Vec::new(),
+                fragments: PolygonSet::new(),
+                fragment_piece: Vec::new(),
+                depth: 0,
+            },
             tolerance,
             options: *options,
             corners_front: Vec::new(),
@@ -379,16 +382,10 @@ impl<'a> Builder<'a> {
         Ok(sub.finish(depth))
     }
 
-    /// The built tree, its subtree sizes filled in.
-    fn finish(mut self, depth: usize) -> Built {
-        fill_sizes(&mut self.nodes);
-        Built {
-            nodes: self.nodes,
-            planes: self.planes,
-            fragments: self.fragments,
-            fragment_piece: self.fragment_piece,
-            depth,
-        }
+    /// The built nodes and fragments, of a tree `depth` deep (subtree sizes not filled in:
+    /// a subtree's are filled once, in the assembled tree).
+    fn finish(self, depth: usize) -> Built {
+        Built { depth, ..self.out }
     }
 
     /// Builds the nodes of `stack`'s tasks and below in pre-order, and returns the tree's
@@ -411,10 +408,10 @@ impl<'a> Builder<'a> {
             };
             let index = match &deferred {
                 Some(deferred) => DEFERRED | deferred.len() as u32,
-                None => self.nodes.len() as u32,
+                None => self.out.nodes.len() as u32,
             };
             if task.parent != NONE {
-                let parent = &mut self.nodes[task.parent as usize];
+                let parent = &mut self.out.nodes[task.parent as usize];
                 if task.is_front {
                     parent.front_child = index;
                 } else {
@@ -427,20 +424,16 @@ impl<'a> Builder<'a> {
             }
             max_depth = max_depth.max(task.depth);
             if task.polygons.len() <= CONVEX_LEAF_MAX && self.is_convex(&task.polygons) {
-                let first = self.fragments.len() as u32;
+                let first = self.out.fragments.len() as u32;
                 for &p in &task.polygons {
                     let p = p as usize;
-                    self.fragments.push(
-                        self.work.corners(p),
-                        self.work.face(p),
-                        *self.work.plane(p),
-                    );
-                    self.fragment_piece.push(self.work_piece[p]);
+                    self.out.push_fragment(&self.work, p, self.work_piece[p]);
                 }
                 // A leaf has no plane of its own; keep the arrays aligned with a dummy.
-                self.planes
+                self.out
+                    .planes
                     .push(*self.work.plane(task.polygons[0] as usize));
-                self.nodes.push(Node {
+                self.out.nodes.push(Node {
                     first,
                     same: task.polygons.len() as u32,
                     opposite: 0,
@@ -497,15 +490,13 @@ impl<'a> Builder<'a> {
                 }
                 median = false;
             };
-            let first = self.fragments.len() as u32;
+            let first = self.out.fragments.len() as u32;
             for &p in same.iter().chain(&opposite) {
                 let p = p as usize;
-                self.fragments
-                    .push(self.work.corners(p), self.work.face(p), *self.work.plane(p));
-                self.fragment_piece.push(self.work_piece[p]);
+                self.out.push_fragment(&self.work, p, self.work_piece[p]);
             }
-            self.planes.push(plane);
-            self.nodes.push(Node {
+            self.out.planes.push(plane);
+            self.out.nodes.push(Node {
                 first,
                 same: same.len() as u32,
                 opposite: opposite.len() as u32,
@@ -843,11 +834,7 @@ mod tests {
     /// on one, bit for bit; a budget too small fails both ways.
     #[test]
     fn subtrees_built_side_by_side_give_the_same_tree() {
-        let faces: usize = std::env::var("TFACES")
-            .ok()
-            .and_then(|v| v.parse().ok())
-            .unwrap_or(2400);
-        let geometry = Geometry::new(&generate::torus(faces)).expect("valid torus");
+        let geometry = Geometry::new(&generate::torus(2400)).expect("valid torus");
         let pieces = geometry.pieces();
         assert!(
             pieces.len() >= PARALLEL_MIN_PIECES,
