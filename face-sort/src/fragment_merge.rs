@@ -26,7 +26,8 @@ use std::ops::ControlFlow;
 
 use glam::DVec2;
 
-use crate::coverage::{Coverage, NONE};
+use crate::bsp::NONE;
+use crate::coverage::Coverage;
 use crate::polygon::{Box2, overlap_exceeds, separated_2d};
 use crate::polygon_set::PolygonSet;
 use crate::screen_grid::ScreenGrid;
@@ -47,8 +48,8 @@ const TEST_1_MAX_EDGES_PER_PIECE: f64 = 0.5;
 pub(crate) struct MergeInput<'a> {
     /// The pieces (centred model space).
     pub pieces: &'a PolygonSet,
-    /// Per piece, the index of its whole polygon in the draw list's set (`NONE`: not split),
-    /// and its number of fragments.
+    /// Per piece, the index of its whole polygon in the draw list's set (the tree's `NONE`:
+    /// not split), and its number of fragments.
     pub whole: &'a [u32],
     pub fragments_of: &'a [u32],
     /// Per fragment, its face and piece.
