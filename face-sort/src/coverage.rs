@@ -25,15 +25,13 @@ use glam::DVec2;
 
 use crate::polygon::{Box2, edges, signed_area_2d};
 use crate::polygon_set::PolygonSet;
+use crate::screen_grid::GridFrame;
 
 /// "No neighbour" in [`EdgeNeighbours`].
 pub(crate) const NONE: u32 = u32::MAX;
 
 /// A cell's winding number where it is not constant or not known (above every `m ≤ 1`).
 const UNKNOWN_WINDING: i32 = i32::MAX;
-
-/// Most cells along either side of the boundary edges' grid.
-const MAX_SIDE: usize = 256;
 
 /// Most boundary-edge entries per grid cell and edge, on average, that a frame files (a
 /// silhouette's short edges touch one to four cells each); beyond, the test gives up.
@@ -167,10 +165,8 @@ pub(crate) struct Coverage {
     edges: Vec<BoundaryEdge>,
     /// Per boundary edge, the cells its box touches `(x0, x1, y0, y1)`.
     edge_cells: Vec<(usize, usize, usize, usize)>,
-    origin: DVec2,
-    inverse_cell: DVec2,
-    columns: usize,
-    rows: usize,
+    /// The grid laid over this frame's boundary edges.
+    grid: GridFrame,
     cell_start: Vec<u32>,
     cell_edges: Vec<u32>,
     row_start: Vec<u32>,
@@ -280,19 +276,17 @@ impl Coverage {
         if !(size.x.is_finite() && size.y.is_finite() && size.x > 0.0 && size.y > 0.0) {
             return false;
         }
-        let side = (size.x * size.y / cells.max(self.edges.len()) as f64).sqrt();
-        let count = |extent: f64| ((extent / side).ceil() as usize).clamp(1, MAX_SIDE);
-        (self.columns, self.rows) = (count(size.x), count(size.y));
-        self.origin = lo;
-        self.inverse_cell = DVec2::new(self.columns as f64 / size.x, self.rows as f64 / size.y);
-        let (columns, rows) = (self.columns, self.rows);
+        self.grid = GridFrame::fit(lo, size, cells.max(self.edges.len()));
+        let grid = self.grid;
+        let (columns, rows) = (grid.columns, grid.rows);
         // Long edges (a triangle soup's, where every edge is a boundary edge) could touch
         // most cells each: past a bound on the work, no piece is proved alone this frame.
         // Each edge's cells are found once here and read by both filing passes.
-        let mut edge_cells = std::mem::take(&mut self.edge_cells);
-        edge_cells.clear();
-        edge_cells.extend(self.edges.iter().map(|e| self.cells_of_edge(e)));
-        self.edge_cells = edge_cells;
+        self.edge_cells.clear();
+        self.edge_cells.extend(self.edges.iter().map(|e| {
+            let b = e.bounds();
+            grid.cells(b.min, b.max)
+        }));
         let filed: usize = (self.edge_cells.iter())
             .map(|&(x0, x1, y0, y1)| (x1 - x0 + 1) * (y1 - y0 + 1))
             .sum();
@@ -333,27 +327,20 @@ impl Coverage {
         true
     }
 
-    /// The cells an edge's box touches.
-    fn cells_of_edge(&self, e: &BoundaryEdge) -> (usize, usize, usize, usize) {
-        let b = e.bounds();
-        cells_of(
-            self.origin,
-            self.inverse_cell,
-            (self.columns, self.rows),
-            b.min,
-            b.max,
-        )
-    }
-
     /// Per row, `m` at each cell's centre from the boundary edges crossing the row's middle
     /// line to its right, kept for the cells that no edge touches (`m` is constant there).
     fn find_alone_cells(&mut self) {
-        let (columns, rows) = (self.columns, self.rows);
+        let GridFrame {
+            origin,
+            inverse_cell,
+            columns,
+            rows,
+        } = self.grid;
         self.cell_winding.clear();
         self.cell_winding.resize(columns * rows, UNKNOWN_WINDING);
-        let cell = DVec2::ONE / self.inverse_cell;
+        let cell = DVec2::ONE / inverse_cell;
         for row in 0..rows {
-            let y = self.origin.y + (row as f64 + 0.5) * cell.y;
+            let y = origin.y + (row as f64 + 0.5) * cell.y;
             self.crossings.clear();
             let mut poisoned = false;
             let list = self.row_start[row] as usize..self.row_start[row + 1] as usize;
@@ -370,7 +357,7 @@ impl Coverage {
             // From the right: `m` sums the crossings right of the cell's centre.
             let (mut m, mut next) = (0, 0);
             for column in (0..columns).rev() {
-                let x = self.origin.x + (column as f64 + 0.5) * cell.x;
+                let x = origin.x + (column as f64 + 0.5) * cell.x;
                 while next < self.crossings.len() && self.crossings[next].0 > x {
                     m += self.crossings[next].1;
                     next += 1;
@@ -390,14 +377,8 @@ impl Coverage {
     /// Only after [`file`](Self::file) returned `true` for the frame.
     pub(crate) fn alone(&self, piece: u32, corners: &[DVec2], bounds: &Box2) -> bool {
         let b = bounds;
-        let (x0, x1, y0, y1) = cells_of(
-            self.origin,
-            self.inverse_cell,
-            (self.columns, self.rows),
-            b.min,
-            b.max,
-        );
-        let columns = self.columns;
+        let (x0, x1, y0, y1) = self.grid.cells(b.min, b.max);
+        let columns = self.grid.columns;
         if (y0..=y1).all(|y| {
             self.cell_winding[y * columns + x0..=y * columns + x1]
                 .iter()
@@ -412,13 +393,7 @@ impl Coverage {
         }
         // An inner point; where its cell's `m` is known, that is `m` there.
         let inside = corners.iter().copied().sum::<DVec2>() / corners.len() as f64;
-        let (column, _, row, _) = cells_of(
-            self.origin,
-            self.inverse_cell,
-            (self.columns, self.rows),
-            inside,
-            inside,
-        );
+        let (column, _, row, _) = self.grid.cells(inside, inside);
         let known = self.cell_winding[row * columns + column];
         if known != UNKNOWN_WINDING && known != 1 {
             return false;
@@ -517,27 +492,6 @@ fn file(start: &mut [u32], list: &mut [u32], k: usize, i: usize, fill: bool) {
     } else {
         start[k] += 1;
     }
-}
-
-/// The cells `[x0, x1] × [y0, y1]` of a grid (`origin`, `inverse_cell`, `(columns, rows)`)
-/// that the box `[lo, hi]` touches, clamped to the grid.
-fn cells_of(
-    origin: DVec2,
-    inverse_cell: DVec2,
-    (columns, rows): (usize, usize),
-    lo: DVec2,
-    hi: DVec2,
-) -> (usize, usize, usize, usize) {
-    let a = (lo - origin) * inverse_cell;
-    let b = (hi - origin) * inverse_cell;
-    // Truncation is the floor for the non-negative values kept (casts saturate; NaN is 0).
-    let index = |v: f64, n: usize| (v.max(0.0) as usize).min(n - 1);
-    (
-        index(a.x, columns),
-        index(b.x, columns),
-        index(a.y, rows),
-        index(b.y, rows),
-    )
 }
 
 #[cfg(test)]

@@ -8,8 +8,50 @@ use glam::DVec2;
 use crate::polygon::Box2;
 use crate::tolerance::UNDERFLOW_ABS;
 
-/// Most cells along either side of the grid.
+/// Most cells along either side of a grid.
 const MAX_SIDE: usize = 256;
+
+/// A uniform grid over a screen rectangle: about a given number of square cells (a wide
+/// rectangle gets more columns than rows), at most 256 along either side, and the cells a
+/// box touches. Shared by [`ScreenGrid`] and the coverage test's grid of boundary edges.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct GridFrame {
+    pub origin: DVec2,
+    pub inverse_cell: DVec2,
+    pub columns: usize,
+    pub rows: usize,
+}
+
+impl GridFrame {
+    /// The grid with its lower corner at `origin`, `size` across (both positive), for about
+    /// `items` cells.
+    pub(crate) fn fit(origin: DVec2, size: DVec2, items: usize) -> Self {
+        let cell = (size.x * size.y / items.max(1) as f64).sqrt();
+        let count = |extent: f64| ((extent / cell).ceil() as usize).clamp(1, MAX_SIDE);
+        let (columns, rows) = (count(size.x), count(size.y));
+        GridFrame {
+            origin,
+            inverse_cell: DVec2::new(columns as f64 / size.x, rows as f64 / size.y),
+            columns,
+            rows,
+        }
+    }
+
+    /// The cells `[x0, x1] × [y0, y1]` that the box `[lo, hi]` touches, clamped to the grid.
+    #[inline]
+    pub(crate) fn cells(&self, lo: DVec2, hi: DVec2) -> (usize, usize, usize, usize) {
+        let a = (lo - self.origin) * self.inverse_cell;
+        let b = (hi - self.origin) * self.inverse_cell;
+        // Truncation is the floor for the non-negative values kept (casts saturate; NaN is 0).
+        let index = |v: f64, n: usize| (v.max(0.0) as usize).min(n - 1);
+        (
+            index(a.x, self.columns),
+            index(b.x, self.columns),
+            index(a.y, self.rows),
+            index(b.y, self.rows),
+        )
+    }
+}
 
 /// Buckets of item indices by the grid cells their boxes touch.
 ///
@@ -18,10 +60,7 @@ const MAX_SIDE: usize = 256;
 /// overlaps the query box (and possibly others), each once per query.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct ScreenGrid {
-    origin: DVec2,
-    inverse_cell: DVec2,
-    columns: usize,
-    rows: usize,
+    frame: GridFrame,
     cells: Vec<Vec<u32>>,
     /// Per cell, how many items at the front of its list are retired for good (see
     /// [`for_each_ordered_candidate`](Self::for_each_ordered_candidate)).
@@ -37,13 +76,8 @@ impl ScreenGrid {
     /// 256 × 256 cells. Keeps every buffer's capacity.
     pub(crate) fn reset(&mut self, bounds: Box2, items: usize) {
         let size = (bounds.max - bounds.min).max(DVec2::splat(UNDERFLOW_ABS));
-        let cell = (size.x * size.y / items.max(1) as f64).sqrt();
-        let count = |extent: f64| ((extent / cell).ceil() as usize).clamp(1, MAX_SIDE);
-        let (columns, rows) = (count(size.x), count(size.y));
-        self.origin = bounds.min;
-        self.columns = columns;
-        self.rows = rows;
-        self.inverse_cell = DVec2::new(columns as f64 / size.x, rows as f64 / size.y);
+        self.frame = GridFrame::fit(bounds.min, size, items);
+        let (columns, rows) = (self.frame.columns, self.frame.rows);
         if self.cells.len() < columns * rows {
             self.cells.resize_with(columns * rows, Vec::new);
         }
@@ -56,49 +90,37 @@ impl ScreenGrid {
         self.query = 0;
     }
 
+    /// The cells a box touches (`None` for an empty or NaN box).
     fn range(&self, b: &Box2) -> Option<(usize, usize, usize, usize)> {
-        if !(b.min.x <= b.max.x && b.min.y <= b.max.y) {
-            return None;
-        }
-        let lo = (b.min - self.origin) * self.inverse_cell;
-        let hi = (b.max - self.origin) * self.inverse_cell;
-        // Truncation is the floor for the non-negative values kept (casts saturate; NaN is 0).
-        let clamp = |v: f64, n: usize| (v.max(0.0) as usize).min(n - 1);
-        Some((
-            clamp(lo.x, self.columns),
-            clamp(hi.x, self.columns),
-            clamp(lo.y, self.rows),
-            clamp(hi.y, self.rows),
-        ))
+        (b.min.x <= b.max.x && b.min.y <= b.max.y).then(|| self.frame.cells(b.min, b.max))
     }
 
     /// Adds item `item` (items are numbered densely from 0) with screen box `b`.
     pub(crate) fn insert(&mut self, item: u32, b: &Box2) {
-        if self.stamp.len() <= item as usize {
-            self.stamp.resize(item as usize + 1, 0);
-        }
-        if let Some((x0, x1, y0, y1)) = self.range(b) {
-            for y in y0..=y1 {
-                for x in x0..=x1 {
-                    self.cells[y * self.columns + x].push(item);
-                }
-            }
-        }
+        self.insert_with(item, b, |cell, _| cell.push(item));
     }
 
     /// Adds item `item` with screen box `b` into each of its cells' lists after the items
     /// that `before` says go ahead of it (and after the retired ones): callers that insert
     /// in key order and then out of order this way keep every list in key order.
     pub(crate) fn insert_ordered(&mut self, item: u32, b: &Box2, before: impl Fn(u32) -> bool) {
+        self.insert_with(item, b, |cell, head| {
+            let at = head + cell[head..].partition_point(|&other| before(other));
+            cell.insert(at, item);
+        });
+    }
+
+    /// Makes room for `item`'s query stamp and calls `put` with each cell list `b` touches
+    /// and the number of retired items at its front.
+    fn insert_with(&mut self, item: u32, b: &Box2, mut put: impl FnMut(&mut Vec<u32>, usize)) {
         if self.stamp.len() <= item as usize {
             self.stamp.resize(item as usize + 1, 0);
         }
         if let Some((x0, x1, y0, y1)) = self.range(b) {
+            let columns = self.frame.columns;
             for y in y0..=y1 {
-                for c in y * self.columns + x0..=y * self.columns + x1 {
-                    let (cell, head) = (&mut self.cells[c], self.heads[c] as usize);
-                    let at = head + cell[head..].partition_point(|&other| before(other));
-                    cell.insert(at, item);
+                for c in y * columns + x0..=y * columns + x1 {
+                    put(&mut self.cells[c], self.heads[c] as usize);
                 }
             }
         }
@@ -120,7 +142,7 @@ impl ScreenGrid {
         };
         let query = self.next_query();
         for y in y0..=y1 {
-            for c in y * self.columns + x0..=y * self.columns + x1 {
+            for c in y * self.frame.columns + x0..=y * self.frame.columns + x1 {
                 let cell = &self.cells[c];
                 let mut head = self.heads[c] as usize;
                 while head < cell.len() && retired(cell[head]) {
@@ -165,7 +187,7 @@ impl ScreenGrid {
         };
         let query = self.next_query();
         let stamp = &mut self.stamp;
-        for row in self.cells.chunks(self.columns).take(y1 + 1).skip(y0) {
+        for row in self.cells.chunks(self.frame.columns).take(y1 + 1).skip(y0) {
             for cell in &row[x0..=x1] {
                 for &item in cell {
                     let seen = &mut stamp[item as usize];
