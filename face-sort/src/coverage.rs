@@ -202,12 +202,13 @@ impl Coverage {
 
     /// Files the boundary edges of this frame's drawn pieces, `drawn[j]` projecting to
     /// `polygon(j)` (any consistent screen units; every corner projected, none clipped);
-    /// `false` when there is none, or more than `max_edges` (then no piece is proved alone).
+    /// `false` when there is none, or more than `max_edges_per_piece` per drawn piece (then no
+    /// piece is proved alone).
     pub(crate) fn file<'a>(
         &mut self,
         drawn: &[u32],
         polygon: impl Fn(usize) -> &'a [DVec2],
-        max_edges: usize,
+        max_edges_per_piece: f64,
     ) -> bool {
         self.frame = self.frame.wrapping_add(1);
         if self.frame == 0 {
@@ -215,6 +216,7 @@ impl Coverage {
             self.frame = 1;
         }
         let frame = self.frame;
+        let max_edges = (max_edges_per_piece * drawn.len() as f64) as usize;
         for (j, &p) in drawn.iter().enumerate() {
             self.seen[p as usize] = frame;
             let area = signed_area_2d(polygon(j));
@@ -598,7 +600,7 @@ mod tests {
                             projected.push(out);
                         }
                     }
-                    assert!(coverage.file(&drawn, |j| &projected[j], usize::MAX));
+                    assert!(coverage.file(&drawn, |j| &projected[j], f64::INFINITY));
                     let (mut clip, mut scratch) = (Vec::new(), Vec::new());
                     for (j, a) in projected.iter().enumerate() {
                         if !coverage.alone(drawn[j], a, &Box2::from_points(a)) {

@@ -191,8 +191,10 @@ impl FragmentMerge {
         self.pending.clear();
         let (projected, starts) = (&self.projected, &self.projected_start);
         let polygon = |j: usize| &projected[starts[j] as usize..starts[j + 1] as usize];
-        let max_edges = (TEST_1_MAX_EDGES_PER_PIECE * self.drawn.len() as f64) as usize;
-        if !self.coverage.file(&self.drawn, polygon, max_edges) {
+        if !self
+            .coverage
+            .file(&self.drawn, polygon, TEST_1_MAX_EDGES_PER_PIECE)
+        {
             self.pending.extend_from_slice(&self.split);
             return;
         }

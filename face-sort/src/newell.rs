@@ -462,11 +462,10 @@ impl Newell {
         self.drawn
             .extend(self.remaining.iter().map(|&w| work[w as usize].polygon));
         let remaining = &self.remaining;
-        let max_edges = (COVERAGE_MAX_EDGES_PER_PIECE * self.drawn.len() as f64) as usize;
         if !coverage.file(
             &self.drawn,
             |j| polygon(&work[remaining[j] as usize]),
-            max_edges,
+            COVERAGE_MAX_EDGES_PER_PIECE,
         ) {
             return;
         }
