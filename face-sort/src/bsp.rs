@@ -130,7 +130,6 @@ struct LeafRun {
 /// The immutable tree, shareable between views and threads (`Arc`).
 #[derive(Debug)]
 pub struct BspTree {
-    planes: Vec<Plane>,
     /// The node planes as `[nx, ny, nz, offset]`, for the per-view side pass.
     plane_rows: Vec<[f64; 4]>,
     /// The pieces' planes, likewise, for the per-view cull pass.
@@ -301,7 +300,6 @@ impl BspTree {
             piece_rows,
             fragment_face,
             plane_rows,
-            planes: builder.planes,
             spheres,
             nodes: builder.nodes,
             fragments: Arc::new(builder.fragments),
@@ -361,8 +359,7 @@ impl BspTree {
     /// Heap bytes of the tree.
     #[must_use]
     pub fn heap_bytes(&self) -> usize {
-        self.planes.capacity() * size_of::<Plane>()
-            + (self.plane_rows.capacity() + self.piece_rows.capacity()) * size_of::<[f64; 4]>()
+        (self.plane_rows.capacity() + self.piece_rows.capacity()) * size_of::<[f64; 4]>()
             + self.fragment_face.capacity() * 8
             + self.nodes.capacity() * size_of::<Node>()
             + self.fragments.heap_bytes()
