@@ -51,7 +51,9 @@ use crate::tolerance::{
     CHART_POLE, CONTINUE_GAP_RAD, IDENTICALLY_ZERO, PARALLEL_SIN, ROOT_NOISE, SAME_ROOT_RAD,
     VERIFY_MIN_GAP_RAD, VERIFY_MIN_SIDE_RAD,
 };
-use crate::verify::{INTERIOR_MARGIN, cell_state, changes_sign, inside, same_order, side_of, unit};
+use crate::verify::{
+    INTERIOR_MARGIN, SLAB_PITCH_MARGIN, cell_state, changes_sign, inside, same_order, side_of, unit,
+};
 
 /// The event set `{d : normal·d = offset}` of one sign condition, `d` the unit vector toward
 /// the viewer in centred model space.
@@ -759,7 +761,7 @@ pub fn verify_two_axes(
                         mine[((unit(state) * mine.len() as f64) as usize).min(mine.len() - 1)];
                     let slab = &bake.slabs[s as usize];
                     let (plo, phi) = (slab.lo.to_radians(), slab.hi.to_radians());
-                    let p = plo + (phi - plo) * inside(state, 0.01);
+                    let p = plo + (phi - plo) * inside(state, SLAB_PITCH_MARGIN);
                     (s as usize, k as usize, p)
                 };
                 for _ in 0..per_cell {

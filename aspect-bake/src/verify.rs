@@ -58,6 +58,10 @@ pub(crate) fn inside(state: &mut u64, margin: f64) -> f64 {
 /// The margin of [`inside`] for the verifiers' interior points (0.1 %).
 pub(crate) const INTERIOR_MARGIN: f64 = 0.001;
 
+/// The margin of [`inside`] for the pitch of a two-axis verifier's probe within its slab (1 %:
+/// away from the slab's boundaries, where the cells of two slabs meet).
+pub(crate) const SLAB_PITCH_MARGIN: f64 = 0.01;
+
 /// How far on each side of a boundary to evaluate: [`VERIFY_SIDE_RAD`], or a quarter of the
 /// narrower of the two widths beside it (radians).
 pub(crate) fn side_of(left: f64, right: f64) -> f64 {
