@@ -74,7 +74,7 @@ pub enum BspFallback {
     /// Return the [`BspError`]: the caller decides.
     #[default]
     Error,
-    /// Use [`Newell`] instead: exact as well, no build, per-frame splits only where the view
+    /// Use [`Newell`] instead: exact as well, no tree, per-frame splits only where the view
     /// needs them (each frame's work is bounded by its own step budget).
     Newell,
 }
@@ -539,8 +539,8 @@ impl FaceSorter for Bsp {
 impl Bsp {
     /// The painter's order for a viewer given by its cull test alone: the BSP needs no
     /// projection, only which side of each plane the viewer is on. With
-    /// [`CullTest::transformed`](crate::CullTest::transformed) one tree serves every placement of its geometry (a scene's
-    /// instances) without a rebuild.
+    /// [`CullTest::transformed`](crate::CullTest::transformed) one tree serves every placement
+    /// of its geometry (a scene's instances) without a rebuild.
     pub fn sort_culled(&mut self, cull: &crate::CullTest, out: &mut DrawList) {
         self.sort_in_view(cull, None, out);
     }

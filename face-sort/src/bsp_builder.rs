@@ -47,9 +47,9 @@ pub(crate) struct Built {
     pub depth: usize,
 }
 
-/// Geometries of at least this many pieces build their tree on every available core: the
-/// top nodes on one, then the subtrees of at most [`SUBTREE_SHARE`] of the pieces side by
-/// side.
+/// Geometries of at least this many pieces build their tree on the threads
+/// [`BspOptions::threads`] allows (one per core by default): the top nodes on one, then the
+/// subtrees of at most [`SUBTREE_SHARE`] of the pieces side by side.
 const PARALLEL_MIN_PIECES: usize = 4096;
 
 /// See [`PARALLEL_MIN_PIECES`]: subtrees of at most `1 / SUBTREE_SHARE` of the pieces are

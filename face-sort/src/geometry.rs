@@ -16,8 +16,8 @@ use crate::{Bounds, MeshError, PolygonMesh};
 ///
 /// Planar faces are snapped onto their fitted plane (a move of at most `1e-6 · D`), so that
 /// every piece is planar and its plane is the one the truth uses. Corners already within
-/// [`ON_PLANE`]` · L` of it (round-off: typically every corner of a triangle) keep their bits, so that
-/// neighbours keep sharing them.
+/// [`ON_PLANE`]` · L` of it (round-off: typically every corner of a triangle) keep their bits,
+/// so that neighbours keep sharing them.
 #[derive(Clone, Debug)]
 pub struct Geometry {
     pieces: Arc<PolygonSet>,

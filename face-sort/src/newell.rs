@@ -16,8 +16,9 @@ use crate::{
 };
 
 /// Frames drawing fewer pieces skip the coverage test: the cascade over so few costs less
-/// than the test's grid (with the test, `cargo xtask bench --full` had Newell at 62–96× the
-/// centroid sort on the book, cornell box and boxes scenes, 9–48 pieces; 24–34× without).
+/// than the test's grid (with the test on every frame, a `cargo xtask bench --full` run before
+/// 9d01b36, not committed, had Newell at 62–96× the centroid sort on the book, cornell box and
+/// boxes scenes, 9–48 pieces; docs/bench.md on 46d30c2 has 24–35× without).
 const COVERAGE_MIN_PIECES: usize = 64;
 
 /// Frames with more boundary edges (silhouettes, the mesh's own boundary) than this per
@@ -60,8 +61,9 @@ struct Work {
 /// drawn first, in piece order, found by a coverage test (`coverage.rs`) over the pieces' edge
 /// neighbours, found when the sorter is made. For one picture they cost more than they save:
 /// [`Newell::without_coverage`] skips them, and the planner makes that one for fewer frames
-/// than it takes them to pay back (`cargo xtask oneshot` on a 69k-triangle blob: 1.47× the centroid sort's whole-process
-/// time with them found by a hash map, 1.16× without). A frame where the surface folds over
+/// than it takes them to pay back (`cargo xtask oneshot` on a 69k-triangle blob: 1.165× the
+/// centroid sort's whole-process time with them, 1.16× without, face-sort's README). A frame
+/// where the surface folds over
 /// itself in much of the picture (many boundary edges per drawn piece) stops the test early
 /// and sends every piece through the cascade; [`SorterStats::drawn_alone`] counts the
 /// pieces the test spared.
@@ -127,9 +129,9 @@ enum Action {
 
 impl Newell {
     /// A Newell sorter over a geometry's pieces, with their edge neighbours for the coverage
-    /// test (0.3–1.1 µs per piece: 1.9–2.1 ms on spot's 5,854 pieces, `cargo run --release -p
-    /// face-sort --example stats`; 1.1 s on the million-face torus, `cargo xtask bench
-    /// --full`, docs/bench.md).
+    /// test (0.3–1.0 µs per piece: 2.0–2.1 ms on spot's 5,854 pieces, `cargo run --release -p
+    /// face-sort --example stats`; 1.0 s on the million-face torus, `cargo xtask bench
+    /// --full`, docs/bench.md on 46d30c2).
     #[must_use]
     pub fn new(geometry: &Geometry) -> Self {
         Newell {

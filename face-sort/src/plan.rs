@@ -24,9 +24,10 @@
 //!   one culling pass; no fragments. Boxes that overlap (interlocking or nested parts) leave
 //!   the choice to the next rule.
 //! - **Otherwise the cheaper exact sorter for the frames the caller will draw.** [`Newell`]
-//!   needs no tree (for fewer than 10 frames, no build at all) and draws almost no extra items; [`Bsp`] pays a build once and then
-//!   traverses cheaply. [`PlanHint::frames`] says how many frames the build is spread over:
-//!   one picture (an export) is [`PlanHint::ONE_FRAME`]. The cost model and its measured
+//!   needs no tree (for a few frames, no build at all: `NEWELL_COVERAGE_FRAMES`) and draws
+//!   almost no extra items; [`Bsp`] pays a build once and then traverses cheaply.
+//!   [`PlanHint::frames`] says how many frames the build is spread over: one picture (an
+//!   export) is [`PlanHint::ONE_FRAME`]. The cost model and its measured
 //!   constants are [`CostModel`].
 
 use std::sync::Arc;
@@ -93,11 +94,12 @@ impl Strategy {
 /// Measured with `cargo run --release -p face-sort --example plan_costs` (spot, blub and
 /// generated tori, orthographic; the example prints these medians) on the reference
 /// machine's two cores: the BSP build uses every core ([`BspOptions::threads`]), so on one
-/// core it costs about 1.6× more (spot's whole build 33 ms against 22–27 ms on two). On that
+/// core it costs about 1.2–1.7× more (`cargo run --release -p face-sort --example stats`:
+/// spot's whole build 33 ms against 22–27 ms on two, blub's 86 against 50 ms). On that
 /// run the build per piece and level stayed within 251–292 ns from 5,854 to 40,000 pieces:
 /// the `n log n` model fits since large sets may split at a median plane. The break-even is
-/// about 40 frames for spot. `Newell`'s own set-up (its pieces' edge neighbours, 0.3–1.1 µs
-/// per piece: 1.9–2.1 ms on spot, 1.1 s on a million faces) is left out: counted, it would
+/// about 40 frames for spot. `Newell`'s own set-up (its pieces' edge neighbours, 0.3–1.0 µs
+/// per piece: 2.0–2.1 ms on spot, 1.0 s on a million faces) is left out: counted, it would
 /// move spot's break-even from about 40 to about 36 frames.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CostModel {
@@ -153,11 +155,12 @@ pub struct Plan {
 /// newell` with and without `COVERAGE=none`, two runs each), about 6 on blub (5.3–5.4 ms once,
 /// 0.93–0.96 ms a frame: 2,069–2,071 against 1,108–1,139 µs), and about 10 on the bumpy 10k
 /// torus (7.0–7.8 ms once in a one-off timing of `Newell::new`, 0.7 ms a frame: 2,474–2,496
-/// against 1,762–1,797 µs, `torus_obj 10000`); on the bumpy 1k torus, fandisk and suzanne they barely pay or not
-/// at all (the test stops on meshes that fold over themselves, and small cascades are cheap),
-/// and on 64 separate spheres never (the planner orders those as convex parts). Since
+/// against 1,762–1,797 µs, `torus_obj 10000`); on the bumpy 1k torus, fandisk and suzanne
+/// they barely pay or not at all (the test stops on meshes that fold over themselves, and
+/// small cascades are cheap), and on 64 separate spheres never (the planner orders those as convex parts). Since
 /// Newell's cascade queries its screen grid in depth order, a frame without the test costs
-/// far less than it did (spot 1.45 ms in stop 23), so the test pays back later than the 3–5
+/// far less than before (spot 1.45 ms a frame before the coverage test existed, in the
+/// per-frame table of face-sort's README), so the test pays back later than the 3–5
 /// frames it did then.
 const NEWELL_COVERAGE_FRAMES: u64 = 10;
 

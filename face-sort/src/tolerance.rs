@@ -25,7 +25,7 @@ pub const DEGENERATE_AREA: f64 = 1e-12;
 /// fragments on CAD models with near-coplanar neighbours: fandisk (moved by 1e3, `cargo
 /// xtask stress --only fandisk`) got 1,114 extra BSP fragments at `1e-11`, 1,136 at
 /// `1e-12`, 1,194 at `1e-13` with the splitter choice of the time (927 at `1e-12` since the
-/// splitter pre-selection of stop 23).
+/// splitter pre-selection, 4f04f46).
 pub const PLANE_SIDE: f64 = 1e-12;
 
 /// A corner within `ON_PLANE · L` of its planar face's plane is on it already and keeps its
