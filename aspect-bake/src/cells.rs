@@ -100,6 +100,10 @@ pub struct Breakpoint {
 pub enum Method {
     /// Closed-form events.
     Exact,
+    /// Cells exact for the picture when the sink culls back faces ([`crate::bake_picture`]):
+    /// each cell holds every piece, and its order is right for every overlapping pair of
+    /// front-facing pieces.
+    Picture,
     /// The seed's method: `samples` draw lists, changes bisected to `tolerance_deg`.
     Sampled {
         /// Samples over the domain.

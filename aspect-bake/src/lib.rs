@@ -82,10 +82,12 @@
 //! assert!(verify(&baked, &source, &spin, 4, 1).is_ok());
 //! ```
 
+mod arcs;
 mod axis;
 mod build;
 mod cells;
 mod event;
+mod picture;
 #[cfg(feature = "serde")]
 mod serde_impl;
 mod source;
@@ -97,6 +99,7 @@ pub use axis::{Axis, Spin};
 pub use build::{BakeOptions, Progress, bake, bake_sampled};
 pub use cells::{AngleRange, Bake, BakeCell, Breakpoint, Delta, Method, Sizes, cell_bytes};
 pub use event::{EventFn, Roots, reduce};
+pub use picture::{PictureOptions, PictureStats, bake_picture, culled_list, verify_picture};
 pub use source::{BspSource, CentroidSource, Event, EventSource};
 pub use two_axes::{
     Bake2, Bake2Options, Curve, EventCircle, Row, Slab, Verify2Error, Verify2Report, YawPitch,
@@ -156,6 +159,37 @@ pub enum BakeError {
     Unsupported {
         /// The sorter's name.
         sorter: &'static str,
+    },
+    /// Cutting the pieces that pass through each other would make more pieces than allowed.
+    #[error("cutting crossing pieces would make {pieces} pieces (budget {budget})")]
+    Pieces {
+        /// Pieces when stopping.
+        pieces: usize,
+        /// The budget.
+        budget: usize,
+    },
+    /// More candidate pairs than allowed.
+    #[error("{pairs} candidate pairs of pieces, over the budget of {budget}")]
+    PairBudget {
+        /// Pairs found.
+        pairs: usize,
+        /// The budget.
+        budget: usize,
+    },
+    /// Pieces overlap cyclically at one view: no order of whole pieces is exact there.
+    #[error("pieces overlap cyclically at {degrees}°: no order of whole pieces is exact there")]
+    Cycle {
+        /// Where, degrees.
+        degrees: f64,
+    },
+    /// In perspective, the eye's orbit comes within the model (picture bakes need every
+    /// point in front of the eye at every angle).
+    #[error("the eye orbits at {eye} model units from the centre, inside the model's reach of {reach}")]
+    EyeInside {
+        /// Eye distance from the centre, model units.
+        eye: f64,
+        /// Farthest corner from the centre, model units.
+        reach: f64,
     },
     /// A sampled bake with fewer than 2 samples or a tolerance that is not positive.
     #[error(

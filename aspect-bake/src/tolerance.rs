@@ -49,3 +49,33 @@ pub const VERIFY_MIN_GAP_RAD: f64 = 1e-9;
 /// Two-axis `verify_two_axes`: a curve whose neighbouring gaps leave less than this (radians
 /// of yaw) on either side is not checked for a sign change.
 pub const VERIFY_MIN_SIDE_RAD: f64 = 1e-12;
+
+/// Picture bakes: a corner within this times the model's diagonal `L` of a plane lies on it
+/// when deciding which side of another piece's plane a piece lies on, and whether two pieces
+/// cross. Below the oracle's depth tolerance (`1e-9 · L`), so a piece that dips behind a
+/// plane by less than this is never a violation.
+pub const PICTURE_SIDE: f64 = 1e-12;
+
+/// Picture bakes: every arc where a condition holds is widened (every arc that removes one
+/// shrunk) by this many radians, against the rounding of its ends (about `1e-15` rad). Too
+/// large makes events that coincide (a fold turning edge-on ends two pairs' overlap as it
+/// starts a third's) overlap by twice this, which [`EVENT_GAP_RAD`] must absorb.
+pub const ARC_MARGIN_RAD: f64 = 1e-12;
+
+/// Picture bakes in perspective: the orbiting eye must stay farther from the centre than
+/// every corner by this fraction of its distance (the near plane `w ≥ 1e-3`).
+pub const NEAR_EYE: f64 = 1e-3;
+
+/// Picture verification: degrees inside each end of a cell where the oracle also checks.
+pub const PICTURE_BOUNDARY_DEG: f64 = 1e-6;
+
+/// Picture bakes: the swept screen boxes of the candidate search grow by this fraction more
+/// than the distance a point can move within a bin (rounding of the rotation).
+pub const BOX_SLACK: f64 = 1e-9;
+
+/// Picture bakes: constraints whose arcs end within this many radians after a cell's start
+/// end with the event that starts the cell (their computed ends and the new constraint's
+/// start are one event, rounded and widened apart), so they leave the cell. A cell is thus
+/// exact except within this of its start (about `2e-10°`); four times [`ARC_MARGIN_RAD`],
+/// far below the `1e-6°` at which `verify_picture` probes cell ends.
+pub const EVENT_GAP_RAD: f64 = 4.0 * ARC_MARGIN_RAD;

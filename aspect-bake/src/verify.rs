@@ -32,6 +32,16 @@ pub enum VerifyError {
         /// Where, degrees.
         degrees: f64,
     },
+    /// A picture bake's order, culled by the view, has order violations at an angle.
+    #[error("cell {cell}: {violations} order violations at {degrees}°")]
+    Picture {
+        /// Cell index.
+        cell: usize,
+        /// Where, degrees.
+        degrees: f64,
+        /// Violations the oracle found.
+        violations: usize,
+    },
     /// At a breakpoint, no recorded event function changes sign, or the lists just before
     /// and after are not those of the two cells.
     #[error("breakpoint {index} at {degrees}°: {what}")]

@@ -44,6 +44,22 @@ impl Geometry {
     /// a part of a larger scene (a [`SceneSorter`](crate::SceneSorter)'s clusters, or its
     /// flattened reference) whose draw lists must share the scene's coordinates.
     pub fn new_in_frame(mesh: &PolygonMesh, frame: Bounds) -> Result<Self, MeshError> {
+        Self::build(mesh, frame, true)
+    }
+
+    /// Like [`new`](Self::new), but every piece keeps the file's corners bit for bit: a
+    /// planar face whose corners lie off its plane by more than rounding (which `new` snaps
+    /// onto the plane, by up to `1e-6` of the face's size) is cut into its fan of triangles
+    /// instead. Neighbouring pieces then share their corners exactly, so no two pieces cross
+    /// or twist about a shared edge by the snapping; what needs pairs of pieces to meet
+    /// exactly (aspect-bake's picture bakes) wants this. The difference from `new`'s pieces
+    /// is below the ambiguity of the error metric (depths within `1e-6 · L`).
+    pub fn with_exact_corners(mesh: &PolygonMesh) -> Result<Self, MeshError> {
+        let bounds = mesh.bounds().ok_or(MeshError::Empty)?;
+        Self::build(mesh, bounds, false)
+    }
+
+    fn build(mesh: &PolygonMesh, frame: Bounds, snap: bool) -> Result<Self, MeshError> {
         if mesh.face_count() == 0 {
             return Err(MeshError::Empty);
         }
@@ -68,9 +84,10 @@ impl Geometry {
             let size = largest_distance(&corners);
             let plane = Plane::try_from_polygon(&corners);
             let planar = plane.is_some_and(|p| {
-                corners
-                    .iter()
-                    .all(|&c| p.signed_distance(c).abs() <= PLANARITY * size)
+                corners.iter().all(|&c| {
+                    let d = p.signed_distance(c).abs();
+                    d <= PLANARITY * size && (snap || d <= on_plane)
+                })
             });
             match plane {
                 Some(plane) if planar => {

@@ -2,7 +2,10 @@
 //!
 //! An **order violation** is a pair of drawn polygons whose projections overlap with positive
 //! area, where the one drawn later lies behind the other at a point inside the overlap by more
-//! than `1e-9 · L` in view depth. Everything is computed in f64 from the polygons' planes.
+//! than `1e-9 · L` in view depth. Everything is computed in f64 from the polygons' planes; a
+//! depth gap counts only beyond the rounding bound of the two depths
+//! ([`PixelRays::depth_error`](crate::PixelRays::depth_error)), which is negligible except for
+//! a piece seen almost edge-on, whose depth along a ray f64 cannot tell.
 
 use glam::{DVec2, DVec3};
 
@@ -18,7 +21,7 @@ pub struct Violation {
     /// Position of the polygon drawn later, which lies behind the earlier one.
     pub later: usize,
     /// By how much (view depth, model units) the later polygon is behind, at the worst point
-    /// of the overlap found.
+    /// of the overlap found, less the rounding bound of the two depths there.
     pub depth_gap: f64,
 }
 
@@ -114,7 +117,12 @@ fn for_each_violation(view: &View, list: &DrawList, mut report: impl FnMut(Viola
             for &corner in overlap.iter().chain(std::iter::once(&centroid)) {
                 // A hair inside the overlap, so the point is interior.
                 let point = corner + (centroid - corner) * ORACLE_INTERIOR;
-                let gap = rays.depth(point, ne, ke) - rays.depth(point, nl, kl);
+                // Beyond the depths' own rounding: a piece seen edge-on has no depth that f64
+                // can tell (see `PixelRays::depth_error`).
+                let gap = rays.depth(point, ne, ke)
+                    - rays.depth(point, nl, kl)
+                    - rays.depth_error(point, ne, ke)
+                    - rays.depth_error(point, nl, kl);
                 if gap.is_finite() {
                     worst = worst.max(gap);
                 }

@@ -71,3 +71,9 @@ pub const MAX_EXTENT_ABS: f64 = 1e60;
 /// Absolute: lengths are clamped to at least this before dividing by them (a zero-size
 /// screen box or median radius), far below any length a model can have.
 pub const UNDERFLOW_ABS: f64 = 1e-300;
+
+/// Relative rounding of a ray-plane depth in f64 ([`crate::PixelRays::depth_error`]): a few
+/// operations on the view-space normal (itself rotated, so off by a few ulps) and the pixel
+/// point, each rounding by `2⁻⁵³`; generous, since the bound only matters where a plane is
+/// nearly parallel to the rays and it then multiplies a huge `1 / |n·ray|`.
+pub const DEPTH_ROUNDING: f64 = 64.0 * f64::EPSILON;

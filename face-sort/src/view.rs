@@ -4,7 +4,7 @@ use glam::{DMat3, DQuat, DVec2, DVec3, EulerRot};
 
 use crate::Bounds;
 use crate::plane::Plane;
-use crate::tolerance::NEAR_W;
+use crate::tolerance::{DEPTH_ROUNDING, NEAR_W};
 
 /// Orthographic or perspective projection.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -575,6 +575,26 @@ impl PixelRays {
             Some(e) => {
                 let t = (offset - n.z * e) / (n.x * a.x + n.y * a.y - n.z * e);
                 e * (1.0 - t)
+            }
+        }
+    }
+
+    /// A bound on the rounding error of [`depth`](Self::depth) at the same arguments: the
+    /// magnitudes of the terms it sums, [`DEPTH_ROUNDING`] relative, over its divisor. Small
+    /// except where the plane is nearly parallel to the ray (a piece seen edge-on), where no
+    /// f64 evaluation can tell its depth better.
+    #[inline]
+    #[must_use]
+    pub fn depth_error(&self, p: DVec2, n: DVec3, offset: f64) -> f64 {
+        let a = self.base(p);
+        let across = (n.x * a.x).abs() + (n.y * a.y).abs();
+        match self.eye {
+            None => DEPTH_ROUNDING * (offset.abs() + across) / n.z.abs(),
+            Some(e) => {
+                let divisor = n.x * a.x + n.y * a.y - n.z * e;
+                let t = (offset - n.z * e) / divisor;
+                let terms = offset.abs() + (n.z * e).abs() + t.abs() * (across + (n.z * e).abs());
+                DEPTH_ROUNDING * e.abs() * (terms / divisor.abs() + t.abs())
             }
         }
     }

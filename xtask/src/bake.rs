@@ -9,7 +9,8 @@ use clap::{Args, ValueEnum};
 use face_sort::{Geometry, PolygonMesh};
 use serde_json::{Value, json};
 use sprite_compose::aspect_bake::{
-    self, Axis, Bake, BakeOptions, BspSource, CentroidSource, EventSource, Method, Progress, Spin,
+    self, Axis, Bake, BakeOptions, BspSource, CentroidSource, EventSource, Method, PictureOptions,
+    Progress, Spin,
 };
 
 use crate::progress;
@@ -63,8 +64,9 @@ pub struct BakeArgs {
     /// Which faces the loader accepts.
     #[arg(long, value_enum, default_value_t = PolicyChoice::Polygons)]
     policy: PolicyChoice,
-    /// The sorter whose draw lists are baked.
-    #[arg(long, value_enum, default_value_t = SorterChoice::Bsp)]
+    /// What the cells keep constant: `picture` (default) the picture, with back faces culled
+    /// by the sink (a handful of cells per turn); `bsp` or `centroid` that sorter's draw list.
+    #[arg(long, value_enum, default_value_t = SorterChoice::Picture)]
     sorter: SorterChoice,
     /// Exact events, or the seed's sampling baseline.
     #[arg(long, value_enum, default_value_t = MethodChoice::Exact)]
@@ -112,6 +114,8 @@ pub enum AxisChoice {
 /// `--sorter`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum SorterChoice {
+    /// Cells exact for the picture; the sink culls back faces.
+    Picture,
     /// BSP (exact).
     Bsp,
     /// Centroid depth (the seed's, not exact).
@@ -190,8 +194,11 @@ pub fn run(args: &BakeArgs) -> Result<ExitCode> {
     if let Some(range) = args.pitch_range {
         return run_two_axes(args, &prepared, range);
     }
+    if args.sorter == SorterChoice::Picture {
+        return run_picture(args, &prepared);
+    }
     let (geometry, spin) = (&prepared.geometry, &prepared.spin);
-    let source = event_source(args.sorter, geometry);
+    let source = event_source(args.sorter, geometry)?;
     let source = source.as_ref();
     let bar = progress::bar(0, "bake");
     let report = |p: Progress| {
@@ -286,18 +293,70 @@ fn report_verify(line: &mut String, checked: Result<String, impl std::fmt::Displ
     }
 }
 
+/// `--sorter picture`: cells exact for the picture (aspect-bake's `bake_picture`).
+fn run_picture(args: &BakeArgs, prepared: &Prepared) -> Result<ExitCode> {
+    if args.method == MethodChoice::Sampled {
+        bail!("--method sampled bakes a sorter's lists: use it with --sorter bsp or centroid");
+    }
+    let options = PictureOptions {
+        budget_bytes: args.budget_mib.saturating_mul(1 << 20),
+        ..PictureOptions::DEFAULT
+    };
+    // Pieces that share their corners exactly (no snapped planar faces twisting against
+    // their neighbours).
+    let geometry = Geometry::with_exact_corners(&prepared.mesh)
+        .map_err(|e| anyhow::anyhow!("{}: {e}", args.model.display()))?;
+    let (baked, stats) = aspect_bake::bake_picture(&geometry, &prepared.spin, &options)?;
+    let moved: Vec<String> = stats.moved.iter().map(usize::to_string).collect();
+    let mut line = format!(
+        "{} picture: {:.1} ms, {} cells, {} pieces ({} cuts), {} candidate pairs, {} constraints, moved per boundary [{}]",
+        args.axis_name(),
+        baked.bake_ms,
+        baked.cells.len(),
+        stats.pieces,
+        stats.cuts,
+        stats.candidate_pairs,
+        stats.constraints,
+        moved.join(", "),
+    );
+    let mut code = ExitCode::SUCCESS;
+    if args.verify {
+        let checked = aspect_bake::verify_picture(&baked, &prepared.spin, 4, 0x5EED).map(|r| {
+            format!(
+                "oracle at {} interior angles and {} angles 1e-6 deg inside cell ends",
+                r.interior_checks, r.breakpoint_checks
+            )
+        });
+        code = report_verify(&mut line, checked);
+    }
+    if let Some(path) = &args.json {
+        let text = serde_json::to_string(&bake_json(&baked, prepared, None))?;
+        write(path, &text)?;
+        line.push_str(&format!(", json {} B", text.len()));
+    }
+    if args.html.is_some() {
+        bail!("--html of a picture bake is not written yet");
+    }
+    println!("{line}");
+    Ok(code)
+}
+
 /// The event source of `--sorter`.
-fn event_source(sorter: SorterChoice, geometry: &Geometry) -> Box<dyn EventSource> {
-    match sorter {
+fn event_source(sorter: SorterChoice, geometry: &Geometry) -> Result<Box<dyn EventSource>> {
+    Ok(match sorter {
+        SorterChoice::Picture => {
+            bail!("two-axis bakes (--pitch-range) take --sorter bsp or centroid")
+        }
         SorterChoice::Bsp => Box::new(BspSource::of(geometry)),
         SorterChoice::Centroid => Box::new(CentroidSource::of(geometry)),
-    }
+    })
 }
 
 fn method_name(bake: &Bake) -> &'static str {
     match bake.method {
         Method::Exact => "exact",
         Method::Sampled { .. } => "sampled",
+        Method::Picture => "picture",
     }
 }
 
@@ -395,7 +454,7 @@ fn run_two_axes(args: &BakeArgs, prepared: &Prepared, pitch: (f64, f64)) -> Resu
         bail!("--pitch-range does not write --html or bake --method sampled");
     }
     let geometry = &prepared.geometry;
-    let source = event_source(args.sorter, geometry);
+    let source = event_source(args.sorter, geometry)?;
     let source = source.as_ref();
     let domain = aspect_bake::YawPitch {
         template: *prepared.spin.template(),

@@ -1,0 +1,508 @@
+//! Bakes exact for the picture: cells over which one order paints the right picture when the
+//! sink hides back faces itself.
+//!
+//! # What a cell promises
+//! A cell `[lo, hi)` holds one order of *all* pieces. At every angle inside it, every pair of
+//! pieces that are both front-facing and whose projections overlap with positive area is in
+//! occlusion order. A sink that culls back faces (CSS `backface-visibility: hidden`, a
+//! compositor's back-face visibility, a raster that culls while painting) then paints the
+//! right picture; pairs that do not overlap, or of which one is culled, may come in any order.
+//!
+//! # Why a cell is exact at every angle inside it (not only at sampled ones)
+//! 1. **Pieces.** Pieces that pass through each other are cut along one's plane, repeatedly,
+//!    before baking, so no two remaining pieces cross.
+//! 2. **One relation per pair.** For two pieces that do not cross, wherever both are drawn and
+//!    overlap, the one in front is fixed by their planes: a piece lying on the front side of
+//!    the other's plane is in front of it (the viewer is on that side when the other is
+//!    drawn). If each lies in front of the other, or each behind, they never overlap while
+//!    both are drawn, and need no order. Only a pair that spans each other's planes without
+//!    crossing is decided by depth, once per arc of overlap (the depth difference cannot
+//!    change sign inside an arc: that would need a common point).
+//! 3. **Arcs in closed form.** A piece is drawn where its facing value
+//!    `a·cos θ + b·sin θ + c` is positive. Two drawn convex projections overlap with positive
+//!    area unless some edge line of one has every corner of the other on its outer side or
+//!    on it (the separating-axis theorem for convex polygons); the side of a corner `v`
+//!    relative to edge `(a, b)` is the sign of `((b − a) × (v − a))·(eye − a)` (perspective)
+//!    or `·d` (orthographic), again `a·cos θ + b·sin θ + c` along the turn. So the arcs where
+//!    a pair needs an order are unions and intersections of arcs with closed-form ends. Every
+//!    arc where a condition that creates a need holds is widened, and every arc that removes
+//!    one is shrunk, by the rounding bound of its root plus a margin: the computed arcs
+//!    contain the true ones.
+//! 4. **Every pair that can overlap is tested.** Candidates come from angular bins; in each
+//!    bin a piece's screen box bounds the piece at every angle of the bin (its bounding sphere
+//!    grown by the farthest any of its points moves within the bin), so a pair whose boxes
+//!    never meet never overlaps.
+//! 5. **Cells.** A cell takes every constraint whose arc meets it; its order is a topological
+//!    order of them. It ends where one more constraint would close a cycle. So every pair
+//!    that needs an order anywhere in the cell has it.
+//!
+//! [`verify_picture`] checks this independently of the construction, with the order-violation
+//! oracle on the drawn pieces at random angles inside every cell and within `1e-6°` of both
+//! of its ends.
+
+mod pairs;
+mod pieces;
+mod sweep;
+
+use std::sync::Arc;
+use std::time::Instant;
+
+use face_sort::glam::DVec3;
+use face_sort::{DrawList, Geometry, PolygonSet, Projection, oracle};
+use rayon::prelude::*;
+
+use crate::BakeError;
+use crate::axis::Spin;
+use crate::build::refuse_cull_margin;
+use crate::cells::{AngleRange, Bake, BakeCell, Breakpoint, Method, cell_bytes};
+use crate::tolerance::{NEAR_EYE, PICTURE_BOUNDARY_DEG};
+use crate::verify::{INTERIOR_MARGIN, VerifyError, VerifyReport, cell_state, inside};
+
+use pairs::{Constraint, Pieces};
+use sweep::{Dag, SweepCell, moved};
+
+/// Options of [`bake_picture`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PictureOptions {
+    /// Angular bins of the candidate search (more bins: tighter boxes, more passes; 1 to
+    /// 65,535).
+    pub bins: usize,
+    /// At most this many pieces after cutting the ones that cross ([`BakeError::Pieces`];
+    /// never more than 2²⁴ − 1).
+    pub max_pieces: usize,
+    /// At most this many candidate pairs ([`BakeError::PairBudget`]).
+    pub max_pairs: usize,
+    /// The cells' orders stop at this many bytes ([`BakeError::SizeBudget`]).
+    pub budget_bytes: usize,
+    /// Pieces overlapping cyclically at some view are cut (one piece by another's plane, the
+    /// bake then redone) at most this many times before [`BakeError::Cycle`].
+    pub max_cycle_cuts: usize,
+}
+
+impl PictureOptions {
+    /// 16 bins, 4 million pieces, 20 million pairs, 1 GiB, 64 cycle cuts.
+    pub const DEFAULT: PictureOptions = PictureOptions {
+        bins: 16,
+        max_pieces: 4_000_000,
+        max_pairs: 20_000_000,
+        budget_bytes: 1 << 30,
+        max_cycle_cuts: 64,
+    };
+}
+
+impl Default for PictureOptions {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
+/// What a picture bake found on the way.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PictureStats {
+    /// Pieces baked (the geometry's, plus the parts of those cut).
+    pub pieces: usize,
+    /// Cuts of pieces that passed through each other.
+    pub cuts: usize,
+    /// Pairs whose screen boxes met in some bin while their planes allowed an occlusion.
+    pub candidate_pairs: usize,
+    /// Pairs (or arcs of a depth-decided pair) that need an order somewhere in the turn.
+    pub constraints: usize,
+    /// Per boundary, how many pieces change place (those outside a longest common
+    /// subsequence of the two orders); over a full turn the last entry is the wrap back to
+    /// the first cell.
+    pub moved: Vec<usize>,
+}
+
+/// Which sign of the facing value the view draws: `+1` or `−1`.
+fn drawn_sign(spin: &Spin) -> Result<f64, BakeError> {
+    refuse_cull_margin(spin.template())?;
+    match spin.template().cull_test().facing_rule() {
+        Some((true, false)) => Ok(1.0),
+        Some((false, true)) => Ok(-1.0),
+        _ => Err(BakeError::Unsupported {
+            sorter: "picture (without culling)",
+        }),
+    }
+}
+
+/// In perspective, every point must stay in front of the near plane at every angle: the eye
+/// (which orbits the centre) outside the sphere holding the pieces.
+fn check_eye(spin: &Spin, set: &PolygonSet) -> Result<(), BakeError> {
+    if let Projection::Perspective { distance } = spin.template().projection() {
+        let eye = distance / spin.template().scale();
+        let reach = (0..set.len())
+            .flat_map(|i| set.corners(i).iter().map(|c| c.length()))
+            .fold(0.0, f64::max);
+        if reach >= eye * (1.0 - NEAR_EYE) {
+            return Err(BakeError::EyeInside { eye, reach });
+        }
+    }
+    Ok(())
+}
+
+/// The pieces back to front by the depth of their centroids at `theta` (radians).
+fn depth_order(spin: &Spin, set: &PolygonSet, theta: f64) -> Vec<u32> {
+    let toward = spin.toward_viewer();
+    let axis = toward[0] + toward[1] * theta.cos() + toward[2] * theta.sin();
+    let depth: Vec<f64> = (0..set.len())
+        .map(|i| {
+            let c = set.corners(i);
+            axis.dot(c.iter().copied().sum::<DVec3>() / c.len() as f64)
+        })
+        .collect();
+    let mut order: Vec<u32> = (0..set.len() as u32).collect();
+    order.sort_by(|&a, &b| depth[a as usize].total_cmp(&depth[b as usize]));
+    order
+}
+
+/// Why a sweep stopped: a budget, or pieces overlapping cyclically at an angle (radians),
+/// with the cycle's edges.
+enum Interrupt {
+    Error(BakeError),
+    Cycle(f64, Vec<(u32, u32)>),
+}
+
+impl From<BakeError> for Interrupt {
+    fn from(e: BakeError) -> Self {
+        Interrupt::Error(e)
+    }
+}
+
+/// Cuts one piece of a cycle by the plane of another that it spans (as Newell's algorithm
+/// breaks a cycle); `None` when no piece of the cycle spans another's plane.
+fn cut_cycle(set: &PolygonSet, edges: &[(u32, u32)], tolerance: f64) -> Option<PolygonSet> {
+    let mut members: Vec<u32> = edges.iter().flat_map(|&(a, b)| [a, b]).collect();
+    members.sort_unstable();
+    members.dedup();
+    let (x, y) = members.iter().find_map(|&x| {
+        members.iter().find_map(|&y| {
+            let spans = x != y
+                && set.plane(y as usize).side_of_polygon(set.corners(x as usize), tolerance)
+                    == face_sort::Side::Spanning;
+            spans.then_some((x as usize, y as usize))
+        })
+    })?;
+    let (mut front, mut back) = (Vec::new(), Vec::new());
+    face_sort::split_polygon(set.corners(x), set.plane(y), tolerance, &mut front, &mut back);
+    let mut out = PolygonSet::new();
+    for i in 0..set.len() {
+        if i == x {
+            for part in [&front, &back] {
+                if part.len() >= 3 {
+                    out.push(part, set.face(i), *set.plane(i));
+                }
+            }
+        } else {
+            out.push(set.corners(i), set.face(i), *set.plane(i));
+        }
+    }
+    Some(out)
+}
+
+/// The cells of one sweep from `origin`, the last merged with the first when together
+/// they stay acyclic.
+fn cells_from(
+    pieces: &Pieces,
+    constraints: &mut [Constraint],
+    origin: f64,
+    dag: &mut Dag,
+) -> Result<Vec<SweepCell>, Interrupt> {
+    let refine = |c: &Constraint| pieces.refine(c);
+    let guess = |theta: f64| depth_order(pieces.spin, pieces.set, theta);
+    let mut cells = sweep::sweep(constraints, origin, pieces.set.len(), &refine, &guess)
+        .map_err(|c| Interrupt::Cycle(origin + c.at, c.edges))?;
+    if cells.len() > 1 {
+        let (first, last) = (&cells[0], &cells[cells.len() - 1]);
+        let both = first.edges.iter().chain(&last.edges).copied();
+        if dag.acyclic(both.clone()) {
+            let merged = SweepCell {
+                lo: last.lo,
+                hi: first.hi + std::f64::consts::TAU,
+                edges: both.collect(),
+            };
+            cells.remove(0);
+            let n = cells.len();
+            cells[n - 1] = merged;
+        }
+    }
+    Ok(cells)
+}
+
+/// Bakes `geometry` along a full turn of `spin` into the fewest cells this greedy sweep finds
+/// that are exact for the picture when the sink culls back faces (see the module docs). The
+/// bake's [`Method`] is [`Method::Picture`]; its cells hold every piece.
+///
+/// # Errors
+/// [`BakeError::CullMargin`], [`BakeError::Unsupported`] without culling,
+/// [`BakeError::EyeInside`], [`BakeError::Pieces`], [`BakeError::PairBudget`],
+/// [`BakeError::Cycle`] (pieces that overlap cyclically at one view) and
+/// [`BakeError::SizeBudget`].
+pub fn bake_picture(
+    geometry: &Geometry,
+    spin: &Spin,
+    options: &PictureOptions,
+) -> Result<(Bake, PictureStats), BakeError> {
+    let started = Instant::now();
+    let sigma = drawn_sign(spin)?;
+    let diagonal = geometry.bounds().diagonal();
+    let (mut set, mut cuts) = pieces::split_crossing(
+        geometry.pieces(),
+        diagonal,
+        options.max_pieces.min(pairs::MAX_PIECES),
+    )?;
+    check_eye(spin, &set)?;
+    let tolerance = crate::tolerance::PICTURE_SIDE * diagonal;
+    let mut cycles_cut = 0;
+    let (cells, constraints, candidate_pairs, origin) = loop {
+        let pieces = Pieces::new(spin, &set, sigma, diagonal);
+        let (mut constraints, candidate_pairs) = pairs::constraints(
+            &pieces,
+            options.bins.clamp(1, pairs::MAX_BINS),
+            options.max_pairs,
+        )?;
+        let mut dag = Dag::new(set.len());
+        match cells_from(&pieces, &mut constraints, 0.0, &mut dag) {
+            Ok(cells) => break (cells, constraints, candidate_pairs, 0.0),
+            Err(Interrupt::Error(e)) => return Err(e),
+            Err(Interrupt::Cycle(at, edges)) => {
+                let cut = (cycles_cut < options.max_cycle_cuts)
+                    .then(|| cut_cycle(&set, &edges, tolerance))
+                    .flatten();
+                let Some(next) = cut else {
+                    return Err(BakeError::Cycle {
+                        degrees: at.to_degrees(),
+                    });
+                };
+                if next.len() > options.max_pieces.min(pairs::MAX_PIECES) {
+                    return Err(BakeError::Pieces {
+                        pieces: next.len(),
+                        budget: options.max_pieces,
+                    });
+                }
+                set = next;
+                cuts += 1;
+                cycles_cut += 1;
+            }
+        }
+    };
+    let n = set.len();
+    let mut dag = Dag::new(n);
+    let bytes = cells.len() * cell_bytes(n);
+    if bytes > options.budget_bytes {
+        return Err(BakeError::SizeBudget {
+            bytes_so_far: bytes,
+            cells_so_far: cells.len(),
+            done: cells.len(),
+            total: cells.len(),
+            estimated_bytes: bytes,
+            budget: options.budget_bytes,
+        });
+    }
+    // One key for the whole turn: the first cell's order, itself by depth at its middle.
+    let by_depth = depth_order(spin, &set, origin + 0.5 * (cells[0].lo + cells[0].hi));
+    let mut key = vec![0u32; n];
+    for (rank, &p) in by_depth.iter().enumerate() {
+        key[p as usize] = rank as u32;
+    }
+    let cycle = |cell: &SweepCell| BakeError::Cycle {
+        degrees: (origin + cell.lo).to_degrees(),
+    };
+    let first = dag
+        .order(cells[0].edges.iter().copied(), &key)
+        .ok_or_else(|| cycle(&cells[0]))?;
+    for (rank, &p) in first.iter().enumerate() {
+        key[p as usize] = rank as u32;
+    }
+    let mut baked = Vec::with_capacity(cells.len());
+    for cell in &cells {
+        let order = dag
+            .order(cell.edges.iter().copied(), &key)
+            .ok_or_else(|| cycle(cell))?;
+        baked.push(BakeCell {
+            range: AngleRange {
+                lo: (origin + cell.lo).to_degrees(),
+                hi: (origin + cell.hi).to_degrees(),
+                period: Some(360.0),
+            },
+            order,
+        });
+    }
+    let moved_per_boundary = if baked.len() > 1 {
+        (0..baked.len())
+            .map(|k| moved(&baked[k].order, &baked[(k + 1) % baked.len()].order))
+            .collect()
+    } else {
+        Vec::new()
+    };
+    if baked.len() == 1 {
+        baked[0].range.hi = baked[0].range.lo + 360.0;
+    }
+    if baked[0].range.lo >= 360.0 {
+        for cell in &mut baked {
+            cell.range.lo -= 360.0;
+            cell.range.hi -= 360.0;
+        }
+    }
+    let lo = baked[0].range.lo;
+    let breakpoints = if baked.len() > 1 {
+        baked
+            .iter()
+            .map(|c| Breakpoint {
+                degrees: c.range.lo,
+                event: None,
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
+    let stats = PictureStats {
+        pieces: n,
+        cuts,
+        candidate_pairs,
+        constraints: constraints.len(),
+        moved: moved_per_boundary,
+    };
+    Ok((
+        Bake {
+            axis: spin.axis(),
+            sorter: "picture".to_owned(),
+            method: Method::Picture,
+            domain: AngleRange {
+                lo,
+                hi: lo + 360.0,
+                period: Some(360.0),
+            },
+            polygons: Arc::new(set),
+            cells: baked,
+            breakpoints,
+            events: constraints.len(),
+            bake_ms: started.elapsed().as_secs_f64() * 1e3,
+        },
+        stats,
+    ))
+}
+
+/// The draw list of cell order `order` at `view`, holding only the pieces the view draws
+/// (what a culling sink paints).
+pub fn culled_list(bake: &Bake, order: &[u32], view: &face_sort::View, list: &mut DrawList) {
+    let set = &bake.polygons;
+    let test = view.cull_test();
+    list.begin(set);
+    for &p in order {
+        let i = p as usize;
+        if test.is_drawn(set.plane(i), set.corners(i)[0]) {
+            list.push(p, set.face(i));
+        }
+    }
+}
+
+/// Checks a picture bake with the order-violation oracle: at `per_cell` random angles inside
+/// every cell and at `1e-6°` inside both of its ends, the cell's order, culled by the view,
+/// has no violation.
+///
+/// # Errors
+/// [`VerifyError::Picture`] at the first angle with violations.
+pub fn verify_picture(
+    bake: &Bake,
+    spin: &Spin,
+    per_cell: usize,
+    seed: u64,
+) -> Result<VerifyReport, VerifyError> {
+    let results: Vec<Result<(usize, usize), VerifyError>> = bake
+        .cells
+        .par_iter()
+        .enumerate()
+        .map_init(DrawList::new, |list, (k, cell)| {
+            let mut state = cell_state(seed, k);
+            let (lo, hi) = (cell.range.lo, cell.range.hi);
+            let mut angles: Vec<(f64, bool)> = (0..per_cell)
+                .map(|_| (cell.range.lerp(inside(&mut state, INTERIOR_MARGIN)), false))
+                .collect();
+            if hi - lo > 2.0 * PICTURE_BOUNDARY_DEG {
+                angles.push((lo + PICTURE_BOUNDARY_DEG, true));
+                angles.push((hi - PICTURE_BOUNDARY_DEG, true));
+            }
+            let mut counts = (0, 0);
+            for (degrees, boundary) in angles {
+                let view = spin.view_at(degrees.to_radians());
+                culled_list(bake, &cell.order, &view, list);
+                let violations = oracle::count_violations(&view, list);
+                if violations > 0 {
+                    return Err(VerifyError::Picture {
+                        cell: k,
+                        degrees,
+                        violations,
+                    });
+                }
+                if boundary {
+                    counts.1 += 1;
+                } else {
+                    counts.0 += 1;
+                }
+            }
+            Ok(counts)
+        })
+        .collect();
+    let mut report = VerifyReport::default();
+    for r in results {
+        let (interior, boundary) = r?;
+        report.interior_checks += interior;
+        report.breakpoint_checks += boundary;
+    }
+    Ok(report)
+}
+
+#[cfg(test)]
+mod debug_scratch {
+    use super::*;
+    use crate::Axis;
+    use face_sort::View;
+
+    #[test]
+    #[ignore = "debugging aid: MODEL=path DEG=angle"]
+    fn book() {
+        let text = std::fs::read_to_string(std::env::var("MODEL").unwrap()).unwrap();
+        let mut pos = Vec::new();
+        let mut faces = Vec::new();
+        for l in text.lines() {
+            let w: Vec<&str> = l.split_whitespace().collect();
+            if w.first() == Some(&"v") { pos.push(DVec3::new(w[1].parse().unwrap(), w[2].parse().unwrap(), w[3].parse().unwrap())); }
+            if w.first() == Some(&"f") { faces.push(w[1..].iter().take_while(|x| !x.starts_with('#')).map(|x| x.split('/').next().unwrap().parse::<u32>().unwrap() - 1).collect::<Vec<u32>>()); }
+        }
+        let g = Geometry::with_exact_corners(&face_sort::PolygonMesh::new(pos, faces).unwrap()).unwrap();
+        let mut v = View::fit(&g.bounds(), 512, 512);
+        if let Ok(d) = std::env::var("PERSP") { v = v.with_perspective(d.parse().unwrap()); }
+        let spin = Spin::new(v, Axis::Yaw { pitch: 20.0, roll: 0.0 }).unwrap();
+        let (bake, _) = bake_picture(&g, &spin, &PictureOptions::DEFAULT).unwrap();
+        let deg: f64 = std::env::var("DEG").unwrap().parse().unwrap();
+        let view = spin.view_at(deg.to_radians());
+        let mut list = DrawList::new();
+        let cell = bake.cell_at(deg).unwrap(); println!("cells {:?}", bake.cells.iter().map(|c| c.range).collect::<Vec<_>>()); culled_list(&bake, &bake.cells[cell].order, &view, &mut list);
+        let v = oracle::find_violations(&view, &list, 10);
+        let set = &bake.polygons;
+        let pieces = Pieces::new(&spin, set, 1.0, g.bounds().diagonal());
+        for x in v {
+            let (a, b) = (list.items()[x.earlier].polygon as usize, list.items()[x.later].polygon as usize);
+            println!("earlier {a} later {b} gap {}", x.depth_gap);
+            println!("  corners a {:?}\n  corners b {:?}", set.corners(a), set.corners(b));
+            println!("  relation {:?} overlap {:?}", pieces.relation(a, b), pieces.overlap(a, b, &crate::arcs::ArcSet::full()));
+            let view = spin.view_at(deg.to_radians());
+            let (pa, pb) = (set.plane(a), set.plane(b));
+            println!("  facing a {} b {} ", view.viewer().facing(pa), view.viewer().facing(pb));
+            println!("  a to b plane {:?}", set.corners(a).iter().map(|c| pb.signed_distance(*c)).collect::<Vec<_>>());
+            println!("  b to a plane {:?}", set.corners(b).iter().map(|c| pa.signed_distance(*c)).collect::<Vec<_>>());
+            for t in [0.0, 30.0, 60.0, 75.0, 280.0, 300.0, 330.0] {
+                let view = spin.view_at((t as f64).to_radians());
+                let mut l = DrawList::new(); l.begin(set); l.push(a as u32, 0); l.push(b as u32, 0);
+                let v1 = oracle::find_violations(&view, &l, 1);
+                let mut l = DrawList::new(); l.begin(set); l.push(b as u32, 0); l.push(a as u32, 0);
+                let v2 = oracle::find_violations(&view, &l, 1);
+                println!("   at {t}: a-then-b {:?} b-then-a {:?}", v1.first().map(|v| v.depth_gap), v2.first().map(|v| v.depth_gap));
+            }
+            println!("  drawn a {:?} b {:?}", pieces.drawn[a], pieces.drawn[b]);
+            let pa = bake.cells[cell].order.iter().position(|&q| q as usize == a);
+            let pb = bake.cells[cell].order.iter().position(|&q| q as usize == b);
+            println!("  positions {pa:?} {pb:?} side a wrt b {:?} b wrt a {:?}", pieces.side(a, b), pieces.side(b, a));
+        }
+    }
+}

@@ -1,0 +1,404 @@
+//! Which pairs of pieces need an order, and over which arcs of the turn.
+//!
+//! A pair needs an order exactly where both pieces are drawn (front-facing) and their
+//! projections overlap with positive area. Both conditions are unions and intersections of
+//! sign conditions `a·cos θ + b·sin θ + c`, solved in closed form ([`ArcSet`]).
+
+use face_sort::glam::{DVec2, DVec3};
+use face_sort::{PixelRays, PolygonSet, ProjectionScratch, Side, View, clip_convex_2d};
+use rayon::prelude::*;
+
+use crate::BakeError;
+use crate::arcs::ArcSet;
+use crate::axis::Spin;
+use crate::event::{EventFn, Roots};
+use crate::tolerance::{ARC_MARGIN_RAD, BOX_SLACK, NEAR_EYE, PICTURE_SIDE};
+
+/// The pieces along a spin: everything the pair tests read.
+pub(crate) struct Pieces<'a> {
+    pub(crate) spin: &'a Spin,
+    pub(crate) set: &'a PolygonSet,
+    /// `+1` when a piece is drawn where its facing value is positive, `−1` where negative.
+    pub(crate) sigma: f64,
+    /// Where each piece is drawn, widened by its margin.
+    pub(crate) drawn: Vec<ArcSet>,
+    /// Boxes grow by at least this (model units), beyond rounding.
+    box_floor: f64,
+    /// The turning axis in centred model space (unit).
+    axis_model: DVec3,
+    /// Per view axis, `√(1 − aₑ²)` for the axis's view direction `a`: how much of a
+    /// point's motion can show along that axis.
+    across_axis: DVec3,
+    /// Plane-side tolerance (model units).
+    side_tolerance: f64,
+}
+
+/// How far an arc is widened (or shrunk) against the rounding of its ends:
+/// [`ARC_MARGIN_RAD`], far above the rounding of a root in f64 (about `1e-15` rad where the
+/// function crosses zero at a slope of its size).
+fn margin(_f: &EventFn) -> f64 {
+    ARC_MARGIN_RAD
+}
+
+impl<'a> Pieces<'a> {
+    /// The pieces of `set` along `spin`, drawn where `sigma ×` facing is positive.
+    pub(crate) fn new(spin: &'a Spin, set: &'a PolygonSet, sigma: f64, diagonal: f64) -> Self {
+        let drawn = (0..set.len())
+            .map(|i| {
+                let n = set.plane(i).normal() * sigma;
+                let f = spin.facing_fn(&[n.x, n.y, n.z, n.dot(set.corners(i)[0])]);
+                ArcSet::where_sign(&f, true, margin(&f))
+            })
+            .collect();
+        let (a, k, b) = spin.factors();
+        let axis_model = (b.transpose() * k).normalize();
+        let axis_view = a * k;
+        Pieces {
+            spin,
+            set,
+            sigma,
+            drawn,
+            box_floor: PICTURE_SIDE * diagonal,
+            axis_model,
+            across_axis: (DVec3::ONE - axis_view * axis_view).max(DVec3::ZERO).powf(0.5),
+            side_tolerance: PICTURE_SIDE * diagonal,
+        }
+    }
+
+    /// Side of piece `i` relative to piece `j`'s plane, the front being the side a drawn `j`
+    /// faces.
+    pub(crate) fn side(&self, i: usize, j: usize) -> Side {
+        let side = self
+            .set
+            .plane(j)
+            .side_of_polygon(self.set.corners(i), self.side_tolerance);
+        match (side, self.sigma < 0.0) {
+            (Side::Front, true) => Side::Back,
+            (Side::Back, true) => Side::Front,
+            (s, _) => s,
+        }
+    }
+
+    /// Which of two pieces occludes the other wherever both are drawn and overlap.
+    #[inline(never)]
+    pub(crate) fn relation(&self, i: usize, j: usize) -> Relation {
+        // `i` in front of a drawn `j` exactly when `i` lies on `j`'s front side.
+        let front = |s: Side| match s {
+            Side::Front => Some(true),
+            Side::Back => Some(false),
+            _ => None,
+        };
+        let (si, sj) = (self.side(i, j), self.side(j, i));
+        let fixed = |i_in_front: bool| {
+            let (behind, front) = if i_in_front { (j, i) } else { (i, j) };
+            Relation::Fixed {
+                behind: behind as u32,
+                front: front as u32,
+            }
+        };
+        match (front(si), front(sj)) {
+            // Both in front of the other (or both behind): never both drawn and overlapping.
+            (Some(a), Some(b)) if a == b => Relation::Never,
+            (Some(a), _) if sj != Side::On => fixed(a),
+            (_, Some(b)) if si != Side::On => fixed(!b),
+            _ if si == Side::Spanning && sj == Side::Spanning => Relation::Depth,
+            // Coplanar: equal depth wherever they overlap.
+            _ => Relation::Never,
+        }
+    }
+
+    /// Where, within `within`, pieces `i` and `j` are both drawn and their projections overlap
+    /// with positive area, over-approximated by the margins: the drawn arcs less, for every edge of either
+    /// piece, the arcs where that edge's line separates the two projections (every corner of
+    /// the other piece on its outer side or on it).
+    #[inline(never)]
+    pub(crate) fn overlap(&self, i: usize, j: usize, within: &ArcSet) -> ArcSet {
+        let mut rest = self.drawn[i].intersect(&self.drawn[j]).intersect(within);
+        for (p, q) in [(i, j), (j, i)] {
+            let (cp, cq) = (self.set.corners(p), self.set.corners(q));
+            for k in 0..cp.len() {
+                if rest.is_empty() {
+                    return rest;
+                }
+                let (a, b) = (cp[k], cp[(k + 1) % cp.len()]);
+                // Only the separation within what is left matters.
+                let mut separated = rest.clone();
+                for &v in cq {
+                    let m = (b - a).cross(v - a) * self.sigma;
+                    let f = self.spin.facing_fn(&[m.x, m.y, m.z, m.dot(a)]);
+                    if m == DVec3::ZERO || matches!(f.roots(), Roots::Identically) {
+                        continue; // on the edge's line at every angle
+                    }
+                    separated = separated.where_negative(&f, margin(&f));
+                    if separated.is_empty() {
+                        break;
+                    }
+                }
+                rest = rest.minus(&separated);
+            }
+        }
+        rest
+    }
+
+    /// For a pair that spans each other's planes without crossing, which one is in front at
+    /// `theta`: `Some(true)` for `i`, `None` when the projections do not overlap there.
+    fn in_front_at(&self, i: usize, j: usize, theta: f64) -> Option<bool> {
+        let view = self.spin.view_at(theta);
+        let mut scratch = ProjectionScratch::default();
+        let (mut pi, mut pj) = (Vec::new(), Vec::new());
+        view.project_polygon(self.set.corners(i), &mut pi, &mut scratch);
+        view.project_polygon(self.set.corners(j), &mut pj, &mut scratch);
+        let (mut overlap, mut clip_scratch) = (Vec::new(), Vec::new());
+        clip_convex_2d(&pi, &pj, &mut overlap, &mut clip_scratch);
+        if overlap.len() < 3 {
+            return None;
+        }
+        let centroid = overlap.iter().copied().sum::<DVec2>() / overlap.len() as f64;
+        let rays = PixelRays::new(&view);
+        let depth = |k: usize| {
+            let plane = self.set.plane(k);
+            rays.depth(centroid, view.to_view(plane.normal()), plane.offset())
+        };
+        Some(depth(i) > depth(j))
+    }
+
+    /// A box around piece `i`'s projection at every angle of the bin `[mid − half, mid + half]`,
+    /// in the view at `mid` (view units; perspective: divided by `w`). Within the bin a point
+    /// moves by at most its distance `ρ` from the turning axis times `half`, perpendicular to
+    /// the axis's view direction `a`, so by at most `ρ · half · √(1 − aₑ²)` along view axis
+    /// `e`; so the view-space box of the corners grown by that
+    /// much holds the piece throughout, and so does the projection of that box's corners
+    /// (`x / w` is extreme at a corner). Unbounded when the box reaches the eye's near plane.
+    #[inline(never)]
+    fn swept_box(&self, view: &View, i: usize, half: f64) -> (DVec2, DVec2) {
+        let corners = self.set.corners(i);
+        let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
+        let mut reach: f64 = 0.0;
+        for &c in corners {
+            let v = view.to_view(c);
+            lo = lo.min(v);
+            hi = hi.max(v);
+            reach = reach.max(c.reject_from_normalized(self.axis_model).length());
+        }
+        let grow = self.across_axis * (reach * half * (1.0 + BOX_SLACK)) + self.box_floor;
+        let (lo, hi) = (lo - grow, hi + grow);
+        match view.eye_in_view() {
+            None => (lo.truncate(), hi.truncate()),
+            Some(eye) => {
+                let near = eye.z * (1.0 - NEAR_EYE);
+                if hi.z >= near {
+                    return (DVec2::splat(f64::NEG_INFINITY), DVec2::splat(f64::INFINITY));
+                }
+                let (mut a, mut b) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
+                for z in [lo.z, hi.z] {
+                    let w = 1.0 - z / eye.z;
+                    for x in [lo.x, hi.x] {
+                        for y in [lo.y, hi.y] {
+                            let p = DVec2::new(x, y) / w;
+                            a = a.min(p);
+                            b = b.max(p);
+                        }
+                    }
+                }
+                (a, b)
+            }
+        }
+    }
+}
+
+/// How two pieces' depths relate where both are drawn and overlap.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Relation {
+    /// They never need an order.
+    Never,
+    /// `behind` is always behind `front` there.
+    Fixed { behind: u32, front: u32 },
+    /// Each spans the other's plane (without crossing): decided per arc of overlap.
+    Depth,
+}
+
+/// One pair's need for an order: `behind` before `front` over `arcs`. An arc set that is not
+/// `exact` is a superset of the true one (both drawn, boxes meeting), refined on demand.
+#[derive(Clone, Debug)]
+pub(crate) struct Constraint {
+    pub(crate) behind: u32,
+    pub(crate) front: u32,
+    pub(crate) arcs: ArcSet,
+    /// Whether `arcs` are the closed-form arcs of overlap (else only a superset).
+    pub(crate) exact: bool,
+    /// Where the pair's boxes met (what [`Pieces::refine`] intersects with).
+    pub(crate) within: ArcSet,
+}
+
+impl Pieces<'_> {
+    /// The exact arcs of a constraint made by [`constraints`] (a fixed relation's pair).
+    pub(crate) fn refine(&self, c: &Constraint) -> ArcSet {
+        self.overlap(c.behind as usize, c.front as usize, &c.within)
+    }
+}
+
+/// Bits of a candidate key: piece, piece, bin.
+const PIECE_BITS: u32 = 24;
+const BIN_BITS: u32 = 16;
+
+/// The most pieces a picture bake takes (candidate keys hold two piece indices).
+pub(crate) const MAX_PIECES: usize = (1 << PIECE_BITS) - 1;
+
+/// The most angular bins.
+pub(crate) const MAX_BINS: usize = (1 << BIN_BITS) - 1;
+
+/// A candidate pair and the arcs (whole bins) where their boxes met.
+pub(crate) struct Candidate {
+    i: u32,
+    j: u32,
+    bins: ArcSet,
+}
+
+/// Candidate pairs: pieces whose conservative screen boxes overlap in some angular bin
+/// while both may be drawn, and whose planes allow one to occlude the other; with the bins
+/// where that happens.
+fn candidates(pieces: &Pieces, bins: usize, max_pairs: usize) -> Result<Vec<Candidate>, BakeError> {
+    let width = std::f64::consts::TAU / bins as f64;
+    let per_bin: Vec<Vec<u64>> = (0..bins)
+        .into_par_iter()
+        .map(|bin| {
+            let (lo, hi) = (bin as f64 * width, (bin + 1) as f64 * width);
+            let view = pieces.spin.view_at(0.5 * (lo + hi));
+            let mut boxes: Vec<(DVec2, DVec2, u32)> = (0..pieces.set.len())
+                .filter(|&i| pieces.drawn[i].meets(lo, hi))
+                .map(|i| {
+                    let (min, max) = pieces.swept_box(&view, i, 0.5 * width);
+                    (min, max, i as u32)
+                })
+                .collect();
+            boxes.sort_unstable_by(|a, b| a.0.x.total_cmp(&b.0.x));
+            let mut keys = Vec::new();
+            for (k, &(min_a, max_a, a)) in boxes.iter().enumerate() {
+                for &(min_b, max_b, b) in &boxes[k + 1..] {
+                    if min_b.x > max_a.x {
+                        break;
+                    }
+                    if min_b.y > max_a.y || min_a.y > max_b.y {
+                        continue;
+                    }
+                    let (i, j) = (a.min(b), a.max(b));
+                    if pieces.relation(i as usize, j as usize) != Relation::Never {
+                        keys.push(
+                            (u64::from(i) << (PIECE_BITS + BIN_BITS))
+                                | (u64::from(j) << BIN_BITS)
+                                | bin as u64,
+                        );
+                    }
+                }
+            }
+            keys
+        })
+        .collect();
+    let total: usize = per_bin.iter().map(Vec::len).sum();
+    if total > max_pairs.saturating_mul(4) {
+        return Err(BakeError::PairBudget {
+            pairs: total,
+            budget: max_pairs,
+        });
+    }
+    let mut keys: Vec<u64> = per_bin.into_iter().flatten().collect();
+    keys.par_sort_unstable();
+    let mut out: Vec<Candidate> = Vec::new();
+    let piece_mask = (1u64 << PIECE_BITS) - 1;
+    let bin_mask = (1u64 << BIN_BITS) - 1;
+    let mut k = 0;
+    while k < keys.len() {
+        let pair = keys[k] >> BIN_BITS;
+        let mut arcs = ArcSet::empty();
+        let mut run: Option<(u64, u64)> = None;
+        while k < keys.len() && keys[k] >> BIN_BITS == pair {
+            let bin = keys[k] & bin_mask;
+            run = match run {
+                Some((first, last)) if bin == last + 1 => Some((first, bin)),
+                Some((first, last)) => {
+                    arcs = arcs.union(&bin_arc(first, last, width));
+                    Some((bin, bin))
+                }
+                None => Some((bin, bin)),
+            };
+            k += 1;
+        }
+        if let Some((first, last)) = run {
+            arcs = arcs.union(&bin_arc(first, last, width));
+        }
+        out.push(Candidate {
+            i: ((pair >> PIECE_BITS) & piece_mask) as u32,
+            j: (pair & piece_mask) as u32,
+            bins: arcs,
+        });
+        if out.len() > max_pairs {
+            return Err(BakeError::PairBudget {
+                pairs: out.len(),
+                budget: max_pairs,
+            });
+        }
+    }
+    Ok(out)
+}
+
+/// Bins `first..=last` as one arc, a hair wider than the bins (rounding of their ends).
+fn bin_arc(first: u64, last: u64, width: f64) -> ArcSet {
+    ArcSet::arc(
+        first as f64 * width - ARC_MARGIN_RAD,
+        (last - first + 1) as f64 * width + 2.0 * ARC_MARGIN_RAD,
+    )
+}
+
+/// Every pair's constraint, with the number of candidate pairs. A pair of fixed relation
+/// gets the superset "both drawn while their boxes meet", to be refined only where it
+/// matters ([`Pieces::refine`]); a pair decided by depth gets its exact arcs at once (each arc
+/// has its own direction).
+pub(crate) fn constraints(
+    pieces: &Pieces,
+    bins: usize,
+    max_pairs: usize,
+) -> Result<(Vec<Constraint>, usize), BakeError> {
+    let pairs = candidates(pieces, bins, max_pairs)?;
+    let found: Vec<Constraint> = pairs
+        .par_iter()
+        .flat_map_iter(|c| {
+            let (i, j) = (c.i, c.j);
+            let (iu, ju) = (i as usize, j as usize);
+            let mut out = Vec::new();
+            match pieces.relation(iu, ju) {
+                Relation::Never => {}
+                Relation::Fixed { behind, front } => {
+                    let arcs = pieces.drawn[iu].intersect(&pieces.drawn[ju]).intersect(&c.bins);
+                    if !arcs.is_empty() {
+                        out.push(Constraint {
+                            behind,
+                            front,
+                            arcs,
+                            exact: false,
+                            within: c.bins.clone(),
+                        });
+                    }
+                }
+                Relation::Depth => {
+                    // Per arc of overlap, one relation (the pieces do not cross).
+                    for (start, length) in pieces.overlap(iu, ju, &c.bins).joined() {
+                        let Some(i_front) = pieces.in_front_at(iu, ju, start + 0.5 * length)
+                        else {
+                            continue;
+                        };
+                        let (behind, front) = if i_front { (j, i) } else { (i, j) };
+                        out.push(Constraint {
+                            behind,
+                            front,
+                            arcs: ArcSet::arc(start, length),
+                            exact: true,
+                            within: ArcSet::empty(),
+                        });
+                    }
+                }
+            }
+            out
+        })
+        .collect();
+    Ok((found, pairs.len()))
+}
