@@ -5,7 +5,9 @@
 //! sign conditions `a·cos θ + b·sin θ + c`, solved in closed form ([`ArcSet`]).
 
 use face_sort::glam::{DVec2, DVec3};
-use face_sort::{PixelRays, PolygonSet, ProjectionScratch, Side, View, clip_convex_2d};
+use face_sort::{
+    PixelRays, PolygonSet, ProjectionScratch, Side, View, clip_convex_2d, signed_area_2d,
+};
 use rayon::prelude::*;
 
 use crate::BakeError;
@@ -140,6 +142,35 @@ impl<'a> Pieces<'a> {
         rest
     }
 
+    /// Every angle (radians, any turn) where the pair's overlap can appear, vanish or change
+    /// shape: a piece turning edge-on, a corner of one crossing an edge line of the other.
+    fn events(&self, i: usize, j: usize) -> Vec<f64> {
+        let mut out = Vec::new();
+        let mut push = |f: &EventFn| {
+            if let Roots::Two { down, up } = f.roots() {
+                out.push(down);
+                out.push(up);
+            }
+        };
+        for k in [i, j] {
+            let n = self.set.plane(k).normal();
+            push(&self.spin.facing_fn(&[n.x, n.y, n.z, n.dot(self.set.corners(k)[0])]));
+        }
+        for (p, q) in [(i, j), (j, i)] {
+            let (cp, cq) = (self.set.corners(p), self.set.corners(q));
+            for k in 0..cp.len() {
+                let (a, b) = (cp[k], cp[(k + 1) % cp.len()]);
+                for &v in cq {
+                    let m = (b - a).cross(v - a);
+                    if m != DVec3::ZERO {
+                        push(&self.spin.facing_fn(&[m.x, m.y, m.z, m.dot(a)]));
+                    }
+                }
+            }
+        }
+        out
+    }
+
     /// For a pair that spans each other's planes without crossing, which one is in front at
     /// `theta`: `Some(true)` for `i`, `None` when the projections do not overlap there.
     fn in_front_at(&self, i: usize, j: usize, theta: f64) -> Option<bool> {
@@ -150,7 +181,10 @@ impl<'a> Pieces<'a> {
         view.project_polygon(self.set.corners(j), &mut pj, &mut scratch);
         let (mut overlap, mut clip_scratch) = (Vec::new(), Vec::new());
         clip_convex_2d(&pi, &pj, &mut overlap, &mut clip_scratch);
-        if overlap.len() < 3 {
+        let extent = self.box_floor / PICTURE_SIDE * view.scale();
+        if overlap.len() < 3
+            || signed_area_2d(&overlap).abs() <= face_sort::tolerance::OVERLAP_AREA * extent * extent
+        {
             return None;
         }
         let centroid = overlap.iter().copied().sum::<DVec2>() / overlap.len() as f64;
@@ -380,20 +414,37 @@ pub(crate) fn constraints(
                     }
                 }
                 Relation::Depth => {
-                    // Per arc of overlap, one relation (the pieces do not cross).
+                    // Between two events of the pair the overlap neither vanishes nor splits,
+                    // and pieces that do not cross keep one relation over a connected
+                    // overlap: one direction per stretch between events.
+                    let events = pieces.events(iu, ju);
                     for (start, length) in pieces.overlap(iu, ju, &c.bins).joined() {
-                        let Some(i_front) = pieces.in_front_at(iu, ju, start + 0.5 * length)
-                        else {
-                            continue;
-                        };
-                        let (behind, front) = if i_front { (j, i) } else { (i, j) };
-                        out.push(Constraint {
-                            behind,
-                            front,
-                            arcs: ArcSet::arc(start, length),
-                            exact: true,
-                            within: ArcSet::empty(),
-                        });
+                        let end = start + length;
+                        let mut cuts: Vec<f64> = events
+                            .iter()
+                            .map(|&e| start + (e - start).rem_euclid(std::f64::consts::TAU))
+                            .filter(|&e| e < end)
+                            .collect();
+                        cuts.push(start);
+                        cuts.push(end);
+                        cuts.sort_by(f64::total_cmp);
+                        for w in cuts.windows(2) {
+                            let (a, b) = (w[0], w[1]);
+                            if b <= a {
+                                continue;
+                            }
+                            let Some(i_front) = pieces.in_front_at(iu, ju, 0.5 * (a + b)) else {
+                                continue;
+                            };
+                            let (behind, front) = if i_front { (j, i) } else { (i, j) };
+                            out.push(Constraint {
+                                behind,
+                                front,
+                                arcs: ArcSet::arc(a - ARC_MARGIN_RAD, b - a + 2.0 * ARC_MARGIN_RAD),
+                                exact: true,
+                                within: ArcSet::empty(),
+                            });
+                        }
                     }
                 }
             }

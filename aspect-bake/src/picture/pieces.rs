@@ -57,7 +57,8 @@ fn cut_interval(plane: &Plane, corners: &[DVec3], u: DVec3) -> (f64, f64) {
 }
 
 /// Whether two convex polygons pass through each other: each spans the other's plane and
-/// the segments where each meets the other's plane overlap by more than `tolerance`.
+/// the segments where each meets the other's plane overlap by more than `tolerance`, or meet
+/// (within `tolerance`) elsewhere than at a corner they share.
 fn cross(a: &Piece, b: &Piece, tolerance: f64) -> bool {
     if !spans(&b.plane, &a.corners, tolerance) || !spans(&a.plane, &b.corners, tolerance) {
         return false;
@@ -67,7 +68,11 @@ fn cross(a: &Piece, b: &Piece, tolerance: f64) -> bool {
     };
     let (a0, a1) = cut_interval(&b.plane, &a.corners, u);
     let (b0, b1) = cut_interval(&a.plane, &b.corners, u);
-    a1.min(b1) - a0.max(b0) > tolerance
+    let overlap = a1.min(b1) - a0.max(b0);
+    // Touching at a shared corner is harmless (a single common point keeps one relation
+    // over each connected overlap); touching anywhere else is treated as crossing.
+    overlap > tolerance
+        || (overlap >= -tolerance && !a.corners.iter().any(|c| b.corners.contains(c)))
 }
 
 /// For each piece, one other piece that it passes through (the first found), if any.
