@@ -99,7 +99,9 @@ pub use axis::{Axis, Spin};
 pub use build::{BakeOptions, Progress, bake, bake_sampled};
 pub use cells::{AngleRange, Bake, BakeCell, Breakpoint, Delta, Method, Sizes, cell_bytes};
 pub use event::{EventFn, Roots, reduce};
-pub use picture::{PictureOptions, PictureStats, bake_picture, culled_list, verify_picture};
+pub use picture::{
+    PictureOptions, PictureStats, bake_picture, culled_list, drawn_lists, verify_picture,
+};
 pub use source::{BspSource, CentroidSource, Event, EventSource};
 pub use two_axes::{
     Bake2, Bake2Options, Curve, EventCircle, Row, Slab, Verify2Error, Verify2Report, YawPitch,

@@ -65,6 +65,7 @@ mod plot;
 mod recording;
 mod root;
 mod spin;
+mod spin_culled;
 mod svg;
 pub mod tolerance;
 mod transform;
@@ -86,6 +87,7 @@ pub use plot::{EdgeKind, Plot, PlotEdge, PlotOptions, plot_edges, plot_edges_whe
 pub use recording::{RecordingCompositor, Scene, SceneSprite};
 pub use root::{perspective_matrix, root_transform, rotation_from_yaw_pitch_roll};
 pub use spin::{SpinOptions, write_spin_html};
+pub use spin_culled::write_culled_spin_html;
 pub use svg::{SvgOptions, project_sprite, write_svg};
 pub use transform::{MapKind, PieceMap, PieceMaps, SpriteSpace, SpriteTransform, piece_map};
 

@@ -90,6 +90,13 @@ pub struct BakeArgs {
     /// Seconds per turn of the HTML page.
     #[arg(long, value_name = "S", default_value_t = 8.0)]
     period: f64,
+    /// The HTML page in ID colours (CONVENTIONS.md) instead of the model's own.
+    #[arg(long)]
+    ids: bool,
+    /// Pause the HTML page S seconds into the turn (at time t the animated parameter is its
+    /// base value + 360·t/period degrees).
+    #[arg(long, value_name = "S", allow_hyphen_values = true)]
+    paused: Option<f64>,
     /// With `--axis yaw`: bake over yaw × pitch, pitch in `[LO, HI)` degrees (the base pitch
     /// is ignored): cells over the two-dimensional domain (aspect-bake's `bake_two_axes`).
     /// `--verify` and `--json` apply; `--html` and `--method sampled` do not.
@@ -133,6 +140,8 @@ pub enum MethodChoice {
 
 /// A loaded model ready to bake.
 pub struct Prepared {
+    /// The loaded model (materials for the page's colours).
+    pub source: obj_quads::Mesh,
     /// The sorters' input.
     pub mesh: PolygonMesh,
     /// Its pieces.
@@ -143,7 +152,7 @@ pub struct Prepared {
 
 /// Loads the model and builds the spin from the flags.
 pub fn prepare(args: &BakeArgs) -> Result<Prepared> {
-    let (_, mesh) = render::load_mesh(&args.model, args.policy, false)?;
+    let (source, mesh) = render::load_mesh(&args.model, args.policy, false)?;
     let geometry =
         Geometry::new(&mesh).map_err(|e| anyhow::anyhow!("{}: {e}", args.model.display()))?;
     let view = render::base_view(
@@ -176,6 +185,7 @@ pub fn prepare(args: &BakeArgs) -> Result<Prepared> {
     };
     let spin = Spin::new(view, axis).context("axis")?;
     Ok(Prepared {
+        source,
         mesh,
         geometry,
         spin,
@@ -330,12 +340,36 @@ fn run_picture(args: &BakeArgs, prepared: &Prepared) -> Result<ExitCode> {
         code = report_verify(&mut line, checked);
     }
     if let Some(path) = &args.json {
-        let text = serde_json::to_string(&bake_json(&baked, prepared, None))?;
+        let text = serde_json::to_string(&picture_json(&baked, &geometry, prepared))?;
         write(path, &text)?;
         line.push_str(&format!(", json {} B", text.len()));
     }
-    if args.html.is_some() {
-        bail!("--html of a picture bake is not written yet");
+    if let Some(path) = &args.html {
+        let lists = aspect_bake::drawn_lists(&baked, &prepared.spin)?;
+        let style = crate::raster::face_style(&geometry, &prepared.source, None, None)?;
+        let brushes = style.sprite_brushes(&prepared.source, None);
+        let colour = |face: u32| {
+            brushes
+                .get(face as usize)
+                .copied()
+                .unwrap_or(sprite_compose::Brush::Palette)
+                .solid_colour(face)
+        };
+        let options = sprite_compose::SpinOptions::DEFAULT
+            .with_period(args.period)
+            .with_ids(args.ids)
+            .with_paused_at(args.paused);
+        let page = sprite_compose::write_culled_spin_html(
+            &baked,
+            &lists,
+            &prepared.spin,
+            &geometry,
+            &colour,
+            &options,
+        );
+        write(path, &page)?;
+        let elements = page.matches("<i class=").count();
+        line.push_str(&format!(", page {} B ({elements} elements)", page.len()));
     }
     println!("{line}");
     Ok(code)
@@ -372,7 +406,7 @@ fn write(path: &std::path::Path, text: &str) -> Result<()> {
 /// to front; an item is the face index when the polygon is the whole face, else the face and
 /// the polygon's corners in model space.
 pub fn bake_json(bake: &Bake, prepared: &Prepared, missed: Option<usize>) -> Value {
-    let items = item_values(&bake.polygons, prepared);
+    let items = item_values(&bake.polygons, &prepared.geometry, prepared);
     let cells: Vec<Value> = bake
         .cells
         .iter()
@@ -392,10 +426,39 @@ pub fn bake_json(bake: &Bake, prepared: &Prepared, missed: Option<usize>) -> Val
     })
 }
 
+/// The JSON of a picture bake: the keys of [`bake_json`], except that the items are written
+/// once, in `"pieces"` (each a face index or `{"face", "polygon"}` as there), and each cell's
+/// `"draw_list"` lists indices into `"pieces"` (`"draw_list_items": "piece indices"`), back
+/// to front; `"culling": "sink"`: a list holds every piece, and the sink must hide those that
+/// face away.
+fn picture_json(bake: &Bake, geometry: &Geometry, prepared: &Prepared) -> Value {
+    let pieces = item_values(&bake.polygons, geometry, prepared);
+    let cells: Vec<Value> = bake
+        .cells
+        .iter()
+        .map(|c| json!({"lo": c.range.lo, "hi": c.range.hi, "draw_list": c.order}))
+        .collect();
+    json!({
+        "axis": bake.axis.name(),
+        "sorter": bake.sorter,
+        "method": method_name(bake),
+        "culling": "sink",
+        "bake_ms": bake.bake_ms,
+        "breakpoints": bake.breakpoints.iter().map(|b| b.degrees).collect::<Vec<_>>(),
+        "pieces": pieces,
+        "draw_list_items": "piece indices",
+        "cells": cells,
+    })
+}
+
 /// Each polygon of a bake's set as a draw-list item: the face index when the polygon is the
 /// whole face, else the face and the polygon's corners in model space.
-fn item_values(set: &face_sort::PolygonSet, prepared: &Prepared) -> Vec<Value> {
-    let pieces = prepared.geometry.pieces();
+fn item_values(
+    set: &face_sort::PolygonSet,
+    geometry: &Geometry,
+    prepared: &Prepared,
+) -> Vec<Value> {
+    let pieces = geometry.pieces();
     let faces = prepared.mesh.face_count();
     // A face is whole when it is one piece with all its corners (planar, not cut).
     let mut piece_of: Vec<Option<usize>> = vec![None; faces];
@@ -493,7 +556,7 @@ fn run_two_axes(args: &BakeArgs, prepared: &Prepared, pitch: (f64, f64)) -> Resu
         code = report_verify(&mut line, checked);
     }
     if let Some(path) = &args.json {
-        let items = item_values(&baked.polygons, prepared);
+        let items = item_values(&baked.polygons, &prepared.geometry, prepared);
         let value = json!({
             "axes": ["yaw", "pitch"],
             "sorter": baked.sorter,

@@ -107,9 +107,9 @@ pub struct PictureStats {
     pub candidate_pairs: usize,
     /// Pairs (or arcs of a depth-decided pair) that need an order somewhere in the turn.
     pub constraints: usize,
-    /// Per boundary, how many pieces change place (those outside a longest common
-    /// subsequence of the two orders); over a full turn the last entry is the wrap back to
-    /// the first cell.
+    /// Per boundary, how many pieces drawn on both sides change place (those outside a
+    /// longest common subsequence of the two orders of such pieces); over a full turn the
+    /// last entry is the wrap back to the first cell.
     pub moved: Vec<usize>,
 }
 
@@ -298,26 +298,28 @@ pub fn bake_picture(
             budget: options.budget_bytes,
         });
     }
-    // One key for the whole turn: the first cell's order, itself by depth at its middle.
+    // One key for the whole turn, so that neighbouring cells differ in few places: an order
+    // that breaks as few of all the cells' constraints together as it can (ties by depth at
+    // the first cell's middle).
     let by_depth = depth_order(spin, &set, origin + 0.5 * (cells[0].lo + cells[0].hi));
     let mut key = vec![0u32; n];
     for (rank, &p) in by_depth.iter().enumerate() {
         key[p as usize] = rank as u32;
     }
+    let all_edges = cells.iter().flat_map(|c| c.edges.iter().copied());
+    let global = dag.order_breaking_cycles(all_edges, &key);
+    for (rank, &p) in global.iter().enumerate() {
+        key[p as usize] = rank as u32;
+    }
     let cycle = |cell: &SweepCell| BakeError::Cycle {
         degrees: (origin + cell.lo).to_degrees(),
     };
-    let first = dag
-        .order(cells[0].edges.iter().copied(), &key)
-        .ok_or_else(|| cycle(&cells[0]))?;
-    for (rank, &p) in first.iter().enumerate() {
-        key[p as usize] = rank as u32;
-    }
     let mut baked = Vec::with_capacity(cells.len());
     for cell in &cells {
         let order = dag
             .order(cell.edges.iter().copied(), &key)
             .ok_or_else(|| cycle(cell))?;
+
         baked.push(BakeCell {
             range: AngleRange {
                 lo: (origin + cell.lo).to_degrees(),
@@ -327,9 +329,16 @@ pub fn bake_picture(
             order,
         });
     }
+    let drawn = drawn_in_cells(spin, &set, sigma, baked.iter().map(|c| c.range));
     let moved_per_boundary = if baked.len() > 1 {
         (0..baked.len())
-            .map(|k| moved(&baked[k].order, &baked[(k + 1) % baked.len()].order))
+            .map(|k| {
+                let next = (k + 1) % baked.len();
+                let both = |p: &&u32| drawn[k][**p as usize] && drawn[next][**p as usize];
+                let a: Vec<u32> = baked[k].order.iter().filter(both).copied().collect();
+                let b: Vec<u32> = baked[next].order.iter().filter(both).copied().collect();
+                moved(&a, &b)
+            })
             .collect()
     } else {
         Vec::new()
@@ -380,6 +389,44 @@ pub fn bake_picture(
         },
         stats,
     ))
+}
+
+/// Per range, per piece: whether the piece is drawn (front-facing, by the view's cull mode)
+/// at some angle of the range, from the closed-form facing arcs (widened by their margin).
+fn drawn_in_cells(
+    spin: &Spin,
+    set: &PolygonSet,
+    sigma: f64,
+    ranges: impl Iterator<Item = AngleRange>,
+) -> Vec<Vec<bool>> {
+    let pieces = Pieces::new(spin, set, sigma, 1.0);
+    ranges
+        .map(|r| {
+            let arc = crate::arcs::ArcSet::arc(r.lo.to_radians(), (r.hi - r.lo).to_radians());
+            pieces
+                .drawn
+                .iter()
+                .map(|d| !d.intersect(&arc).is_empty())
+                .collect()
+        })
+        .collect()
+}
+
+/// Per cell of a picture bake, the pieces drawn (front-facing by the view's cull mode) at
+/// some angle of the cell, in the cell's order: what a sink that culls can show there.
+/// Pieces absent from a cell's list may take any place in it.
+///
+/// # Errors
+/// As [`bake_picture`] for views it cannot bake (a cull margin, no culling).
+pub fn drawn_lists(bake: &Bake, spin: &Spin) -> Result<Vec<Vec<u32>>, BakeError> {
+    let sigma = drawn_sign(spin)?;
+    let drawn = drawn_in_cells(spin, &bake.polygons, sigma, bake.cells.iter().map(|c| c.range));
+    Ok(bake
+        .cells
+        .iter()
+        .zip(&drawn)
+        .map(|(c, d)| c.order.iter().copied().filter(|&p| d[p as usize]).collect())
+        .collect())
 }
 
 /// The draw list of cell order `order` at `view`, holding only the pieces the view draws
@@ -450,59 +497,4 @@ pub fn verify_picture(
         report.breakpoint_checks += boundary;
     }
     Ok(report)
-}
-
-#[cfg(test)]
-mod debug_scratch {
-    use super::*;
-    use crate::Axis;
-    use face_sort::View;
-
-    #[test]
-    #[ignore = "debugging aid: MODEL=path DEG=angle"]
-    fn book() {
-        let text = std::fs::read_to_string(std::env::var("MODEL").unwrap()).unwrap();
-        let mut pos = Vec::new();
-        let mut faces = Vec::new();
-        for l in text.lines() {
-            let w: Vec<&str> = l.split_whitespace().collect();
-            if w.first() == Some(&"v") { pos.push(DVec3::new(w[1].parse().unwrap(), w[2].parse().unwrap(), w[3].parse().unwrap())); }
-            if w.first() == Some(&"f") { faces.push(w[1..].iter().take_while(|x| !x.starts_with('#')).map(|x| x.split('/').next().unwrap().parse::<u32>().unwrap() - 1).collect::<Vec<u32>>()); }
-        }
-        let g = Geometry::with_exact_corners(&face_sort::PolygonMesh::new(pos, faces).unwrap()).unwrap();
-        let mut v = View::fit(&g.bounds(), 512, 512);
-        if let Ok(d) = std::env::var("PERSP") { v = v.with_perspective(d.parse().unwrap()); }
-        let spin = Spin::new(v, Axis::Yaw { pitch: 20.0, roll: 0.0 }).unwrap();
-        let (bake, _) = bake_picture(&g, &spin, &PictureOptions::DEFAULT).unwrap();
-        let deg: f64 = std::env::var("DEG").unwrap().parse().unwrap();
-        let view = spin.view_at(deg.to_radians());
-        let mut list = DrawList::new();
-        let cell = bake.cell_at(deg).unwrap(); println!("cells {:?}", bake.cells.iter().map(|c| c.range).collect::<Vec<_>>()); culled_list(&bake, &bake.cells[cell].order, &view, &mut list);
-        let v = oracle::find_violations(&view, &list, 10);
-        let set = &bake.polygons;
-        let pieces = Pieces::new(&spin, set, 1.0, g.bounds().diagonal());
-        for x in v {
-            let (a, b) = (list.items()[x.earlier].polygon as usize, list.items()[x.later].polygon as usize);
-            println!("earlier {a} later {b} gap {}", x.depth_gap);
-            println!("  corners a {:?}\n  corners b {:?}", set.corners(a), set.corners(b));
-            println!("  relation {:?} overlap {:?}", pieces.relation(a, b), pieces.overlap(a, b, &crate::arcs::ArcSet::full()));
-            let view = spin.view_at(deg.to_radians());
-            let (pa, pb) = (set.plane(a), set.plane(b));
-            println!("  facing a {} b {} ", view.viewer().facing(pa), view.viewer().facing(pb));
-            println!("  a to b plane {:?}", set.corners(a).iter().map(|c| pb.signed_distance(*c)).collect::<Vec<_>>());
-            println!("  b to a plane {:?}", set.corners(b).iter().map(|c| pa.signed_distance(*c)).collect::<Vec<_>>());
-            for t in [0.0, 30.0, 60.0, 75.0, 280.0, 300.0, 330.0] {
-                let view = spin.view_at((t as f64).to_radians());
-                let mut l = DrawList::new(); l.begin(set); l.push(a as u32, 0); l.push(b as u32, 0);
-                let v1 = oracle::find_violations(&view, &l, 1);
-                let mut l = DrawList::new(); l.begin(set); l.push(b as u32, 0); l.push(a as u32, 0);
-                let v2 = oracle::find_violations(&view, &l, 1);
-                println!("   at {t}: a-then-b {:?} b-then-a {:?}", v1.first().map(|v| v.depth_gap), v2.first().map(|v| v.depth_gap));
-            }
-            println!("  drawn a {:?} b {:?}", pieces.drawn[a], pieces.drawn[b]);
-            let pa = bake.cells[cell].order.iter().position(|&q| q as usize == a);
-            let pb = bake.cells[cell].order.iter().position(|&q| q as usize == b);
-            println!("  positions {pa:?} {pb:?} side a wrt b {:?} b wrt a {:?}", pieces.side(a, b), pieces.side(b, a));
-        }
-    }
 }

@@ -82,7 +82,6 @@ impl<'a> Pieces<'a> {
     }
 
     /// Which of two pieces occludes the other wherever both are drawn and overlap.
-    #[inline(never)]
     pub(crate) fn relation(&self, i: usize, j: usize) -> Relation {
         // `i` in front of a drawn `j` exactly when `i` lies on `j`'s front side.
         let front = |s: Side| match s {
@@ -113,7 +112,6 @@ impl<'a> Pieces<'a> {
     /// with positive area, over-approximated by the margins: the drawn arcs less, for every edge of either
     /// piece, the arcs where that edge's line separates the two projections (every corner of
     /// the other piece on its outer side or on it).
-    #[inline(never)]
     pub(crate) fn overlap(&self, i: usize, j: usize, within: &ArcSet) -> ArcSet {
         let mut rest = self.drawn[i].intersect(&self.drawn[j]).intersect(within);
         for (p, q) in [(i, j), (j, i)] {
@@ -203,7 +201,6 @@ impl<'a> Pieces<'a> {
     /// `e`; so the view-space box of the corners grown by that
     /// much holds the piece throughout, and so does the projection of that box's corners
     /// (`x / w` is extreme at a corner). Unbounded when the box reaches the eye's near plane.
-    #[inline(never)]
     fn swept_box(&self, view: &View, i: usize, half: f64) -> (DVec2, DVec2) {
         let corners = self.set.corners(i);
         let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));

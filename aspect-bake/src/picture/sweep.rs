@@ -260,6 +260,45 @@ impl Dag {
         seen == n
     }
 
+    /// An order of all nodes that keeps the edges where it can: Kahn's algorithm taking the
+    /// free node of least `key`, and when none is free (a cycle), the node with the fewest
+    /// edges still into it (then least `key`), dropping those edges.
+    pub(crate) fn order_breaking_cycles(
+        &mut self,
+        edges: impl Iterator<Item = (u32, u32)> + Clone,
+        key: &[u32],
+    ) -> Vec<u32> {
+        self.load(edges);
+        let n = self.indegree.len();
+        let mut done = vec![false; n];
+        let mut heap: BinaryHeap<Reverse<(u32, u32)>> = (0..n as u32)
+            .filter(|&v| self.indegree[v as usize] == 0)
+            .map(|v| Reverse((key[v as usize], v)))
+            .collect();
+        let mut out = Vec::with_capacity(n);
+        while out.len() < n {
+            let v = match heap.pop() {
+                Some(Reverse((_, v))) if done[v as usize] => continue,
+                Some(Reverse((_, v))) => v,
+                None => (0..n as u32)
+                    .filter(|&v| !done[v as usize])
+                    .min_by_key(|&v| (self.indegree[v as usize], key[v as usize]))
+                    .expect("a node is left"),
+            };
+            done[v as usize] = true;
+            out.push(v);
+            for k in self.offsets[v as usize]..self.offsets[v as usize + 1] {
+                let w = self.targets[k as usize];
+                let d = &mut self.indegree[w as usize];
+                *d = d.saturating_sub(1);
+                if *d == 0 && !done[w as usize] {
+                    heap.push(Reverse((key[w as usize], w)));
+                }
+            }
+        }
+        out
+    }
+
     /// A topological order, among the free choices always the node of least `key`;
     /// `None` on a cycle.
     pub(crate) fn order(
@@ -310,7 +349,6 @@ fn spans_of(c: &Constraint, constraint: u32, version: u32, origin: f64, out: &mu
     }
 }
 
-static REFINES: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
 /// Refinements in one batch from which they run on all cores.
 const PARALLEL_REFINES: usize = 256;
 
@@ -573,7 +611,6 @@ pub(crate) fn sweep(
                     .collect::<std::collections::BTreeSet<u32>>()
                     .into_iter()
                     .collect();
-                if std::env::var("PICTURE_TIMING").is_ok() { eprintln!("base refine {} at {lo}", loose.len()); }
                 state.refine_all(&loose, lo, lo);
                 state.reset(lo);
                 k = 0;
@@ -589,7 +626,6 @@ pub(crate) fn sweep(
             } else {
                 let Some(s) = state.queue.pop() else {
                     cells.push(state.cell(lo, TAU));
-                    if std::env::var("PICTURE_TIMING").is_ok() { eprintln!("exact {} of {}", state.constraints.iter().filter(|c| c.exact).count(), state.constraints.len()); }
                     return Ok(cells);
                 };
                 if !state.valid(&s) {
@@ -606,7 +642,6 @@ pub(crate) fn sweep(
             };
             let loose = state.loose(&cycle);
             if loose.is_empty() {
-                if std::env::var("PICTURE_TIMING").is_ok() { eprintln!("cell end at {now} from_queue {from_queue} refines so far {}", REFINES.load(std::sync::atomic::Ordering::Relaxed)); }
                 if from_queue && now > lo {
                     cells.push(state.cell(lo, now));
                     lo = now;
@@ -614,7 +649,6 @@ pub(crate) fn sweep(
                 // Otherwise a cycle closed out of order: redo the cell from its start.
                 continue 'cells;
             }
-            if std::env::var("PICTURE_TIMING").is_ok() { REFINES.fetch_add(1, std::sync::atomic::Ordering::Relaxed); }
             pending.extend(state.refine_all(&loose, lo, now));
             pending.push(label);
         }
@@ -622,9 +656,10 @@ pub(crate) fn sweep(
 }
 
 /// The number of items of `next` outside a longest subsequence it shares, in order, with
-/// `previous` (both permutations of the same items): how many must move between them.
+/// `previous` (both orders of the same items): how many must move between them.
 pub(crate) fn moved(previous: &[u32], next: &[u32]) -> usize {
-    let mut position = vec![0u32; previous.len()];
+    let size = previous.iter().max().map_or(0, |&m| m as usize + 1);
+    let mut position = vec![0u32; size];
     for (k, &p) in previous.iter().enumerate() {
         position[p as usize] = k as u32;
     }

@@ -11,5 +11,6 @@ mod painter;
 mod pdf;
 mod plot;
 mod spin;
+mod spin_culled;
 mod textures;
 mod writers;
