@@ -207,7 +207,12 @@ mod tests {
 
     #[test]
     fn sign_sets_match_the_function() {
-        for (a, b, c) in [(1.0, 0.0, 0.5), (0.3, -0.7, -0.2), (0.0, 1.0, 0.0), (1.0, 1.0, 3.0)] {
+        for (a, b, c) in [
+            (1.0, 0.0, 0.5),
+            (0.3, -0.7, -0.2),
+            (0.0, 1.0, 0.0),
+            (1.0, 1.0, 3.0),
+        ] {
             let g = f(a, b, c);
             let pos = ArcSet::where_sign(&g, true, 0.0);
             let neg = ArcSet::where_sign(&g, false, 0.0);

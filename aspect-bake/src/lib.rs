@@ -186,7 +186,9 @@ pub enum BakeError {
     },
     /// In perspective, the eye's orbit comes within the model (picture bakes need every
     /// point in front of the eye at every angle).
-    #[error("the eye orbits at {eye} model units from the centre, inside the model's reach of {reach}")]
+    #[error(
+        "the eye orbits at {eye} model units from the centre, inside the model's reach of {reach}"
+    )]
     EyeInside {
         /// Eye distance from the centre, model units.
         eye: f64,

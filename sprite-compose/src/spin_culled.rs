@@ -203,7 +203,11 @@ pub fn write_culled_spin_html(
     let sprite_scale = view.scale();
     for p in 0..set.len() {
         let face = set.face(p);
-        let fill = hex(if options.ids { id_colour(face) } else { colour(face) });
+        let fill = hex(if options.ids {
+            id_colour(face)
+        } else {
+            colour(face)
+        });
         let corners = set.corners(p);
         if corners.len() == 3 {
             // A triangle is one element: a CSS border triangle (0, 0), (S, 0), (0, S) under an
@@ -217,7 +221,12 @@ pub fn write_culled_spin_html(
             // corner and (0, S) to the second, so that the element's front is the piece's.
             let (x, y) = ((v2 - v0) / size, (v1 - v0) / size);
             let normal = x.cross(y).normalize_or(DVec3::Z);
-            let m = DMat4::from_cols(x.extend(0.0), y.extend(0.0), normal.extend(0.0), v0.extend(1.0));
+            let m = DMat4::from_cols(
+                x.extend(0.0),
+                y.extend(0.0),
+                normal.extend(0.0),
+                v0.extend(1.0),
+            );
             let _ = writeln!(
                 page,
                 ".p{p}{{border-width:{s}px {s}px 0 0;border-top-color:{fill};transform:{}}}",
@@ -250,7 +259,11 @@ pub fn write_culled_spin_html(
             let _ = writeln!(
                 page,
                 ".p{p}{}{{width:{s}px;height:{s}px;background:{fill};transform:{}}}",
-                if quads.len() > 1 { format!("_{q}") } else { String::new() },
+                if quads.len() > 1 {
+                    format!("_{q}")
+                } else {
+                    String::new()
+                },
                 matrix(&(place * transform.matrix * *quad * unscale)),
                 s = num(size),
             );
@@ -279,10 +292,13 @@ pub fn write_culled_spin_html(
         if visible.iter().all(|&v| v) {
             continue;
         }
-        let k = patterns.iter().position(|q| *q == visible).unwrap_or_else(|| {
-            patterns.push(visible);
-            patterns.len() - 1
-        });
+        let k = patterns
+            .iter()
+            .position(|q| *q == visible)
+            .unwrap_or_else(|| {
+                patterns.push(visible);
+                patterns.len() - 1
+            });
         pattern_of[e] = Some(k);
     }
     for (k, visible) in patterns.iter().enumerate() {
@@ -294,7 +310,7 @@ pub fn write_culled_spin_html(
         }
         keys.sort_by(|x, y| x.0.total_cmp(&y.0));
         // Before the first boundary the last cell (wrapping round) holds.
-        let last = keys.last().map_or(true, |k| k.1);
+        let last = keys.last().is_none_or(|k| k.1);
         let _ = write!(page, "@keyframes v{k}{{0%{{opacity:{}}}", u8::from(last));
         for (offset, v) in keys {
             let _ = write!(page, "{}%{{opacity:{}}}", num(offset), u8::from(v));
@@ -330,7 +346,12 @@ mod tests {
 
     #[test]
     fn every_list_is_a_subsequence_of_the_copies() {
-        let lists = vec![vec![0, 1, 2, 3], vec![1, 0, 2, 3], vec![3, 2, 1], vec![0, 1, 2, 3]];
+        let lists = vec![
+            vec![0, 1, 2, 3],
+            vec![1, 0, 2, 3],
+            vec![3, 2, 1],
+            vec![0, 1, 2, 3],
+        ];
         let c = copies(&lists, 4);
         for (list, used) in lists.iter().zip(&c.used) {
             assert!(used.windows(2).all(|w| w[0] < w[1]));

@@ -177,13 +177,21 @@ fn cut_cycle(set: &PolygonSet, edges: &[(u32, u32)], tolerance: f64) -> Option<P
     let (x, y) = members.iter().find_map(|&x| {
         members.iter().find_map(|&y| {
             let spans = x != y
-                && set.plane(y as usize).side_of_polygon(set.corners(x as usize), tolerance)
+                && set
+                    .plane(y as usize)
+                    .side_of_polygon(set.corners(x as usize), tolerance)
                     == face_sort::Side::Spanning;
             spans.then_some((x as usize, y as usize))
         })
     })?;
     let (mut front, mut back) = (Vec::new(), Vec::new());
-    face_sort::split_polygon(set.corners(x), set.plane(y), tolerance, &mut front, &mut back);
+    face_sort::split_polygon(
+        set.corners(x),
+        set.plane(y),
+        tolerance,
+        &mut front,
+        &mut back,
+    );
     let mut out = PolygonSet::new();
     for i in 0..set.len() {
         if i == x {
@@ -420,7 +428,12 @@ fn drawn_in_cells(
 /// As [`bake_picture`] for views it cannot bake (a cull margin, no culling).
 pub fn drawn_lists(bake: &Bake, spin: &Spin) -> Result<Vec<Vec<u32>>, BakeError> {
     let sigma = drawn_sign(spin)?;
-    let drawn = drawn_in_cells(spin, &bake.polygons, sigma, bake.cells.iter().map(|c| c.range));
+    let drawn = drawn_in_cells(
+        spin,
+        &bake.polygons,
+        sigma,
+        bake.cells.iter().map(|c| c.range),
+    );
     Ok(bake
         .cells
         .iter()

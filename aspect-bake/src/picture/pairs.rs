@@ -62,7 +62,9 @@ impl<'a> Pieces<'a> {
             drawn,
             box_floor: PICTURE_SIDE * diagonal,
             axis_model,
-            across_axis: (DVec3::ONE - axis_view * axis_view).max(DVec3::ZERO).powf(0.5),
+            across_axis: (DVec3::ONE - axis_view * axis_view)
+                .max(DVec3::ZERO)
+                .powf(0.5),
             side_tolerance: PICTURE_SIDE * diagonal,
         }
     }
@@ -152,7 +154,11 @@ impl<'a> Pieces<'a> {
         };
         for k in [i, j] {
             let n = self.set.plane(k).normal();
-            push(&self.spin.facing_fn(&[n.x, n.y, n.z, n.dot(self.set.corners(k)[0])]));
+            push(
+                &self
+                    .spin
+                    .facing_fn(&[n.x, n.y, n.z, n.dot(self.set.corners(k)[0])]),
+            );
         }
         for (p, q) in [(i, j), (j, i)] {
             let (cp, cq) = (self.set.corners(p), self.set.corners(q));
@@ -181,7 +187,8 @@ impl<'a> Pieces<'a> {
         clip_convex_2d(&pi, &pj, &mut overlap, &mut clip_scratch);
         let extent = self.box_floor / PICTURE_SIDE * view.scale();
         if overlap.len() < 3
-            || signed_area_2d(&overlap).abs() <= face_sort::tolerance::OVERLAP_AREA * extent * extent
+            || signed_area_2d(&overlap).abs()
+                <= face_sort::tolerance::OVERLAP_AREA * extent * extent
         {
             return None;
         }
@@ -399,7 +406,9 @@ pub(crate) fn constraints(
             match pieces.relation(iu, ju) {
                 Relation::Never => {}
                 Relation::Fixed { behind, front } => {
-                    let arcs = pieces.drawn[iu].intersect(&pieces.drawn[ju]).intersect(&c.bins);
+                    let arcs = pieces.drawn[iu]
+                        .intersect(&pieces.drawn[ju])
+                        .intersect(&c.bins);
                     if !arcs.is_empty() {
                         out.push(Constraint {
                             behind,

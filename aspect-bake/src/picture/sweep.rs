@@ -186,10 +186,15 @@ impl DynamicOrder {
             // The backward set before the forward set, in the positions they held.
             let position = &self.position;
             self.forward.sort_unstable_by_key(|&w| position[w as usize]);
-            self.backward.sort_unstable_by_key(|&w| position[w as usize]);
+            self.backward
+                .sort_unstable_by_key(|&w| position[w as usize]);
             self.pool.clear();
-            self.pool
-                .extend(self.backward.iter().chain(&self.forward).map(|&w| position[w as usize]));
+            self.pool.extend(
+                self.backward
+                    .iter()
+                    .chain(&self.forward)
+                    .map(|&w| position[w as usize]),
+            );
             self.pool.sort_unstable();
             for (k, &w) in self.backward.iter().chain(&self.forward).enumerate() {
                 self.position[w as usize] = self.pool[k];
@@ -416,7 +421,6 @@ impl Sweep<'_> {
         self.version[s.constraint as usize] == s.version
     }
 
-
     fn take(&mut self, s: Span) -> u32 {
         let label = self.live.len() as u32;
         self.live.push(s);
@@ -507,7 +511,9 @@ impl Sweep<'_> {
                 .map(|&k| refine(&constraints[k as usize]))
                 .collect()
         } else {
-            ks.iter().map(|&k| refine(&constraints[k as usize])).collect()
+            ks.iter()
+                .map(|&k| refine(&constraints[k as usize]))
+                .collect()
         };
         let mut taken = Vec::new();
         for (&k, arcs) in ks.iter().zip(exact) {
@@ -583,7 +589,8 @@ pub(crate) fn sweep(
                         let edges = cycle
                             .iter()
                             .map(|&l| {
-                                let c = &state.constraints[state.live[l as usize].constraint as usize];
+                                let c =
+                                    &state.constraints[state.live[l as usize].constraint as usize];
                                 (c.behind, c.front)
                             })
                             .collect();
@@ -710,7 +717,11 @@ mod tests {
         let mut loose = vec![c(0, 1, 1.0, 1.0), c(1, 0, 1.5, 3.0)];
         loose[1].exact = false;
         let shrink = |c: &Constraint| {
-            if c.exact { c.arcs.clone() } else { ArcSet::arc(3.0, 1.0) }
+            if c.exact {
+                c.arcs.clone()
+            } else {
+                ArcSet::arc(3.0, 1.0)
+            }
         };
         let cells = sweep(&mut loose, 0.0, 2, &shrink, &|_| vec![1, 0]).unwrap();
         assert_eq!(cells.len(), 2);
@@ -721,9 +732,14 @@ mod tests {
     #[test]
     fn orders_follow_the_key_where_free() {
         let mut dag = Dag::new(4);
-        let order = dag.order([(3u32, 0u32)].into_iter(), &[0, 1, 2, 3]).unwrap();
+        let order = dag
+            .order([(3u32, 0u32)].into_iter(), &[0, 1, 2, 3])
+            .unwrap();
         assert_eq!(order, vec![1, 2, 3, 0]);
         assert_eq!(moved(&[0, 1, 2, 3], &[1, 2, 3, 0]), 1);
-        assert!(dag.order([(0u32, 1u32), (1, 0)].into_iter(), &[0, 1, 0, 0]).is_none());
+        assert!(
+            dag.order([(0u32, 1u32), (1, 0)].into_iter(), &[0, 1, 0, 0])
+                .is_none()
+        );
     }
 }
