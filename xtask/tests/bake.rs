@@ -92,6 +92,8 @@ fn cube_yaw_bsp_breaks_at_quarter_turns_and_writes_a_page() {
         model.to_str().unwrap(),
         "--axis",
         "yaw",
+        "--sorter",
+        "bsp",
         "--json",
         json.to_str().unwrap(),
         "--html",
@@ -120,7 +122,16 @@ fn cube_yaw_bsp_breaks_at_quarter_turns_and_writes_a_page() {
 #[test]
 fn sampled_baseline_reports_missed_events_and_perspective_pitch_bakes_verify() {
     let v = bake_json(
-        &["--axis", "yaw", "--method", "sampled", "--samples", "720"],
+        &[
+            "--axis",
+            "yaw",
+            "--sorter",
+            "bsp",
+            "--method",
+            "sampled",
+            "--samples",
+            "720",
+        ],
         "sampled",
     );
     assert_eq!(v["method"], "sampled");
@@ -137,7 +148,17 @@ fn sampled_baseline_reports_missed_events_and_perspective_pitch_bakes_verify() {
 
 #[test]
 fn pitch_range_bakes_two_axes_and_writes_their_cells() {
-    let v = bake_json(&["--axis", "yaw", "--pitch-range", "-40,40"], "two-axes");
+    let v = bake_json(
+        &[
+            "--axis",
+            "yaw",
+            "--sorter",
+            "bsp",
+            "--pitch-range",
+            "-40,40",
+        ],
+        "two-axes",
+    );
     assert_eq!(v["axes"], serde_json::json!(["yaw", "pitch"]));
     let cells = v["cells"].as_array().unwrap().len();
     let slabs = v["slabs"].as_array().unwrap();
@@ -161,4 +182,19 @@ fn pitch_range_bakes_two_axes_and_writes_their_cells() {
     let out = xtask(&["bake", model, "--axis", "pitch", "--pitch-range", "0,10"]);
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("--axis yaw"));
+}
+
+#[test]
+fn cube_yaw_picture_is_one_cell_that_the_sink_culls() {
+    let v = bake_json(&["--axis", "yaw", "--pitch", "20"], "picture");
+    assert_eq!(v["sorter"], "picture");
+    assert_eq!(v["method"], "picture");
+    assert_eq!(v["culling"], "sink");
+    assert_eq!(v["draw_list_items"], "piece indices");
+    let pieces = v["pieces"].as_array().unwrap().len();
+    // A convex cube needs no order at all: one cell for the whole turn, every piece in it.
+    let cells = v["cells"].as_array().unwrap();
+    assert_eq!(cells.len(), 1);
+    assert_eq!(cells[0]["draw_list"].as_array().unwrap().len(), pieces);
+    assert!(breakpoints(&v).is_empty());
 }
