@@ -9,6 +9,7 @@ use glam::{DMat3, DMat4, DVec2, DVec3};
 
 use crate::spin::SpinOptions;
 use crate::svg::hex;
+use crate::tolerance::HTML_SEAM_PX;
 use crate::{BakedGraph, id_colour};
 
 /// The page's elements: a sequence of copies of pieces such that every cell's list of drawn
@@ -105,10 +106,15 @@ fn copies(lists: &[Vec<u32>], pieces: usize) -> Copies {
 
 /// A number with about six significant digits, no trailing zeros (CSS accepts it).
 fn num(v: f64) -> String {
+    num_to(v, 6)
+}
+
+/// A number with about `significant` significant digits, no trailing zeros.
+fn num_to(v: f64, significant: i32) -> String {
     if v == 0.0 || !v.is_finite() {
         return "0".to_owned();
     }
-    let digits = (5 - v.abs().log10().floor() as i32).clamp(0, 12) as usize;
+    let digits = (significant - 1 - v.abs().log10().floor() as i32).clamp(0, 12) as usize;
     let s = format!("{v:.digits$}");
     let s = if s.contains('.') {
         s.trim_end_matches('0').trim_end_matches('.').to_owned()
@@ -118,10 +124,107 @@ fn num(v: f64) -> String {
     if s == "-0" { "0".to_owned() } else { s }
 }
 
-/// `matrix3d(…)` with compact numbers.
+/// `matrix3d(…)` with compact numbers: five significant digits (a thousandth of a pixel
+/// across a 512-pixel page), two for the third column, which multiplies the element's
+/// local `z = 0` and so only has to keep the matrix invertible.
 fn matrix(m: &DMat4) -> String {
-    let cols: Vec<String> = m.to_cols_array().iter().map(|&v| num(v)).collect();
+    let cols: Vec<String> = m
+        .to_cols_array()
+        .iter()
+        .enumerate()
+        .map(|(k, &v)| num_to(v, if (8..12).contains(&k) { 2 } else { 5 }))
+        .collect();
     format!("matrix3d({})", cols.join(","))
+}
+
+/// Whether point `m` lies on an edge of the polygon `corners` (within `tolerance`).
+fn on_boundary(corners: &[DVec3], m: DVec3, tolerance: f64) -> bool {
+    (0..corners.len()).any(|k| {
+        let (a, b) = (corners[k], corners[(k + 1) % corners.len()]);
+        let e = b - a;
+        let t = ((m - a).dot(e) / e.length_squared().max(f64::MIN_POSITIVE)).clamp(0.0, 1.0);
+        (a + e * t).distance(m) <= tolerance
+    })
+}
+
+/// Corners as bits, to recognise a piece that a bake left whole.
+fn bits(corners: &[DVec3]) -> Vec<[u64; 3]> {
+    corners
+        .iter()
+        .map(|c| [c.x.to_bits(), c.y.to_bits(), c.z.to_bits()])
+        .collect()
+}
+
+/// The class `.name` of a CSS border triangle `(0, 0), (S, 0), (0, S)` under an affine map
+/// onto `tri` (page pixels about the centre, y down), edge `k` (from corner `k` to `k + 1`)
+/// first moved out by `grow[k]` pixels in the triangle's plane (a corner moves at most eight
+/// times the larger growth). A triangle's edges are piece edges, so the border's
+/// anti-aliased diagonal only touches pixels next to an edge.
+fn triangle_rule(
+    page: &mut String,
+    name: &str,
+    fill: &str,
+    tri: [DVec3; 3],
+    grow: [f64; 3],
+    oversize: f64,
+) {
+    let mut v = tri;
+    let normal = (tri[1] - tri[0]).cross(tri[2] - tri[0]);
+    if grow.iter().any(|&g| g > 0.0) && normal.length() > 0.0 {
+        let n = normal.normalize();
+        // Outward in-plane normal of edge k.
+        let out = |k: usize| {
+            let e = tri[(k + 1) % 3] - tri[k];
+            let o = e.cross(n).normalize_or_zero();
+            if o.dot(tri[(k + 2) % 3] - tri[k]) > 0.0 {
+                -o
+            } else {
+                o
+            }
+        };
+        let limit = 8.0 * grow.iter().copied().fold(0.0, f64::max);
+        for k in 0..3 {
+            // Corner k joins edge k − 1 and edge k: the point whose distances out of both
+            // lines are their growths.
+            let (i, j) = ((k + 2) % 3, k);
+            let (a, b) = (out(i), out(j));
+            let ab = a.dot(b);
+            let det = 1.0 - ab * ab;
+            let shift = if det > 1e-12 {
+                let (ga, gb) = (grow[i], grow[j]);
+                let x = (ga - ab * gb) / det;
+                let y = (gb - ab * ga) / det;
+                a * x + b * y
+            } else {
+                a * grow[i].max(grow[j])
+            };
+            v[k] = tri[k]
+                + if shift.length() > limit {
+                    shift.normalize() * limit
+                } else {
+                    shift
+                };
+        }
+    }
+    let [v0, v1, v2] = v;
+    let extent = (v1 - v0).length().max((v2 - v0).length()).max(1.0);
+    let size = (extent * oversize).ceil().max(8.0);
+    // Page coordinates have y down, which mirrors the winding: (S, 0) goes to the third corner
+    // and (0, S) to the second, so that the element's front is the piece's.
+    let (x, y) = ((v2 - v0) / size, (v1 - v0) / size);
+    let normal = x.cross(y).normalize_or(DVec3::Z);
+    let m = DMat4::from_cols(
+        x.extend(0.0),
+        y.extend(0.0),
+        normal.extend(0.0),
+        v0.extend(1.0),
+    );
+    let _ = writeln!(
+        page,
+        ".{name}{{border-width:{s}px {s}px 0 0;border-top-color:{fill};transform:{}}}",
+        matrix(&m),
+        s = num(size),
+    );
 }
 
 /// A picture bake ([`aspect_bake::bake_picture`]) as a self-contained page that turns once
@@ -183,8 +286,8 @@ pub fn write_culled_spin_html(
          html,body{{margin:0;padding:0;overflow:hidden;width:{w}px;height:{h}px;background:{bg}}}\n\
          #s{{position:absolute;left:{cx}px;top:{cy}px;width:0;height:0;perspective:{d}px;perspective-origin:0 0}}\n\
          body:not(:has(#end)) #s{{display:none}}\n\
-         #s>i{{position:absolute;left:0;top:0;transform-origin:0 0;backface-visibility:hidden;animation:t {timing}}}\n\
-         .t{{width:0;height:0;border-style:solid;border-color:transparent}}\n\
+         #s>i,#s>b{{position:absolute;left:0;top:0;transform-origin:0 0;backface-visibility:hidden;animation:t {timing}}}\n\
+         b{{width:0;height:0;border-style:solid;border-color:transparent}}\n\
          @keyframes t{{from{{rotate:{x} {y} {z} {a0}deg}}to{{rotate:{x} {y} {z} {a1}deg}}}}\n",
         bg = hex(options.background),
         cx = num(origin.x),
@@ -196,11 +299,26 @@ pub fn write_culled_spin_html(
         a0 = num(start),
         a1 = num(start + 360.0),
     );
-    // One class per piece: size, colour, transform (shared by its copies and quads).
+    // One class per piece element: size, colour, transform (shared by the piece's copies).
     let set = &bake.polygons;
-    let mut quads_of: Vec<usize> = vec![0; set.len()];
-    let mut triangle = vec![false; set.len()];
+    let whole: std::collections::HashSet<(u32, Vec<[u64; 3]>)> = {
+        let pieces = geometry.pieces();
+        (0..pieces.len())
+            .map(|i| (pieces.face(i), bits(pieces.corners(i))))
+            .collect()
+    };
+    let mut sources_of: std::collections::HashMap<u32, Vec<usize>> =
+        std::collections::HashMap::new();
+    for i in 0..geometry.pieces().len() {
+        sources_of
+            .entry(geometry.pieces().face(i))
+            .or_default()
+            .push(i);
+    }
+    let edge_tolerance = 1e-9 * geometry.bounds().diagonal();
+    let mut elements_of: Vec<Vec<(String, char)>> = vec![Vec::new(); set.len()];
     let sprite_scale = view.scale();
+    let at = |c: DVec3| place_point * (c * sprite_scale);
     for p in 0..set.len() {
         let face = set.face(p);
         let fill = hex(if options.ids {
@@ -209,32 +327,57 @@ pub fn write_culled_spin_html(
             colour(face)
         });
         let corners = set.corners(p);
-        if corners.len() == 3 {
-            // A triangle is one element: a CSS border triangle (0, 0), (S, 0), (0, S) under an
-            // affine map onto its corners (its long edge is a piece edge, so the border's
-            // anti-aliased diagonal only touches pixels next to an edge).
-            let at = |c: DVec3| place_point * (c * sprite_scale);
-            let (v0, v1, v2) = (at(corners[0]), at(corners[1]), at(corners[2]));
-            let extent = (v1 - v0).length().max((v2 - v0).length()).max(1.0);
-            let size = (extent * options.oversize).ceil().max(8.0);
-            // Page coordinates have y down, which mirrors the winding: (S, 0) goes to the third
-            // corner and (0, S) to the second, so that the element's front is the piece's.
-            let (x, y) = ((v2 - v0) / size, (v1 - v0) / size);
-            let normal = x.cross(y).normalize_or(DVec3::Z);
-            let m = DMat4::from_cols(
-                x.extend(0.0),
-                y.extend(0.0),
-                normal.extend(0.0),
-                v0.extend(1.0),
+        let is_whole = whole.contains(&(face, bits(corners)));
+        if corners.len() == 3 && is_whole {
+            let name = format!("p{p}");
+            triangle_rule(
+                &mut page,
+                &name,
+                &fill,
+                [at(corners[0]), at(corners[1]), at(corners[2])],
+                [0.0; 3],
+                options.oversize,
             );
-            let _ = writeln!(
-                page,
-                ".p{p}{{border-width:{s}px {s}px 0 0;border-top-color:{fill};transform:{}}}",
-                matrix(&m),
-                s = num(size),
-            );
-            quads_of[p] = 1;
-            triangle[p] = true;
+            elements_of[p].push((name, 'b'));
+            continue;
+        }
+        if !is_whole {
+            // A part of a cut piece: its fan of triangles, the edges where the truth has none
+            // (the cut, the fan's diagonals) grown by a seam's width so that no crack opens
+            // there; the piece's own edges stay.
+            let sources = sources_of.get(&face).map_or(&[][..], Vec::as_slice);
+            let original = |a: DVec3, b: DVec3| {
+                let m = 0.5 * (a + b);
+                sources
+                    .iter()
+                    .any(|&i| on_boundary(geometry.pieces().corners(i), m, edge_tolerance))
+            };
+            let n = corners.len();
+            for k in 1..n - 1 {
+                let name = format!("p{p}_{k}");
+                let (a, b, c) = (corners[0], corners[k], corners[k + 1]);
+                let grow_if = |x: DVec3, y: DVec3, boundary: bool| {
+                    if boundary && original(x, y) {
+                        0.0
+                    } else {
+                        HTML_SEAM_PX
+                    }
+                };
+                let grow = [
+                    grow_if(a, b, k == 1),
+                    grow_if(b, c, true),
+                    grow_if(c, a, k + 1 == n - 1),
+                ];
+                triangle_rule(
+                    &mut page,
+                    &name,
+                    &fill,
+                    [at(a), at(b), at(c)],
+                    grow,
+                    options.oversize,
+                );
+                elements_of[p].push((name, 'b'));
+            }
             continue;
         }
         let Some((transform, clip)) = graph.polygon_map(p as u32) else {
@@ -254,19 +397,19 @@ pub fn write_culled_spin_html(
             None => vec![DMat4::IDENTITY],
             Some(clip) => crate::html::clip_quads(clip),
         };
-        quads_of[p] = quads.len();
         for (q, quad) in quads.iter().enumerate() {
+            let name = if quads.len() > 1 {
+                format!("p{p}_{q}")
+            } else {
+                format!("p{p}")
+            };
             let _ = writeln!(
                 page,
-                ".p{p}{}{{width:{s}px;height:{s}px;background:{fill};transform:{}}}",
-                if quads.len() > 1 {
-                    format!("_{q}")
-                } else {
-                    String::new()
-                },
+                ".{name}{{width:{s}px;height:{s}px;background:{fill};transform:{}}}",
                 matrix(&(place * transform.matrix * *quad * unscale)),
                 s = num(size),
             );
+            elements_of[p].push((name, 'i'));
         }
     }
     // Visibility of each element: shown in the cells that use it, hidden in the cells where
@@ -319,18 +462,9 @@ pub fn write_culled_spin_html(
     }
     page.push_str("</style></head><body><div id=\"s\">\n");
     for (e, &p) in copies.pieces.iter().enumerate() {
-        let quads = quads_of[p as usize];
-        let mut extra = pattern_of[e].map_or(String::new(), |k| format!(" v{k}"));
-        if triangle[p as usize] {
-            extra.push_str(" t");
-        }
-        for q in 0..quads {
-            let name = if quads > 1 {
-                format!("p{p}_{q}")
-            } else {
-                format!("p{p}")
-            };
-            let _ = write!(page, "<i class=\"{name}{extra}\"></i>");
+        let extra = pattern_of[e].map_or(String::new(), |k| format!(" v{k}"));
+        for (name, tag) in &elements_of[p as usize] {
+            let _ = write!(page, "<{tag} class=\"{name}{extra}\"></{tag}>");
         }
         if e % 16 == 15 {
             page.push('\n');

@@ -368,7 +368,7 @@ fn run_picture(args: &BakeArgs, prepared: &Prepared) -> Result<ExitCode> {
             &options,
         );
         write(path, &page)?;
-        let elements = page.matches("<i class=").count();
+        let elements = page.matches("<i class=").count() + page.matches("<b class=").count();
         line.push_str(&format!(", page {} B ({elements} elements)", page.len()));
     }
     println!("{line}");

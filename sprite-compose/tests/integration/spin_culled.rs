@@ -51,7 +51,21 @@ fn check(name: &str, g: &Geometry, view: View, random: usize) {
         let degrees = baked.domain.lo + 360.0 * t / PERIOD_S;
         let rgba = screenshot(browser, &page, &format!("spin-culled-{name}-{t}"));
         let shot = ids_of_rgba(SIZE, SIZE, &rgba);
-        let e = pixel_error(&shot, &truth(&spin.view_at(degrees.to_radians()), g));
+        let t_img = truth(&spin.view_at(degrees.to_radians()), g);
+        let e = pixel_error(&shot, &t_img);
+        if std::env::var("DIAG").is_ok() {
+            for k in 0..t_img.ids.len() {
+                if t_img.unambiguous[k] && shot.ids[k] != t_img.ids[k] {
+                    println!(
+                        "  wrong at {} {}: shot {} truth {}",
+                        k % t_img.width as usize,
+                        k / t_img.width as usize,
+                        shot.ids[k],
+                        t_img.ids[k]
+                    );
+                }
+            }
+        }
         println!(
             "culled spin {name} at {t:.4} s = {degrees:.3}° ({} cells, page {} B): {}/{}",
             baked.cells.len(),
