@@ -319,7 +319,7 @@ pub fn write_culled_spin_html(
     let mut elements_of: Vec<Vec<(String, char)>> = vec![Vec::new(); set.len()];
     let sprite_scale = view.scale();
     let at = |c: DVec3| place_point * (c * sprite_scale);
-    for p in 0..set.len() {
+    for (p, elements) in elements_of.iter_mut().enumerate() {
         let face = set.face(p);
         let fill = hex(if options.ids {
             id_colour(face)
@@ -338,7 +338,7 @@ pub fn write_culled_spin_html(
                 [0.0; 3],
                 options.oversize,
             );
-            elements_of[p].push((name, 'b'));
+            elements.push((name, 'b'));
             continue;
         }
         if !is_whole {
@@ -376,7 +376,7 @@ pub fn write_culled_spin_html(
                     grow,
                     options.oversize,
                 );
-                elements_of[p].push((name, 'b'));
+                elements.push((name, 'b'));
             }
             continue;
         }
@@ -409,7 +409,7 @@ pub fn write_culled_spin_html(
                 matrix(&(place * transform.matrix * *quad * unscale)),
                 s = num(size),
             );
-            elements_of[p].push((name, 'i'));
+            elements.push((name, 'i'));
         }
     }
     // Visibility of each element: shown in the cells that use it, hidden in the cells where
