@@ -30,6 +30,8 @@ pub struct DrawList {
     /// A number that no other content of any list has had, set by [`seal`](Self::seal); 0
     /// once the content changes.
     seal: u64,
+    /// Whether the sink hides back faces itself (see [`set_sink_culls`](Self::set_sink_culls)).
+    sink_culls: bool,
 }
 
 /// The last number handed out by [`DrawList::seal`].
@@ -44,7 +46,31 @@ impl DrawList {
             frame: PolygonSet::new(),
             items: Vec::new(),
             seal: 0,
+            sink_culls: false,
         }
+    }
+
+    /// Declares that the sink hides back faces itself: the list may then hold pieces that
+    /// the view does not draw (an order baked for many views, e.g. aspect-bake's picture
+    /// cells), and every consumer skips them (raster-sink while painting, the oracle, the
+    /// writers). Kept across [`begin`](Self::begin).
+    pub fn set_sink_culls(&mut self, culls: bool) {
+        self.sink_culls = culls;
+        self.seal = 0;
+    }
+
+    /// Whether the sink hides back faces itself ([`set_sink_culls`](Self::set_sink_culls)).
+    #[must_use]
+    pub fn sink_culls(&self) -> bool {
+        self.sink_culls
+    }
+
+    /// Whether `item` is painted under `test` (the view's [`CullTest`](crate::CullTest)):
+    /// always, unless the sink culls and the view does not draw it.
+    #[inline]
+    #[must_use]
+    pub fn paints(&self, item: DrawItem, test: &crate::CullTest) -> bool {
+        !self.sink_culls || test.is_drawn(self.plane(item), self.corners(item)[0])
     }
 
     /// The items in paint order.

@@ -62,8 +62,13 @@ fn project_all(view: &View, list: &DrawList) -> Projected {
     };
     let mut out = Vec::new();
     let mut scratch = ProjectionScratch::default();
+    let test = view.cull_test();
     for &item in list.items() {
-        view.project_polygon(list.corners(item), &mut out, &mut scratch);
+        if list.paints(item, &test) {
+            view.project_polygon(list.corners(item), &mut out, &mut scratch);
+        } else {
+            out.clear(); // a sink that culls hides it: nothing to judge
+        }
         p.points.extend_from_slice(&out);
         p.starts.push(p.points.len());
         p.boxes.push(if out.is_empty() {

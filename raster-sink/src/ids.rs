@@ -150,8 +150,9 @@ pub fn render_ids_into(view: &View, list: &DrawList, image: &mut IdImage) {
     image.ids.resize(width as usize * height as usize, 0);
     let mut projector = Projector::default();
     let stride = width as usize;
+    let test = view.cull_test();
     for &item in list.items() {
-        if !projector.project(view, list.corners(item)) {
+        if !list.paints(item, &test) || !projector.project(view, list.corners(item)) {
             continue;
         }
         let id = item.face.wrapping_add(1);

@@ -63,8 +63,9 @@ impl Painter {
         let k = f64::from(factor);
         self.polygons.clear();
         self.items.clear();
+        let test = view.cull_test();
         for &item in list.items() {
-            if filter.is_some_and(|f| !f(item)) {
+            if filter.is_some_and(|f| !f(item)) || !list.paints(item, &test) {
                 continue;
             }
             if !self.projector.project(view, list.corners(item)) {

@@ -7,5 +7,6 @@ mod grid;
 mod materials;
 mod scenes;
 mod seams;
+mod sink_culls;
 mod steps;
 mod truth;
