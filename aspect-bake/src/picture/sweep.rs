@@ -266,8 +266,8 @@ impl Dag {
     }
 
     /// An order of all nodes that keeps the edges where it can: Kahn's algorithm taking the
-    /// free node of least `key`, and when none is free (a cycle), the node with the fewest
-    /// edges still into it (then least `key`), dropping those edges.
+    /// free node of least `key`, and when none is free (a cycle), the remaining node of least
+    /// `key`, dropping the edges still into it.
     pub(crate) fn order_breaking_cycles(
         &mut self,
         edges: impl Iterator<Item = (u32, u32)> + Clone,
@@ -281,14 +281,19 @@ impl Dag {
             .map(|v| Reverse((key[v as usize], v)))
             .collect();
         let mut out = Vec::with_capacity(n);
+        // Every node by key, for when none is free.
+        let mut by_key: Vec<u32> = (0..n as u32).collect();
+        by_key.sort_unstable_by_key(|&v| std::cmp::Reverse(key[v as usize]));
         while out.len() < n {
             let v = match heap.pop() {
                 Some(Reverse((_, v))) if done[v as usize] => continue,
                 Some(Reverse((_, v))) => v,
-                None => (0..n as u32)
-                    .filter(|&v| !done[v as usize])
-                    .min_by_key(|&v| (self.indegree[v as usize], key[v as usize]))
-                    .expect("a node is left"),
+                None => loop {
+                    let v = by_key.pop().expect("a node is left");
+                    if !done[v as usize] {
+                        break v;
+                    }
+                },
             };
             done[v as usize] = true;
             out.push(v);
