@@ -39,6 +39,9 @@ impl Compositor for Null {
     fn set_visible(&mut self, _: SpriteId, _: bool) {
         self.0.visible += 1;
     }
+    fn set_back_visible(&mut self, _: SpriteId, _: bool) {
+        self.0.back += 1;
+    }
     fn move_to_top(&mut self, _: SpriteId) {
         self.0.reorder += 1;
     }

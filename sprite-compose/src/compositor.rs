@@ -78,6 +78,11 @@ pub trait Compositor {
     fn set_brush(&mut self, id: SpriteId, brush: &Brush);
     /// Shows or hides a sprite.
     fn set_visible(&mut self, id: SpriteId, visible: bool);
+    /// Whether a sprite's back may show (`true` when created). A compositor hides a sprite
+    /// whose back does not show while its final transform turns the back toward the viewer
+    /// (CSS `backface-visibility: hidden`): the sprite's front is the side its source piece
+    /// faces, so a baked order that holds pieces facing away stays right.
+    fn set_back_visible(&mut self, id: SpriteId, visible: bool);
     /// Moves a sprite to the top of the stack (painted last).
     fn move_to_top(&mut self, id: SpriteId);
     /// Moves a sprite directly below `above` (painted just before it).
@@ -103,6 +108,8 @@ pub struct OpCounts {
     pub visible: usize,
     /// `move_to_top` and `move_before`.
     pub reorder: usize,
+    /// `set_back_visible`.
+    pub back: usize,
     /// `set_root_transform`.
     pub root: usize,
 }
@@ -118,6 +125,7 @@ impl OpCounts {
             + self.brush
             + self.visible
             + self.reorder
+            + self.back
             + self.root
     }
 }
@@ -131,6 +139,7 @@ impl std::ops::AddAssign for OpCounts {
         self.brush += o.brush;
         self.visible += o.visible;
         self.reorder += o.reorder;
+        self.back += o.back;
         self.root += o.root;
     }
 }
@@ -166,6 +175,10 @@ impl<C: Compositor + ?Sized> Compositor for Counting<'_, C> {
     fn set_visible(&mut self, id: SpriteId, visible: bool) {
         self.ops.visible += 1;
         self.inner.set_visible(id, visible);
+    }
+    fn set_back_visible(&mut self, id: SpriteId, visible: bool) {
+        self.ops.back += 1;
+        self.inner.set_back_visible(id, visible);
     }
     fn move_to_top(&mut self, id: SpriteId) {
         self.ops.reorder += 1;

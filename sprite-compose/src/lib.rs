@@ -51,6 +51,7 @@
 //! bake it realises).
 
 mod bake;
+mod bake_player;
 mod compositor;
 mod hidden;
 mod html;
@@ -75,6 +76,7 @@ pub use aspect_bake::{AngleRange, Bake, BakeCell};
 pub use bake::{
     BakeSlot, BakedContainer, BakedGraph, BakedSprite, FacingPredicate, convex_facing_predicates,
 };
+pub use bake_player::BakePlayer;
 pub use compositor::{Brush, Compositor, OpCounts, SpriteId, TextureId};
 pub use hidden::{HiddenParts, Visibility, visible_parts};
 pub use html::{HtmlMode, HtmlOptions, HtmlPieces, css_matrix3d, write_html};

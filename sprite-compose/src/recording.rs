@@ -17,6 +17,8 @@ pub struct SceneSprite {
     pub brush: Brush,
     /// Whether it is shown.
     pub visible: bool,
+    /// Whether its back may show ([`Compositor::set_back_visible`]).
+    pub back_visible: bool,
 }
 
 /// What a retained compositor holds: sprites, their stacking order and the root transform.
@@ -61,11 +63,31 @@ impl Scene {
         &self.stack
     }
 
-    /// Visible sprites in paint order (bottom first).
+    /// Visible sprites in paint order (bottom first): shown, and either their back may show
+    /// or their front faces the viewer under the root transform (what the writers draw).
     pub fn visible(&self) -> impl Iterator<Item = (SpriteId, &SceneSprite)> + '_ {
-        self.stack
-            .iter()
-            .filter_map(|&id| self.sprite(id).filter(|s| s.visible).map(|s| (id, s)))
+        self.stack.iter().filter_map(|&id| {
+            self.sprite(id)
+                .filter(|s| s.visible && (s.back_visible || self.faces_viewer(s)))
+                .map(|s| (id, s))
+        })
+    }
+
+    /// Whether a sprite's front faces the viewer: the unit square's image under
+    /// `root · transform` keeps the orientation that every front-facing piece's sprite has
+    /// in pixel space (y down), `(p(1, 0) − p(0, 0)) × (p(0, 1) − p(0, 0)) > 0`, in front of
+    /// the eye.
+    #[must_use]
+    pub fn faces_viewer(&self, sprite: &SceneSprite) -> bool {
+        let m = self.root * sprite.transform.matrix;
+        let project = |u: f64, v: f64| {
+            let h = m * glam::DVec4::new(u, v, 0.0, 1.0);
+            (h.w > 0.0).then(|| DVec2::new(h.x / h.w, h.y / h.w))
+        };
+        match (project(0.0, 0.0), project(1.0, 0.0), project(0.0, 1.0)) {
+            (Some(a), Some(b), Some(c)) => (b - a).perp_dot(c - a) > 0.0,
+            _ => false,
+        }
     }
 
     /// Number of sprites.
@@ -112,6 +134,7 @@ impl Compositor for Scene {
             clip: None,
             brush: Brush::Palette,
             visible: false,
+            back_visible: true,
         });
         self.stack.push(id);
     }
@@ -131,6 +154,9 @@ impl Compositor for Scene {
     }
     fn set_visible(&mut self, id: SpriteId, visible: bool) {
         self.sprite_mut(id).visible = visible;
+    }
+    fn set_back_visible(&mut self, id: SpriteId, visible: bool) {
+        self.sprite_mut(id).back_visible = visible;
     }
     fn move_to_top(&mut self, id: SpriteId) {
         self.unstack(id);
@@ -240,6 +266,10 @@ impl Compositor for RecordingCompositor {
     fn set_visible(&mut self, id: SpriteId, visible: bool) {
         self.record(|o| o.visible += 1, || format!("visible {} {visible}", id.0));
         self.scene.set_visible(id, visible);
+    }
+    fn set_back_visible(&mut self, id: SpriteId, visible: bool) {
+        self.record(|o| o.back += 1, || format!("back {} {visible}", id.0));
+        self.scene.set_back_visible(id, visible);
     }
     fn move_to_top(&mut self, id: SpriteId) {
         self.record(|o| o.reorder += 1, || format!("top {}", id.0));

@@ -12,20 +12,44 @@ use crate::svg::hex;
 use crate::tolerance::HTML_SEAM_PX;
 use crate::{BakedGraph, id_colour};
 
-/// The page's elements: a sequence of copies of pieces such that every cell's list of drawn
-/// pieces is a subsequence of it (one copy per piece per cell).
-struct Copies {
-    /// Piece of each element, in paint (document) order.
-    pieces: Vec<u32>,
+/// The elements of a culled realisation: a sequence of copies of pieces such that every
+/// cell's list of drawn pieces is a subsequence of it (one copy per piece per cell).
+pub(crate) struct Copies {
+    /// Piece of each element, in paint order.
+    pub(crate) pieces: Vec<u32>,
     /// Per cell, the element each drawn piece uses.
     used: Vec<Vec<usize>>,
+}
+
+impl Copies {
+    /// Per element, per cell: whether it is shown. An element is shown in the cells that use
+    /// it and hidden in the cells where another copy of its piece is used; where its piece is
+    /// never drawn (culled throughout the cell) it is shown, so that a piece with one copy
+    /// never switches.
+    pub(crate) fn visibility(&self, lists: &[Vec<u32>]) -> Vec<Vec<bool>> {
+        let cells = self.used.len();
+        let mut shown: Vec<Vec<bool>> = vec![vec![true; cells]; self.pieces.len()];
+        let size = self.pieces.iter().max().map_or(0, |&m| m as usize + 1);
+        let mut copies_of: Vec<Vec<usize>> = vec![Vec::new(); size];
+        for (e, &p) in self.pieces.iter().enumerate() {
+            copies_of[p as usize].push(e);
+        }
+        for (c, used) in self.used.iter().enumerate() {
+            for (i, &e) in used.iter().enumerate() {
+                for &other in &copies_of[lists[c][i] as usize] {
+                    shown[other][c] = other == e;
+                }
+            }
+        }
+        shown
+    }
 }
 
 /// Elements built cell by cell: a cell reuses the longest run of existing elements that is
 /// in its order (a longest common subsequence, Hunt and Szymanski's way: patience sorting
 /// over each piece's existing copies), and inserts a new copy for each other piece just
 /// before the next element it reuses.
-fn copies(lists: &[Vec<u32>], pieces: usize) -> Copies {
+pub(crate) fn copies(lists: &[Vec<u32>], pieces: usize) -> Copies {
     // `order` holds element ids in paint order; ids are stable as elements are inserted.
     let mut element_piece: Vec<u32> = Vec::new();
     let mut order: Vec<usize> = Vec::new();
@@ -414,24 +438,10 @@ pub fn write_culled_spin_html(
     }
     // Visibility of each element: shown in the cells that use it, hidden in the cells where
     // another copy of its piece is used, either way where its piece is never drawn.
-    let cells = bake.cells.len();
-    let mut shown: Vec<Vec<Option<bool>>> = vec![vec![None; cells]; copies.pieces.len()];
-    let mut first_copy: Vec<Vec<usize>> = vec![Vec::new(); set.len()];
-    for (e, &p) in copies.pieces.iter().enumerate() {
-        first_copy[p as usize].push(e);
-    }
-    for (c, used) in copies.used.iter().enumerate() {
-        for (i, &e) in used.iter().enumerate() {
-            let p = lists[c][i] as usize;
-            for &other in &first_copy[p] {
-                shown[other][c] = Some(other == e);
-            }
-        }
-    }
+    let shown = copies.visibility(lists);
     let mut patterns: Vec<Vec<bool>> = Vec::new();
     let mut pattern_of: Vec<Option<usize>> = vec![None; copies.pieces.len()];
-    for (e, s) in shown.iter().enumerate() {
-        let visible: Vec<bool> = s.iter().map(|v| v.unwrap_or(true)).collect();
+    for (e, visible) in shown.into_iter().enumerate() {
         if visible.iter().all(|&v| v) {
             continue;
         }

@@ -113,6 +113,9 @@ pub struct PictureStats {
     pub moved: Vec<usize>,
 }
 
+/// A sweep that ends with more cells than this is run again from its first forced boundary.
+const SECOND_SWEEP_FROM: usize = 8;
+
 /// Which sign of the facing value the view draws: `+1` or `−1`.
 fn drawn_sign(spin: &Spin) -> Result<f64, BakeError> {
     refuse_cull_margin(spin.template())?;
@@ -270,7 +273,20 @@ pub fn bake_picture(
         )?;
         let mut dag = Dag::new(set.len());
         match cells_from(&pieces, &mut constraints, 0.0, &mut dag) {
-            Ok(cells) => break (cells, constraints, candidate_pairs, 0.0),
+            Ok(cells) if cells.len() <= SECOND_SWEEP_FROM => {
+                break (cells, constraints, candidate_pairs, 0.0);
+            }
+            Ok(cells) => {
+                // Many cells: sweep again from the first angle where a cell had to end (the
+                // first sweep's start is arbitrary), and keep the shorter.
+                let origin = cells[1].lo;
+                match cells_from(&pieces, &mut constraints, origin, &mut dag) {
+                    Ok(second) if second.len() < cells.len() => {
+                        break (second, constraints, candidate_pairs, origin);
+                    }
+                    _ => break (cells, constraints, candidate_pairs, 0.0),
+                }
+            }
             Err(Interrupt::Error(e)) => return Err(e),
             Err(Interrupt::Cycle(at, edges)) => {
                 let cut = (cycles_cut < options.max_cycle_cuts)

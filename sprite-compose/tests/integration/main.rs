@@ -4,6 +4,7 @@
 mod support;
 
 mod bake;
+mod bake_player;
 mod browser;
 mod hidden;
 mod overlay;
