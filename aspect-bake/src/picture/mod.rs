@@ -171,37 +171,52 @@ impl From<BakeError> for Interrupt {
     }
 }
 
-/// Cuts one piece of a cycle by the plane of another that it spans (as Newell's algorithm
-/// breaks a cycle); `None` when no piece of the cycle spans another's plane.
+/// Cuts one piece of a cycle: by the plane of another piece of the cycle that it spans (as
+/// Newell's algorithm breaks a cycle), or, when every pair is separated by a plane (pieces
+/// can overlap cyclically all the same), the largest piece across the middle of its longest
+/// edge, so that repeated cuts shrink the pieces until the cycle opens. `None` when the
+/// piece cannot be cut.
 fn cut_cycle(set: &PolygonSet, edges: &[(u32, u32)], tolerance: f64) -> Option<PolygonSet> {
     let mut members: Vec<u32> = edges.iter().flat_map(|&(a, b)| [a, b]).collect();
     members.sort_unstable();
     members.dedup();
-    let (x, y) = members.iter().find_map(|&x| {
+    let spanning = members.iter().find_map(|&x| {
         members.iter().find_map(|&y| {
             let spans = x != y
                 && set
                     .plane(y as usize)
                     .side_of_polygon(set.corners(x as usize), tolerance)
                     == face_sort::Side::Spanning;
-            spans.then_some((x as usize, y as usize))
+            spans.then(|| (x as usize, *set.plane(y as usize)))
         })
-    })?;
+    });
+    let (x, plane) = match spanning {
+        Some(cut) => cut,
+        None => {
+            let area = |p: u32| face_sort::newell_normal(set.corners(p as usize)).length();
+            let x = *members
+                .iter()
+                .max_by(|&&a, &&b| area(a).total_cmp(&area(b)))? as usize;
+            let c = set.corners(x);
+            let (a, b) = (0..c.len())
+                .map(|k| (c[k], c[(k + 1) % c.len()]))
+                .max_by(|p, q| p.0.distance(p.1).total_cmp(&q.0.distance(q.1)))?;
+            (
+                x,
+                face_sort::Plane::try_from_point_normal(0.5 * (a + b), b - a)?,
+            )
+        }
+    };
     let (mut front, mut back) = (Vec::new(), Vec::new());
-    face_sort::split_polygon(
-        set.corners(x),
-        set.plane(y),
-        tolerance,
-        &mut front,
-        &mut back,
-    );
+    face_sort::split_polygon(set.corners(x), &plane, tolerance, &mut front, &mut back);
+    if front.len() < 3 || back.len() < 3 {
+        return None;
+    }
     let mut out = PolygonSet::new();
     for i in 0..set.len() {
         if i == x {
             for part in [&front, &back] {
-                if part.len() >= 3 {
-                    out.push(part, set.face(i), *set.plane(i));
-                }
+                out.push(part, set.face(i), *set.plane(i));
             }
         } else {
             out.push(set.corners(i), set.face(i), *set.plane(i));
