@@ -354,10 +354,33 @@ pub fn bake_picture(
         degrees: (origin + cell.lo).to_degrees(),
     };
     let mut baked = Vec::with_capacity(cells.len());
+    let mut global: Vec<u32> = (0..n as u32).collect();
+    global.sort_unstable_by_key(|&p| key[p as usize]);
+    let reversed_key: Vec<u32> = key.iter().map(|&k| n as u32 - 1 - k).collect();
+    let mut key = key;
+    let mut reversed_key = reversed_key;
     for cell in &cells {
-        let order = dag
+        if let Some(previous) = baked.last().map(|c: &BakeCell| &c.order) {
+            for (rank, &p) in previous.iter().enumerate() {
+                key[p as usize] = rank as u32;
+                reversed_key[p as usize] = n as u32 - 1 - rank as u32;
+            }
+            global.clone_from(previous);
+        }
+        // Kahn's algorithm keeps the key order except where an edge forces a piece later;
+        // run backwards it forces pieces earlier instead. Keep whichever moves fewer.
+        let forward = dag
             .order(cell.edges.iter().copied(), &key)
             .ok_or_else(|| cycle(cell))?;
+        let mut backward = dag
+            .order(cell.edges.iter().map(|&(a, b)| (b, a)), &reversed_key)
+            .ok_or_else(|| cycle(cell))?;
+        backward.reverse();
+        let order = if moved(&global, &backward) < moved(&global, &forward) {
+            backward
+        } else {
+            forward
+        };
 
         baked.push(BakeCell {
             range: AngleRange {
