@@ -356,9 +356,7 @@ pub fn bake_picture(
     let mut baked = Vec::with_capacity(cells.len());
     let mut global: Vec<u32> = (0..n as u32).collect();
     global.sort_unstable_by_key(|&p| key[p as usize]);
-    let reversed_key: Vec<u32> = key.iter().map(|&k| n as u32 - 1 - k).collect();
-    let mut key = key;
-    let mut reversed_key = reversed_key;
+    let mut reversed_key: Vec<u32> = key.iter().map(|&k| n as u32 - 1 - k).collect();
     for cell in &cells {
         if let Some(previous) = baked.last().map(|c: &BakeCell| &c.order) {
             for (rank, &p) in previous.iter().enumerate() {
