@@ -96,3 +96,23 @@ impl<'de> Deserialize<'de> for Bake {
         })
     }
 }
+
+impl Bake {
+    /// The bake in a compact binary encoding (postcard: serde's data model, integers as
+    /// varints, `f64` as 8 bytes), for saving and shipping; [`Bake::from_binary`] reads it back.
+    ///
+    /// # Errors
+    /// The encoder's message, should serialisation fail.
+    pub fn to_binary(&self) -> Result<Vec<u8>, String> {
+        postcard::to_allocvec(self).map_err(|e| e.to_string())
+    }
+
+    /// A bake from [`Bake::to_binary`]'s bytes, checked as a deserialised bake is (planes with
+    /// a normal, cells naming existing polygons).
+    ///
+    /// # Errors
+    /// What is wrong with the bytes.
+    pub fn from_binary(bytes: &[u8]) -> Result<Bake, String> {
+        postcard::from_bytes(bytes).map_err(|e| e.to_string())
+    }
+}

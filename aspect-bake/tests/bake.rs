@@ -417,3 +417,21 @@ fn picture_bakes_refuse_what_they_cannot_serve() {
         Err(BakeError::EyeInside { .. })
     ));
 }
+
+/// A picture bake round-trips through the binary encoding, smaller than its JSON; truncated
+/// bytes are refused.
+#[test]
+fn a_picture_bake_round_trips_through_the_binary_encoding() {
+    use aspect_bake::{PictureOptions, bake_picture};
+    let mesh = test_support::load_polygon_mesh("keenan-crane/spot/spot_control_mesh.obj");
+    let g = Geometry::with_exact_corners(&mesh).unwrap();
+    let spin = yaw_spin(&g, None);
+    let (b, _) = bake_picture(&g, &spin, &PictureOptions::DEFAULT).unwrap();
+    let bytes = b.to_binary().unwrap();
+    let back = Bake::from_binary(&bytes).unwrap();
+    assert_eq!(back.cells, b.cells);
+    assert_eq!(back.method, b.method);
+    assert_eq!(back.polygons.len(), b.polygons.len());
+    assert!(bytes.len() < serde_json::to_string(&b).unwrap().len());
+    assert!(Bake::from_binary(&bytes[..bytes.len() / 2]).is_err());
+}

@@ -84,6 +84,9 @@ pub struct BakeArgs {
     /// Write the bake as JSON.
     #[arg(long, value_name = "FILE")]
     json: Option<PathBuf>,
+    /// Write the bake in its binary encoding (aspect-bake's `Bake::to_binary`).
+    #[arg(long, value_name = "FILE")]
+    bin: Option<PathBuf>,
     /// Write a self-contained spinning HTML page.
     #[arg(long, value_name = "FILE")]
     html: Option<PathBuf>,
@@ -343,6 +346,13 @@ fn run_picture(args: &BakeArgs, prepared: &Prepared) -> Result<ExitCode> {
         let text = serde_json::to_string(&picture_json(&baked, &geometry, prepared))?;
         write(path, &text)?;
         line.push_str(&format!(", json {} B", text.len()));
+    }
+    if let Some(path) = &args.bin {
+        let bytes = baked
+            .to_binary()
+            .map_err(|e| anyhow::anyhow!("binary encoding: {e}"))?;
+        std::fs::write(path, &bytes).with_context(|| format!("writing {}", path.display()))?;
+        line.push_str(&format!(", binary {} B", bytes.len()));
     }
     if let Some(path) = &args.html {
         let lists = aspect_bake::drawn_lists(&baked, &prepared.spin)?;
