@@ -309,6 +309,15 @@ fn candidates(pieces: &Pieces, bins: usize, max_pairs: usize) -> Result<Vec<Cand
                     (min, max, i as u32)
                 })
                 .collect();
+            // Sweep along the screen axis that the turn moves least (a yaw spin's boxes grow
+            // only sideways, so sweeping down the screen meets few of them), with the boxes
+            // written (along, across).
+            if pieces.across_axis.y < pieces.across_axis.x {
+                for b in &mut boxes {
+                    b.0 = DVec2::new(b.0.y, b.0.x);
+                    b.1 = DVec2::new(b.1.y, b.1.x);
+                }
+            }
             boxes.sort_unstable_by(|a, b| a.0.x.total_cmp(&b.0.x));
             let mut keys = Vec::new();
             for (k, &(min_a, max_a, a)) in boxes.iter().enumerate() {
