@@ -26,6 +26,8 @@ pub(crate) struct Pieces<'a> {
     pub(crate) drawn: Vec<ArcSet>,
     /// Boxes grow by at least this (model units), beyond rounding.
     box_floor: f64,
+    /// The viewer's track along the spin, for event functions.
+    track: Track,
     /// The turning axis in centred model space (unit).
     axis_model: DVec3,
     /// Per view axis, `√(1 − aₑ²)` for the axis's view direction `a`: how much of a
@@ -56,6 +58,7 @@ impl<'a> Pieces<'a> {
         let axis_model = (b.transpose() * k).normalize();
         let axis_view = a * k;
         Pieces {
+            track: Track::of(spin),
             spin,
             set,
             sigma,
@@ -127,7 +130,7 @@ impl<'a> Pieces<'a> {
                 let mut separated = rest.clone();
                 for &v in cq {
                     let m = (b - a).cross(v - a) * self.sigma;
-                    let f = self.spin.facing_fn(&[m.x, m.y, m.z, m.dot(a)]);
+                    let f = self.track.event(m, m.dot(a));
                     if m == DVec3::ZERO || matches!(f.roots(), Roots::Identically) {
                         continue; // on the edge's line at every angle
                     }
@@ -167,7 +170,7 @@ impl<'a> Pieces<'a> {
                 for &v in cq {
                     let m = (b - a).cross(v - a);
                     if m != DVec3::ZERO {
-                        push(&self.spin.facing_fn(&[m.x, m.y, m.z, m.dot(a)]));
+                        push(&self.track.event(m, m.dot(a)));
                     }
                 }
             }
@@ -240,6 +243,37 @@ impl<'a> Pieces<'a> {
                 }
                 (a, b)
             }
+        }
+    }
+}
+
+/// The viewer along the spin, `p₀ + cos θ·p₁ + sin θ·p₂` with `w` (0: a direction, 1: the
+/// eye), and the sum of the `|pₖ|`: [`Spin::facing_fn`] without recomputing them per call.
+struct Track {
+    p: [DVec3; 3],
+    w: f64,
+    reach: f64,
+}
+
+impl Track {
+    fn of(spin: &Spin) -> Self {
+        let (p, w) = spin.viewer_track();
+        Track {
+            p,
+            w,
+            reach: p[0].length() + p[1].length() + p[2].length(),
+        }
+    }
+
+    /// `n·viewer(θ) − w·offset` as an event function (what `Spin::facing_fn` gives for the
+    /// row `[n, offset]`).
+    #[inline]
+    fn event(&self, n: DVec3, offset: f64) -> EventFn {
+        EventFn {
+            a: n.dot(self.p[1]),
+            b: n.dot(self.p[2]),
+            c: n.dot(self.p[0]) - self.w * offset,
+            scale: n.length() * self.reach + self.w * offset.abs(),
         }
     }
 }
