@@ -75,6 +75,21 @@ impl Default for SpinOptions {
     }
 }
 
+/// The layout size (pixels) of an element that shows a sprite's unit square: its extent at
+/// rest (the element is the whole square; a clip keeps part of it) times `oversize`, so
+/// that the browser rasters it at least at screen resolution; at least 8.
+pub(crate) fn layout_size(transform: &crate::SpriteTransform, oversize: f64) -> f64 {
+    let (mut lo, mut hi) = (DVec2::splat(f64::MAX), DVec2::splat(f64::MIN));
+    for uv in [DVec2::ZERO, DVec2::X, DVec2::ONE, DVec2::Y] {
+        let q = transform.apply(uv).truncate();
+        lo = lo.min(q);
+        hi = hi.max(q);
+    }
+    ((hi - lo).max_element().max(1.0) * oversize)
+        .ceil()
+        .max(8.0)
+}
+
 /// Percent of the turn at `degrees` of the animated parameter.
 fn percent(degrees: f64) -> f64 {
     degrees / 360.0 * 100.0
@@ -148,17 +163,7 @@ pub fn write_spin_html(
         } else {
             graph.brush(face).solid_colour(face)
         });
-        // Extent at rest (pixels) of the whole unit square (the element is the square; a
-        // clip keeps part of it), for the layout size.
-        let (mut lo, mut hi) = (DVec2::splat(f64::MAX), DVec2::splat(f64::MIN));
-        for uv in [DVec2::ZERO, DVec2::X, DVec2::ONE, DVec2::Y] {
-            let q = transform.apply(uv).truncate();
-            lo = lo.min(q);
-            hi = hi.max(q);
-        }
-        let size = ((hi - lo).max_element().max(1.0) * options.oversize)
-            .ceil()
-            .max(8.0);
+        let size = layout_size(transform, options.oversize);
         let unscale = DMat4::from_scale(DVec3::new(1.0 / size, 1.0 / size, 1.0));
         let class = |page: &mut String, name: &str, extra: &str, m: &DMat4| {
             let _ = writeln!(

@@ -5,7 +5,7 @@ use std::fmt::Write as _;
 
 use aspect_bake::{Bake, Spin};
 use face_sort::Geometry;
-use glam::{DMat3, DMat4, DVec2, DVec3};
+use glam::{DMat3, DMat4, DVec3};
 
 use crate::spin::SpinOptions;
 use crate::svg::hex;
@@ -407,15 +407,7 @@ pub fn write_culled_spin_html(
         let Some((transform, clip)) = graph.polygon_map(p as u32) else {
             continue;
         };
-        let (mut lo, mut hi) = (DVec2::splat(f64::MAX), DVec2::splat(f64::MIN));
-        for uv in [DVec2::ZERO, DVec2::X, DVec2::ONE, DVec2::Y] {
-            let q = transform.apply(uv).truncate();
-            lo = lo.min(q);
-            hi = hi.max(q);
-        }
-        let size = ((hi - lo).max_element().max(1.0) * options.oversize)
-            .ceil()
-            .max(8.0);
+        let size = crate::spin::layout_size(transform, options.oversize);
         let unscale = DMat4::from_scale(DVec3::new(1.0 / size, 1.0 / size, 1.0));
         let quads = match clip {
             None => vec![DMat4::IDENTITY],
