@@ -50,7 +50,7 @@ pub(crate) fn screenshot(browser: &Path, html: &str, name: &str) -> Vec<u8> {
 }
 
 /// Screenshots `html` at `size × size`.
-fn screenshot_at(browser: &Path, html: &str, name: &str, size: u32) -> Vec<u8> {
+pub(crate) fn screenshot_at(browser: &Path, html: &str, name: &str, size: u32) -> Vec<u8> {
     let dir = temp_dir(name);
     let page = dir.join("page.html");
     let shot = dir.join("shot.png");

@@ -10,13 +10,14 @@ use sprite_compose::aspect_bake::{Axis, PictureOptions, Spin, bake_picture, draw
 use sprite_compose::face_sort::{Geometry, View};
 use sprite_compose::{SpinOptions, write_culled_spin_html};
 
-use crate::browser::{chromium, screenshot};
+use crate::browser::{chromium, screenshot_at};
 use crate::support;
 use crate::writers::{SIZE, ids_of_rgba};
 
 const PERIOD_S: f64 = 8.0;
 
 fn check(name: &str, g: &Geometry, view: View, random: usize) {
+    let size = view.width();
     let Some(browser) = chromium() else {
         return;
     };
@@ -49,8 +50,8 @@ fn check(name: &str, g: &Geometry, view: View, random: usize) {
                 .with_paused_at(Some(t)),
         );
         let degrees = baked.domain.lo + 360.0 * t / PERIOD_S;
-        let rgba = screenshot(browser, &page, &format!("spin-culled-{name}-{t}"));
-        let shot = ids_of_rgba(SIZE, SIZE, &rgba);
+        let rgba = screenshot_at(browser, &page, &format!("spin-culled-{name}-{t}"), size);
+        let shot = ids_of_rgba(size, size, &rgba);
         let t_img = truth(&spin.view_at(degrees.to_radians()), g);
         let e = pixel_error(&shot, &t_img);
         if std::env::var("DIAG").is_ok() {
@@ -100,4 +101,17 @@ fn culled_spinning_pages_in_chromium_are_exact() {
             2,
         );
     }
+}
+
+/// The full spot (5,856 pieces, a 1.3 MB page) at 512 × 512. Not yet within the bar: at the
+/// last run most frames had 0 or 1 wrong pixel, but the frame 1 ms before the breakpoint near
+/// 301.6° had 49 of 17,809 wrong (undiagnosed; the oracle passes the cell's order there).
+#[test]
+#[ignore = "the full spot page: a minute in release; known to fail one frame (see the doc)"]
+fn the_full_spot_culled_page_in_chromium() {
+    let mesh = support::load_obj("keenan-crane/spot/spot_quadrangulated.obj");
+    let g = Geometry::with_exact_corners(&mesh).expect("a model");
+    let base = View::fit(&g.bounds(), 512, 512);
+    check("spot-full-ortho", &g, base, 3);
+    check("spot-full-persp", &g, base.with_perspective(1024.0), 3);
 }
