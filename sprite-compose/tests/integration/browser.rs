@@ -71,6 +71,9 @@ pub(crate) fn screenshot_at(browser: &Path, html: &str, name: &str, size: u32) -
             "--force-device-scale-factor=1",
             "--disable-composited-antialiasing",
             "--force-color-profile=srgb",
+            // Every layer rastered before the capture: without it, a large page's
+            // screenshot sometimes misses an element (background where a piece is).
+            "--run-all-compositor-stages-before-draw",
             &format!("--screenshot={}", shot.display()),
             &format!("--window-size={size},{size}"),
             &format!("file://{}", page.display()),
