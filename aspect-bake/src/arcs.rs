@@ -195,15 +195,7 @@ impl ArcSet {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn f(a: f64, b: f64, c: f64) -> EventFn {
-        EventFn {
-            a,
-            b,
-            c,
-            scale: a.abs() + b.abs() + c.abs(),
-        }
-    }
+    use crate::event::test_fn as f;
 
     #[test]
     fn sign_sets_match_the_function() {

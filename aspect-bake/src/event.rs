@@ -106,18 +106,22 @@ pub fn reduce(theta: f64, start: f64) -> f64 {
     if t >= start + TAU { start } else { t }
 }
 
+/// `a·cos θ + b·sin θ + c` with the sum of the magnitudes as its scale (tests).
+#[cfg(test)]
+pub(crate) fn test_fn(a: f64, b: f64, c: f64) -> EventFn {
+    EventFn {
+        a,
+        b,
+        c,
+        scale: a.abs() + b.abs() + c.abs(),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    fn f(a: f64, b: f64, c: f64) -> EventFn {
-        EventFn {
-            a,
-            b,
-            c,
-            scale: a.abs() + b.abs() + c.abs(),
-        }
-    }
+    use super::test_fn as f;
 
     #[test]
     fn two_roots_have_the_stated_crossing_directions() {

@@ -100,7 +100,7 @@ pub use build::{BakeOptions, Progress, bake, bake_sampled};
 pub use cells::{AngleRange, Bake, BakeCell, Breakpoint, Delta, Method, Sizes, cell_bytes};
 pub use event::{EventFn, Roots, reduce};
 pub use picture::{
-    PictureOptions, PictureStats, bake_picture, cell_list, culled_list, drawn_lists, verify_picture,
+    PictureOptions, PictureStats, bake_picture, cell_list, drawn_lists, verify_picture,
 };
 pub use source::{BspSource, CentroidSource, Event, EventSource};
 pub use two_axes::{

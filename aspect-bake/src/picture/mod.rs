@@ -494,20 +494,6 @@ pub fn drawn_lists(bake: &Bake, spin: &Spin) -> Result<Vec<Vec<u32>>, BakeError>
         .collect())
 }
 
-/// The draw list of cell order `order` at `view`, holding only the pieces the view draws
-/// (what a culling sink paints).
-pub fn culled_list(bake: &Bake, order: &[u32], view: &face_sort::View, list: &mut DrawList) {
-    let set = &bake.polygons;
-    let test = view.cull_test();
-    list.begin(set);
-    for &p in order {
-        let i = p as usize;
-        if test.is_drawn(set.plane(i), set.corners(i)[0]) {
-            list.push(p, set.face(i));
-        }
-    }
-}
-
 /// Cell `cell`'s whole order as a draw list whose sink culls
 /// ([`DrawList::set_sink_culls`]): what every consumer paints or judges at any angle of
 /// the cell, skipping the pieces the view does not draw.

@@ -47,10 +47,11 @@ fn margin(_f: &EventFn) -> f64 {
 impl<'a> Pieces<'a> {
     /// The pieces of `set` along `spin`, drawn where `sigma ×` facing is positive.
     pub(crate) fn new(spin: &'a Spin, set: &'a PolygonSet, sigma: f64, diagonal: f64) -> Self {
+        let track = Track::of(spin);
         let drawn = (0..set.len())
             .map(|i| {
                 let n = set.plane(i).normal() * sigma;
-                let f = spin.facing_fn(&[n.x, n.y, n.z, n.dot(set.corners(i)[0])]);
+                let f = track.event(n, n.dot(set.corners(i)[0]));
                 ArcSet::where_sign(&f, true, margin(&f))
             })
             .collect();
@@ -58,7 +59,7 @@ impl<'a> Pieces<'a> {
         let axis_model = (b.transpose() * k).normalize();
         let axis_view = a * k;
         Pieces {
-            track: Track::of(spin),
+            track,
             spin,
             set,
             sigma,
