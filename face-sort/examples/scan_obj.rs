@@ -17,7 +17,7 @@ fn main() {
             + 0.04 * (17.0 * d.z - 11.0 * d.y).sin()
     };
     let sphere = uv_sphere(264, 132);
-    let positions = sphere.positions().iter().map(|&d| d * radius(d)).collect();
+    let positions: Vec<DVec3> = sphere.positions().iter().map(|&d| d * radius(d)).collect();
     let mut faces: Vec<Vec<u32>> = Vec::new();
     for face in sphere.faces() {
         match face {

@@ -495,8 +495,7 @@ impl Bsp {
     /// This sorter drawing each split piece whole, per view, where nothing drawn between its
     /// fragments overlaps it on screen (`merge` true), or as the tree cut it (false, the
     /// default). Exact either way. Merged lists hold about as many items as the centroid
-    /// sort's (spot: 1.06–1.07× instead of 1.75×) for a per-view cost of many BSP traversals
-    /// (13–14× the centroid sort's on spot, docs/bench.md):
+    /// sort's, for a per-view cost of many BSP traversals (figures in docs/bench.md):
     /// every sink pays per item, so exporters (SVG, PDF, HTML, plotters) gain; an animation
     /// whose sink is cheap per item may not. Only [`FaceSorter::sort`] merges (it needs the
     /// projection), not [`Bsp::sort_culled`]. The name becomes `"bsp-merged"`.

@@ -799,7 +799,7 @@ mod tests {
     fn sphere_classification_is_side_of_polygon() {
         let torus = generate::torus(400);
         let away = DVec3::new(1e6, -3e5, 2e6);
-        let positions = torus.positions().iter().map(|&p| p + away).collect();
+        let positions: Vec<DVec3> = torus.positions().iter().map(|&p| p + away).collect();
         let mesh = crate::PolygonMesh::new(positions, torus.faces()).expect("valid torus");
         let geometry = Geometry::new(&mesh).expect("valid torus");
         let tolerance = PLANE_SIDE * geometry.bounds().diagonal();

@@ -21,10 +21,9 @@ const RADIX_MIN: usize = 1024;
 
 /// Sorts `keys` by depth (`f64::total_cmp`): a comparison sort for few keys, else a radix sort
 /// (8 bits a pass from the lowest; passes whose digit every key shares are skipped, which a
-/// model's depths, close in sign and exponent, make most of the high ones). On views that
-/// change every frame the radix sort took spot from 68 to 49 µs a frame, blub from 148 to
-/// 102 µs; under `RADIX_MIN` it was no faster (fandisk's 638 drawn pieces: 8.2 against 8.5 µs;
-/// `STEP=0.02 MODEL=… profile_frame centroid`).
+/// model's depths, close in sign and exponent, make most of the high ones). The radix sort
+/// pays off from `RADIX_MIN` keys on; below it, it is no faster than the comparison sort
+/// (measurements in docs/bench.md).
 fn sort_by_depth(keys: &mut Vec<(f64, u32)>, scratch: &mut Vec<(f64, u32)>) {
     if keys.len() < RADIX_MIN {
         keys.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));

@@ -50,9 +50,10 @@ pub(crate) struct EdgeNeighbours {
 impl EdgeNeighbours {
     /// Finds every piece's neighbours, by sorting: corners at the same position bit for bit
     /// become one vertex, then directed edges are sorted by their two vertices (O(n log n)
-    /// whatever the mesh; a hash map of corner positions took 3.4 s for the million-face
-    /// torus). Unlike the plotter's weld, `-0.0` and `0.0` stay apart: an edge missed that
-    /// way only leaves a boundary edge, and fewer pieces proved alone, never a wrong one.
+    /// whatever the mesh; a hash map of corner positions was too slow on the million-face
+    /// torus, docs/bench.md). Unlike the plotter's weld, `-0.0` and `0.0` stay apart: an edge
+    /// missed that way only leaves a boundary edge, and fewer pieces proved alone, never a
+    /// wrong one.
     pub(crate) fn new(pieces: &PolygonSet) -> Self {
         // Every corner, numbered in piece order, with its position's bits.
         let mut start = Vec::with_capacity(pieces.len() + 1);
@@ -160,8 +161,7 @@ pub(crate) struct Coverage {
     /// heights meet (`cell_edges[cell_start[c]..cell_start[c + 1]]`, likewise rows).
     /// A counting sort rather than a [`ScreenGrid`](crate::screen_grid::ScreenGrid): the
     /// edges are filed once per frame and never added to, and a `ScreenGrid` here made the
-    /// fragment merge 14 % slower on spot (805 against 705 µs per frame, `STEP=0.02
-    /// profile_frame bsp-merged`).
+    /// fragment merge slower (docs/bench.md).
     edges: Vec<BoundaryEdge>,
     /// Per boundary edge, the cells its box touches `(x0, x1, y0, y1)`.
     edge_cells: Vec<(usize, usize, usize, usize)>,

@@ -36,12 +36,10 @@ use crate::{DrawItem, View};
 
 /// Frames with more boundary edges than this per drawn piece stop test 1 once it has found
 /// them and send every split piece to test 2: where the surface folds over itself in much of
-/// the picture, few pieces are alone. `STEP=0.9 target/release/examples/profile_frame
-/// bsp-merged` over 400 frames, orthographic / `PERSP=1`, with no such stop against 0.5:
-/// suzanne (0.42–0.88 boundary edges per drawn piece) 163 / 155 µs → 142 / 130 µs; fandisk
-/// (0.35–0.72) 129 / 123 → 135 / 118 µs; spot and blub (at most 0.20) never stop. At 0.3 (as
-/// [`Newell`](crate::Newell) stops), fandisk took 149 µs: test 2 costs more per piece than
-/// Newell's cascade.
+/// the picture, few pieces are alone. The stop pays on models that fold over themselves
+/// (suzanne) and is about even on fandisk; spot and blub stay below it and never stop. It is
+/// higher than the threshold at which [`Newell`](crate::Newell) stops, since test 2 costs more
+/// per piece than Newell's cascade (measurements in docs/bench.md).
 const TEST_1_MAX_EDGES_PER_PIECE: f64 = 0.5;
 
 /// What the tree gives the merge.

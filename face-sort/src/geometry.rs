@@ -39,6 +39,21 @@ impl Geometry {
         Self::new_in_frame(mesh, bounds)
     }
 
+    /// Whether `view` belongs to this geometry: its centre must be the geometry's centre,
+    /// the origin of the pieces' (centred) coordinates. Views from
+    /// [`Camera::view`](crate::Camera::view) and `View::fit(&geometry.bounds(), ..)` are.
+    pub fn check_view(&self, view: &crate::View) -> Result<(), crate::CameraError> {
+        let (view_centre, centre) = (view.centre(), self.bounds.centre());
+        if view_centre == centre {
+            Ok(())
+        } else {
+            Err(crate::CameraError::CentreMismatch {
+                view: view_centre,
+                geometry: centre,
+            })
+        }
+    }
+
     /// Cuts `mesh` into pieces centred on `frame`'s centre, with `frame` as the bounds that
     /// views are fitted to and tolerances are relative to, instead of the mesh's own: for
     /// a part of a larger scene (a [`SceneSorter`](crate::SceneSorter)'s clusters, or its

@@ -34,8 +34,10 @@
 
 mod bsp;
 mod bsp_builder;
+mod camera;
 mod centroid;
 pub mod colours;
+mod convert;
 mod coverage;
 mod draw_list;
 mod error;
@@ -61,7 +63,9 @@ mod topological;
 mod view;
 
 pub use bsp::{Bsp, BspFallback, BspOptions, BspTree};
+pub use camera::{Camera, CameraError, ClipSpace, Lens};
 pub use centroid::Centroid;
+pub use convert::{Matrix4, Point3};
 pub use draw_list::{DrawItem, DrawList};
 pub use error::{BspError, MeshError};
 pub use geometry::Geometry;

@@ -20,12 +20,17 @@ pub struct PolygonMesh {
 }
 
 impl PolygonMesh {
-    /// Validates and builds a mesh. Face order is kept: face `i` is the `i`-th list.
-    pub fn new<F, I>(positions: Vec<DVec3>, faces: F) -> Result<Self, MeshError>
+    /// Validates and builds a mesh from positions (`[f32; 3]`, `[f64; 3]`, glam vectors or,
+    /// with the `mint` feature, mint points: whatever [`Point3`](crate::Point3) converts,
+    /// owned or borrowed as arrays) and faces (lists of position indices). Face order is
+    /// kept: face `i` is the `i`-th list.
+    pub fn new<P, F, I>(positions: impl IntoIterator<Item = P>, faces: F) -> Result<Self, MeshError>
     where
+        P: Into<crate::Point3>,
         F: IntoIterator<Item = I>,
         I: AsRef<[u32]>,
     {
+        let positions: Vec<DVec3> = positions.into_iter().map(|p| p.into().0).collect();
         if let Some(vertex) = positions.iter().position(|p| !p.is_finite()) {
             return Err(MeshError::NonFinitePosition { vertex });
         }

@@ -16,19 +16,16 @@ use crate::{
 };
 
 /// Frames drawing fewer pieces skip the coverage test: the cascade over so few costs less
-/// than the test's grid (with the test on every frame, a `cargo xtask bench --full` run before
-/// 9d01b36, not committed, had Newell at 62–96× the centroid sort on the book, cornell box and
-/// boxes scenes, 9–48 pieces; docs/bench.md on 46d30c2 has 24–35× without).
+/// than the test's grid (with the test on every frame, Newell was several times slower on the
+/// book, cornell box and boxes scenes, 9–48 pieces; see docs/bench.md).
 const COVERAGE_MIN_PIECES: usize = 64;
 
 /// Frames with more boundary edges (silhouettes, the mesh's own boundary) than this per
 /// drawn piece stop the coverage test once it has found them: the surface folds over itself
 /// in much of the picture, few pieces are alone, and the test costs more than the cascade
-/// it spares. Per frame, over 400 frames (`target/release/examples/profile_frame newell`,
-/// `MODEL=…`): suzanne has 0.42–0.88 boundary edges per drawn piece and 14–32 % of its
-/// pieces alone, and stopping the test there took it from 340 to 275 µs; fandisk has
-/// 0.35–0.72 and 27–70 %, 177 to 169 µs; spot has 0.13–0.20 (56–79 % alone) and blub
-/// 0.05–0.11 (53–88 %), and keep the test.
+/// it spares. Models that fold over themselves (suzanne, fandisk) cross it and gain from the
+/// stop; smooth ones (spot, blub) stay below it and keep the test (per-frame figures in
+/// docs/bench.md).
 const COVERAGE_MAX_EDGES_PER_PIECE: f64 = 0.3;
 
 /// Per-frame data of one polygon in the working list.
@@ -61,12 +58,10 @@ struct Work {
 /// drawn first, in piece order, found by a coverage test (`coverage.rs`) over the pieces' edge
 /// neighbours, found when the sorter is made. For one picture they cost more than they save:
 /// [`Newell::without_coverage`] skips them, and the planner makes that one for fewer frames
-/// than it takes them to pay back (`cargo xtask oneshot` on a 69k-triangle blob: 1.165× the
-/// centroid sort's whole-process time with them, 1.16× without, face-sort's README). A frame
-/// where the surface folds over
-/// itself in much of the picture (many boundary edges per drawn piece) stops the test early
-/// and sends every piece through the cascade; [`SorterStats::drawn_alone`] counts the
-/// pieces the test spared.
+/// than it takes them to pay back (whole-process figures in docs/bench.md). A frame where the
+/// surface folds over itself in much of the picture (many boundary edges per drawn piece)
+/// stops the test early and sends every piece through the cascade;
+/// [`SorterStats::drawn_alone`] counts the pieces the test spared.
 ///
 /// Exact: the property tests and the book grid check zero order violations. Cost grows with
 /// the number of overlapped pieces and of pairs whose depth extents overlap; nothing carries
@@ -129,9 +124,7 @@ enum Action {
 
 impl Newell {
     /// A Newell sorter over a geometry's pieces, with their edge neighbours for the coverage
-    /// test (0.3–1.0 µs per piece: 2.0–2.1 ms on spot's 5,854 pieces, `cargo run --release -p
-    /// face-sort --example stats`; 1.0 s on the million-face torus, `cargo xtask bench
-    /// --full`, docs/bench.md on 46d30c2).
+    /// test (a one-time set-up per piece, paid here; its cost is in docs/bench.md).
     #[must_use]
     pub fn new(geometry: &Geometry) -> Self {
         Newell {

@@ -78,7 +78,7 @@ fn project_all(view: &View, list: &DrawList) -> Projected {
         });
         let plane = list.plane(item);
         p.planes
-            .push((view.to_view(plane.normal()), plane.offset()));
+            .push(view.plane_to_view(plane.normal(), plane.offset()));
     }
     p
 }

@@ -94,13 +94,11 @@ impl Strategy {
 /// Measured with `cargo run --release -p face-sort --example plan_costs` (spot, blub and
 /// generated tori, orthographic; the example prints these medians) on the reference
 /// machine's two cores: the BSP build uses every core ([`BspOptions::threads`]), so on one
-/// core it costs about 1.2–1.7× more (`cargo run --release -p face-sort --example stats`:
-/// spot's whole build 33 ms against 22–27 ms on two, blub's 86 against 50 ms). On that
-/// run the build per piece and level stayed within 251–292 ns from 5,854 to 40,000 pieces:
-/// the `n log n` model fits since large sets may split at a median plane. The break-even is
-/// about 40 frames for spot. `Newell`'s own set-up (its pieces' edge neighbours, 0.3–1.0 µs
-/// per piece: 2.0–2.1 ms on spot, 1.0 s on a million faces) is left out: counted, it would
-/// move spot's break-even from about 40 to about 36 frames.
+/// core it costs more. The build per piece and level stays nearly constant as the piece
+/// count grows: the `n log n` model fits since large sets may split at a median plane.
+/// `Newell`'s own set-up (its pieces' edge neighbours) is left out: counted, it would move
+/// the break-even frame count between the two only a little. The measurements are in
+/// docs/bench.md.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CostModel {
     /// BSP build, per piece and per level (`n · log2 n` pieces·levels).
@@ -149,19 +147,13 @@ pub struct Plan {
 }
 
 /// From this many frames on, the planner's [`Newell`] finds its pieces' edge neighbours for
-/// the coverage test. They pay for themselves after about 10 frames on spot (2.1 ms once,
-/// `cargo run --release -p face-sort --example stats`, against 0.20–0.24 ms saved a frame:
-/// 775–811 µs without the test, 575–580 µs with it, `target/release/examples/profile_frame
-/// newell` with and without `COVERAGE=none`, two runs each), about 6 on blub (5.3–5.4 ms once,
-/// 0.93–0.96 ms a frame: 2,069–2,071 against 1,108–1,139 µs), and about 10 on the bumpy 10k
-/// torus (7.0–7.8 ms once in a one-off timing of `Newell::new`, 0.7 ms a frame: 2,474–2,496
-/// against 1,762–1,797 µs, `torus_obj 10000`); on the bumpy 1k torus, fandisk and suzanne
-/// they barely pay or not at all (the test stops on meshes that fold over themselves, and
-/// small cascades are cheap), and on 64 separate spheres never (the planner orders those as convex parts). Since
-/// Newell's cascade queries its screen grid in depth order, a frame without the test costs
-/// far less than before (spot 1.45 ms a frame before the coverage test existed, in the
-/// per-frame table of face-sort's README), so the test pays back later than the 3–5
-/// frames it did then.
+/// the coverage test: about as many frames as that one-time set-up takes to pay for itself
+/// on spot, blub and the bumpy 10k torus. On the bumpy 1k torus, fandisk and suzanne it
+/// barely pays or not at all (the test stops on meshes that fold over themselves, and small
+/// cascades are cheap), and on 64 separate spheres never (the planner orders those as convex
+/// parts). Since Newell's cascade queries its screen grid in depth order, a frame without the
+/// test costs far less than before the test existed, so the test pays back later than it did
+/// then. The measurements are in docs/bench.md.
 const NEWELL_COVERAGE_FRAMES: u64 = 10;
 
 /// What a [`Plan`]'s analysis found for its sorter.

@@ -22,10 +22,8 @@ pub const DEGENERATE_AREA: f64 = 1e-12;
 /// violations of `3e-9 · L` on a UV sphere moved by 1e6 and 1e7 units (faces seen at
 /// `sin θ ≈ 3e-3`, pieces one rounding apart); `1e-12` keeps such errors inside
 /// [`ORACLE_DEPTH`] down to `sin θ = 1e-3` (face-sort/tests/stress.rs). Tighter costs
-/// fragments on CAD models with near-coplanar neighbours: fandisk (moved by 1e3, `cargo
-/// xtask stress --only fandisk`) got 1,114 extra BSP fragments at `1e-11`, 1,136 at
-/// `1e-12`, 1,194 at `1e-13` with the splitter choice of the time (927 at `1e-12` since the
-/// splitter pre-selection, 4f04f46).
+/// fragments on CAD models with near-coplanar neighbours, such as fandisk moved by 1e3
+/// (`cargo xtask stress --only fandisk`; counts in docs/bench.md).
 pub const PLANE_SIDE: f64 = 1e-12;
 
 /// A corner within `ON_PLANE · L` of its planar face's plane is on it already and keeps its
@@ -44,6 +42,14 @@ pub const ORACLE_DEPTH: f64 = 1e-9;
 /// Two projections overlap "with positive area" when their intersection is larger than
 /// `OVERLAP_AREA · L²` (in view units, resolution-free).
 pub const OVERLAP_AREA: f64 = 1e-14;
+
+/// Relative: how far a camera's matrices may be from exact before they are refused
+/// ([`Camera`](crate::Camera)): a view matrix's 3 × 3 part from orthonormal (`|MᵀM − I|`),
+/// the entries a projection must have zero (relative to its focal terms), and its last row
+/// from `(0, 0, −1, 0)` or `(0, 0, 0, 1)`. f32 matrices carry about `1e-7` of rounding;
+/// anything beyond `1e-4` is a scale, a shear or a different kind of matrix. Rotations that
+/// pass are orthonormalised, so this bounds what is accepted, not the accuracy of the view.
+pub const CAMERA_MATRIX: f64 = 1e-4;
 
 /// Perspective near plane: geometry is clipped to `w ≥ NEAR_W` (CONVENTIONS.md).
 pub const NEAR_W: f64 = 1e-3;

@@ -42,9 +42,16 @@ pub enum FrontFace {
 
 /// A view of a model per CONVENTIONS.md.
 ///
-/// `v = R · (p − c)` (view space, model units), `q = s · v` (pixel space),
-/// orthographic `x = W/2 + q.x, y = H/2 − q.y`; perspective `w = 1 − q.z/d`,
-/// `x = W/2 + q.x/w, y = H/2 − q.y/w`.
+/// `v = R · (p − c) + t` (view space, model units), `q = s · v` (pixel space),
+/// orthographic `x = x₀ + q.x, y = y₀ − q.y`; perspective `w = 1 − q.z/d`,
+/// `x = x₀ + q.x/w, y = y₀ − q.y/w`. The view offset `t` is zero and the principal point
+/// `(x₀, y₀)` is the image centre `(W/2, H/2)` unless a [`Camera`](crate::Camera) (or
+/// [`with_view_offset`](Self::with_view_offset), [`with_principal_point`](Self::with_principal_point))
+/// sets them.
+///
+/// The centre `c` must be the centre of the [`Geometry`](crate::Geometry) the view is used
+/// with (its frame's centre): [`Geometry::check_view`](crate::Geometry::check_view) says
+/// whether it is, and [`Camera::view`](crate::Camera::view) builds views that are.
 ///
 /// Most methods take **centred** model coordinates `p − c`, the coordinates of
 /// [`PolygonSet`](crate::PolygonSet).
@@ -60,6 +67,8 @@ pub struct View {
     cull: CullMode,
     front: FrontFace,
     cull_margin_deg: f64,
+    offset: DVec3,
+    principal: Option<DVec2>,
 }
 
 impl View {
@@ -80,6 +89,8 @@ impl View {
             cull: CullMode::Back,
             front: FrontFace::CounterClockwise,
             cull_margin_deg: 0.0,
+            offset: DVec3::ZERO,
+            principal: None,
         }
     }
 
@@ -95,10 +106,14 @@ impl View {
         self
     }
 
-    /// Any rotation matrix (assumed orthonormal).
+    /// A rotation matrix, orthonormalised here (through a normalised quaternion), so a
+    /// rotation that is orthonormal only to f32 precision, as `glam::Mat3` look-at matrices
+    /// are, enters exact. A matrix far from a rotation (scaled, sheared, mirrored) gives an
+    /// unspecified rotation: [`Camera`](crate::Camera) checks matrices and refuses those
+    /// with a [`CameraError`](crate::CameraError).
     #[must_use]
     pub fn with_rotation(mut self, rotation: DMat3) -> Self {
-        self.rotation = rotation;
+        self.rotation = crate::camera::orthonormalised(rotation);
         self
     }
 
@@ -148,6 +163,23 @@ impl View {
     #[must_use]
     pub fn with_cull_margin(mut self, degrees: f64) -> Self {
         self.cull_margin_deg = degrees;
+        self
+    }
+
+    /// The view offset `t` (view space, model units): `v = R · (p − c) + t`. Default: zero.
+    /// It moves the model relative to the eye without changing the centre `c`, so the
+    /// geometry (and a sorter built from it) serves every camera.
+    #[must_use]
+    pub fn with_view_offset(mut self, offset: DVec3) -> Self {
+        self.offset = offset;
+        self
+    }
+
+    /// The principal point `(x₀, y₀)` in pixels: where the view axis meets the image.
+    /// Default: the image centre.
+    #[must_use]
+    pub fn with_principal_point(mut self, x: f64, y: f64) -> Self {
+        self.principal = Some(DVec2::new(x, y));
         self
     }
 
@@ -209,12 +241,46 @@ impl View {
     pub fn cull_margin(&self) -> f64 {
         self.cull_margin_deg
     }
+    /// The view offset `t` (view space, model units).
+    #[must_use]
+    pub fn view_offset(&self) -> DVec3 {
+        self.offset
+    }
+    /// The principal point `(x₀, y₀)` in pixels.
+    #[must_use]
+    pub fn principal_point(&self) -> DVec2 {
+        self.principal
+            .unwrap_or(DVec2::new(f64::from(self.width), f64::from(self.height)) * 0.5)
+    }
 
-    /// View-space position of a centred model point: `R · p`.
+    /// View-space position of a centred model point: `R · p + t`.
     #[inline]
     #[must_use]
     pub fn to_view(&self, centred: DVec3) -> DVec3 {
-        self.rotation * centred
+        self.rotation * centred + self.offset
+    }
+
+    /// View-space direction of a model-space direction (a normal, an axis): `R · d`.
+    #[inline]
+    #[must_use]
+    pub fn direction_to_view(&self, direction: DVec3) -> DVec3 {
+        self.rotation * direction
+    }
+
+    /// The view-space plane `n′ · v = offset′` of the centred plane `n · p = offset`:
+    /// `n′ = R · n`, `offset′ = offset + n′ · t`.
+    #[inline]
+    #[must_use]
+    pub fn plane_to_view(&self, normal: DVec3, offset: f64) -> (DVec3, f64) {
+        let n = self.rotation * normal;
+        (n, offset + n.dot(self.offset))
+    }
+
+    /// The centred model point of a view-space point: `Rᵀ · (v − t)`.
+    #[inline]
+    #[must_use]
+    pub fn to_centred(&self, view_point: DVec3) -> DVec3 {
+        self.rotation.transpose() * (view_point - self.offset)
     }
 
     /// Eye position in view space, `(0, 0, d/s)`; `None` when orthographic.
@@ -232,10 +298,9 @@ impl View {
     /// `Direction(unit vector toward the viewer)` for orthographic.
     #[must_use]
     pub fn viewer(&self) -> Viewer {
-        let back = self.rotation.transpose();
         match self.eye_in_view() {
-            Some(eye) => Viewer::Eye(back * eye),
-            None => Viewer::Direction(back * DVec3::Z),
+            Some(eye) => Viewer::Eye(self.to_centred(eye)),
+            None => Viewer::Direction(self.rotation.transpose() * DVec3::Z),
         }
     }
 
@@ -253,7 +318,7 @@ impl View {
     pub fn homogeneous_pixel(&self, centred: DVec3) -> DVec3 {
         let v = self.to_view(centred);
         let w = self.w_of_view_point(v);
-        let half = DVec2::new(f64::from(self.width), f64::from(self.height)) * 0.5;
+        let half = self.principal_point();
         let q = v * self.scale;
         DVec3::new(half.x * w + q.x, half.y * w - q.y, w)
     }
@@ -273,7 +338,7 @@ impl View {
     /// in front of the eye, so every tangent points forward).
     #[must_use]
     pub fn project_sphere(&self, centre: DVec3, radius: f64) -> Option<(DVec2, DVec2)> {
-        let half = DVec2::new(f64::from(self.width), f64::from(self.height)) * 0.5;
+        let half = self.principal_point();
         let u = self.to_view(centre) * self.scale;
         let r = radius * self.scale;
         match self.projection {
@@ -307,7 +372,7 @@ impl View {
     /// Pixel position of view-space point `v` whose `w` is `w`.
     #[inline]
     fn pixel_of(&self, v: DVec3, w: f64) -> DVec2 {
-        let half = DVec2::new(f64::from(self.width), f64::from(self.height)) * 0.5;
+        let half = self.principal_point();
         let q = v * self.scale;
         DVec2::new(half.x + q.x / w, half.y - q.y / w)
     }
@@ -540,7 +605,7 @@ impl PixelRays {
     #[must_use]
     pub fn new(view: &View) -> Self {
         PixelRays {
-            half: DVec2::new(f64::from(view.width()), f64::from(view.height())) * 0.5,
+            half: view.principal_point(),
             inverse_scale: 1.0 / view.scale(),
             eye: view.eye_in_view().map(|e| e.z),
         }

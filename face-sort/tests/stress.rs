@@ -8,7 +8,7 @@ use face_sort::{
 /// `mesh` with every position moved by `offset` (stored rounded, as a file far from the
 /// origin would hold them).
 fn moved(mesh: &PolygonMesh, offset: DVec3) -> PolygonMesh {
-    let positions = mesh.positions().iter().map(|&p| p + offset).collect();
+    let positions: Vec<DVec3> = mesh.positions().iter().map(|&p| p + offset).collect();
     PolygonMesh::new(positions, mesh.faces()).unwrap()
 }
 
@@ -77,7 +77,7 @@ fn the_sphere_at_the_origin_is_still_ordered_by_culling_alone() {
 fn out_of_range_sizes_are_a_typed_error() {
     let sphere = face_sort::generate::uv_sphere(16, 8);
     let scaled = |s: f64| {
-        let positions = sphere.positions().iter().map(|&p| p * s).collect();
+        let positions: Vec<DVec3> = sphere.positions().iter().map(|&p| p * s).collect();
         PolygonMesh::new(positions, sphere.faces()).unwrap()
     };
     for (scale, exponent) in [(1e100, 100), (1e-100, -100), (1e300, 300)] {

@@ -126,7 +126,7 @@ pub(crate) struct GridShader<'a> {
     normal: DVec3,
     /// Ground plane offset in view space (`normal · v = offset`).
     offset: f64,
-    inverse_rotation: face_sort::glam::DMat3,
+    view: View,
     /// Ground origin in centred model space.
     origin: DVec3,
     /// Canvas pixels per view pixel (supersampling factor).
@@ -147,13 +147,13 @@ fn smoothstep(e0: f64, e1: f64, x: f64) -> f64 {
 impl<'a> GridShader<'a> {
     pub(crate) fn new(grid: &'a GroundGrid, view: &View, factor: f64) -> Self {
         let origin = grid.origin - view.centre();
-        let normal = view.to_view(DVec3::Y);
+        let (normal, offset) = view.plane_to_view(DVec3::Y, origin.y);
         GridShader {
             grid,
             caster: PixelRays::new(view),
             normal,
-            offset: origin.y,
-            inverse_rotation: view.rotation().transpose(),
+            offset,
+            view: *view,
             origin,
             factor,
             thin: unit_colour(grid.thin),
@@ -171,7 +171,7 @@ impl<'a> GridShader<'a> {
         }
         let t = (self.offset - self.normal.dot(o)) / denom;
         let v = o + d * t;
-        let m = self.inverse_rotation * v - self.origin;
+        let m = self.view.to_centred(v) - self.origin;
         let cos = (denom / d.length()).abs();
         m.is_finite().then_some((DVec2::new(m.x, m.z), cos))
     }

@@ -47,7 +47,7 @@ impl Truth {
 /// The view-space normal and offset of a centred-model-space plane.
 #[inline]
 pub(crate) fn view_plane(view: &View, plane: &Plane) -> (DVec3, f64) {
-    (view.to_view(plane.normal()), plane.offset())
+    view.plane_to_view(plane.normal(), plane.offset())
 }
 
 /// Computes the truth of `geometry` under `view`: per pixel centre, among the pieces the view

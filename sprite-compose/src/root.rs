@@ -7,10 +7,11 @@ use glam::{DMat3, DMat4, DVec3, DVec4, EulerRot};
 /// [`SpriteSpace`](crate::SpriteSpace) (rest pixel space, y down) and giving homogeneous pixel
 /// coordinates (`x / w`, `y / w` are CONVENTIONS.md's pixel position).
 ///
-/// `root = T(O) · P · (F R F) · T(−O)`, with `O = (W/2, H/2, 0)`, `F = diag(1, −1, 1)` (the
-/// model's rotation `R` written in y-down pixel axes) and `P` the identity with
-/// `M34 = −1/d` under perspective (row 4, column 3: `w = 1 − z/d`), the identity when
-/// orthographic.
+/// `root = T(P₀) · P · T(F·s·t) · (F R F) · T(−O)`, with `O = (W/2, H/2, 0)` the sprite
+/// space origin, `P₀` the view's principal point (`O` unless a camera moves it),
+/// `F = diag(1, −1, 1)` (the model's rotation `R` written in y-down pixel axes), `t` the
+/// view offset and `P` the identity with `M34 = −1/d` under perspective (row 4, column 3:
+/// `w = 1 − z/d`), the identity when orthographic.
 #[must_use]
 pub fn root_transform(view: &View) -> DMat4 {
     let origin = DVec3::new(
@@ -21,7 +22,13 @@ pub fn root_transform(view: &View) -> DMat4 {
     let flip = DMat3::from_diagonal(DVec3::new(1.0, -1.0, 1.0));
     let rotation = DMat4::from_mat3(flip * view.rotation() * flip);
     let perspective = perspective_matrix(view.projection());
-    DMat4::from_translation(origin) * perspective * rotation * DMat4::from_translation(-origin)
+    let principal = view.principal_point().extend(0.0);
+    let offset = flip * view.view_offset() * view.scale();
+    DMat4::from_translation(principal)
+        * perspective
+        * DMat4::from_translation(offset)
+        * rotation
+        * DMat4::from_translation(-origin)
 }
 
 /// The perspective part of the root: identity, or `M34 = −1/d`.
@@ -61,10 +68,15 @@ mod tests {
             min: DVec3::new(-1.0, -2.0, -0.5),
             max: DVec3::new(3.0, 1.0, 2.0),
         };
-        for perspective in [false, true] {
+        for (perspective, camera) in [(false, false), (true, false), (false, true), (true, true)] {
             let mut view = View::fit(&bounds, 300, 200).with_yaw_pitch_roll(35.0, 25.0, -10.0);
             if perspective {
                 view = view.with_perspective(300.0);
+            }
+            if camera {
+                view = view
+                    .with_view_offset(DVec3::new(0.4, -0.3, -1.5))
+                    .with_principal_point(170.0, 90.0);
             }
             let root = root_transform(&view);
             let space = SpriteSpace::of_view(&view);

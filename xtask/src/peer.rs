@@ -44,7 +44,6 @@ impl PlaneSplitPeer {
     /// of polygons in the order (fragments included).
     pub fn frame(&mut self, view: &View) -> usize {
         let cull = view.cull_test();
-        let rotation = view.rotation();
         let scale = view.scale();
         self.splitter.reset();
         for i in 0..self.pieces.len() {
@@ -53,7 +52,7 @@ impl PlaneSplitPeer {
                 continue;
             }
             self.view.clear();
-            self.view.extend(corners.iter().map(|&c| rotation * c));
+            self.view.extend(corners.iter().map(|&c| view.to_view(c)));
             let points = match view.projection() {
                 Projection::Orthographic => {
                     for v in self.view.iter_mut() {
@@ -115,7 +114,6 @@ impl PlaneSplitPeer {
     /// mapped back to centred model space), for the oracle and the pixel error.
     pub fn write_draw_list(&mut self, view: &View, list: &mut DrawList) {
         let order: Vec<Polygon<usize>> = self.splitter.sort(Vector3D::new(0.0, 0.0, 1.0)).to_vec();
-        let back = view.rotation().transpose();
         let scale = view.scale();
         list.begin(&self.pieces);
         let mut corners: Vec<DVec3> = Vec::with_capacity(4);
@@ -127,7 +125,7 @@ impl PlaneSplitPeer {
                     Projection::Orthographic => s,
                     Projection::Perspective { distance } => s / (1.0 + s.z / distance),
                 };
-                let c = back * (q / scale);
+                let c = view.to_centred(q / scale);
                 if corners
                     .last()
                     .is_none_or(|&last: &DVec3| last.distance_squared(c) > 0.0)

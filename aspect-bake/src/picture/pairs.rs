@@ -200,7 +200,8 @@ impl<'a> Pieces<'a> {
         let rays = PixelRays::new(&view);
         let depth = |k: usize| {
             let plane = self.set.plane(k);
-            rays.depth(centroid, view.to_view(plane.normal()), plane.offset())
+            let (n, offset) = view.plane_to_view(plane.normal(), plane.offset());
+            rays.depth(centroid, n, offset)
         };
         Some(depth(i) > depth(j))
     }

@@ -37,7 +37,7 @@ impl Light {
     /// faces (sprite brushes); the raster shades each drawn piece by its own plane.
     #[must_use]
     pub fn facing_factor(&self, view: &View, normal: DVec3) -> f64 {
-        let mut n = view.to_view(normal.normalize_or_zero());
+        let mut n = view.direction_to_view(normal.normalize_or_zero());
         if n.z < 0.0 {
             n = -n;
         }
@@ -56,7 +56,7 @@ pub fn shade_colour(colour: [u8; 4], factor: f64) -> [u8; 4] {
 /// Lambert factor of a drawn item under a light (its own plane, turned toward the viewer
 /// by the CONVENTIONS.md facing test of the view's projection).
 pub(super) fn lambert(view: &View, list: &DrawList, item: DrawItem, light: &Light) -> f64 {
-    let mut n = view.to_view(list.plane(item).normal());
+    let mut n = view.direction_to_view(list.plane(item).normal());
     let toward_viewer = match view.projection() {
         Projection::Orthographic => n.z,
         Projection::Perspective { .. } => {

@@ -198,5 +198,5 @@ fn unproject(view: &View, list: &DrawList, item: DrawItem, p: DVec2) -> DVec3 {
     let (n, offset) = crate::truth::view_plane(view, list.plane(item));
     let (o, d) = caster.ray(p);
     let t = (offset - n.dot(o)) / n.dot(d);
-    view.rotation().transpose() * (o + d * t)
+    view.to_centred(o + d * t)
 }

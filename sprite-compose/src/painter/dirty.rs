@@ -36,7 +36,11 @@ impl Dirty {
             self.root = true;
             self.sort = true;
         }
-        if old.rotation() != new.rotation() || old.projection() != new.projection() {
+        if old.rotation() != new.rotation()
+            || old.projection() != new.projection()
+            || old.view_offset() != new.view_offset()
+            || old.principal_point() != new.principal_point()
+        {
             self.root = true;
             self.sort = true;
         }

@@ -101,14 +101,15 @@ pub fn run(args: &BenchArgs) -> Result<ExitCode> {
         let docs = crate::workspace_root().join("docs");
         let text = std::fs::read_to_string(docs.join("bench.md"))
             .with_context(|| format!("reading {}", docs.join("bench.md").display()))?;
-        let rows = report::parse_rows(&text)?;
+        let text = report::split_notes(&text).0;
+        let rows = report::parse_rows(text)?;
         write(&docs.join("bench.svg"), &chart::chart_svg(&rows)?)?;
         println!(
             "redrew {} from {} rows",
             docs.join("bench.svg").display(),
             rows.len()
         );
-        let scaling = report::parse_scaling(&text)?;
+        let scaling = report::parse_scaling(text)?;
         if !scaling.is_empty() {
             write(
                 &docs.join("bench-scaling.svg"),
@@ -222,7 +223,15 @@ pub fn run(args: &BenchArgs) -> Result<ExitCode> {
     if args.docs {
         let docs = crate::workspace_root().join("docs");
         std::fs::create_dir_all(&docs)?;
-        write(&docs.join("bench.md"), &table)?;
+        // Keep the hand-written notes that follow the generated report.
+        let old = std::fs::read_to_string(docs.join("bench.md")).unwrap_or_default();
+        let notes = report::split_notes(&old).1;
+        let text = if notes.is_empty() {
+            table.clone()
+        } else {
+            format!("{}\n\n{notes}", table.trim_end())
+        };
+        write(&docs.join("bench.md"), &text)?;
         write(&docs.join("bench.svg"), &chart)?;
         if let Some(svg) = &scaling_chart {
             write(&docs.join("bench-scaling.svg"), svg)?;

@@ -14,10 +14,9 @@ use crate::scenes::Scene;
 /// Yaw turned between two timed frames, degrees: each timed frame orders a view no frame
 /// ordered just before, as an animation does (a slow orbit: 1.2° per second at 60 frames per
 /// second). Timing one view over and over instead lets the CPU's branch predictors learn a
-/// sort's comparisons: before the centroid sort became a radix sort, it ran spot in 45 µs per
-/// frame on a repeated view and 62–67 µs on views turning by 0.01–7.3° per frame (`STEP=…
-/// MODEL=… cargo run --release -p face-sort --example profile_frame centroid`, `STEP=0` for
-/// the repeated view), while the BSP's time did not move.
+/// sort's comparisons: before the centroid sort became a radix sort, it ran markedly faster
+/// on a repeated view than on turning views, while the BSP's time did not move (figures in
+/// docs/bench.md).
 pub(super) const TURN_PER_FRAME_DEG: f64 = 0.02;
 
 /// The bench's views of a scene: `yaws` yaws (offset from the axes) × pitches, each with the

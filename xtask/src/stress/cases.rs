@@ -9,7 +9,7 @@ pub(super) fn mapped(
     mesh: &PolygonMesh,
     f: impl Fn(DVec3) -> DVec3,
 ) -> Result<PolygonMesh, String> {
-    let positions = mesh.positions().iter().map(|&p| f(p)).collect();
+    let positions: Vec<DVec3> = mesh.positions().iter().map(|&p| f(p)).collect();
     PolygonMesh::new(positions, mesh.faces()).map_err(|e| format!("MeshError: {e}"))
 }
 
