@@ -263,6 +263,25 @@ impl Camera {
         Ok(camera)
     }
 
+    /// A camera placed by its pose: `camera_to_model` maps camera space (looking down −Z,
+    /// +Y up) to model space, as a glTF camera node's world matrix or an engine's camera
+    /// transform does. Its 3 × 3 part must be a rotation to [`CAMERA_MATRIX`] (no scale, no
+    /// mirror); it is orthonormalised.
+    pub fn from_pose(camera_to_model: impl Into<Matrix4>, lens: Lens) -> Result<Self, CameraError> {
+        let pose = camera_to_model.into().0;
+        if !pose.is_finite() {
+            return Err(CameraError::NotFinite { what: "pose" });
+        }
+        if pose.row(3) != DVec4::W {
+            return Err(CameraError::NotARotation {
+                deviation: (pose.row(3) - DVec4::W).abs().max_element(),
+                limit: CAMERA_MATRIX,
+            });
+        }
+        let rotation = checked_rotation(DMat3::from_mat4(pose))?.transpose();
+        Self::new(pose.w_axis.truncate(), rotation, lens)
+    }
+
     fn new(eye: DVec3, rotation: DMat3, lens: Lens) -> Result<Self, CameraError> {
         check_lens(&lens)?;
         Ok(Camera {
@@ -432,9 +451,10 @@ fn lens_of(p: DMat4, depth: ClipSpace) -> Result<(Lens, DVec2), CameraError> {
     let scale = p.x_axis.x.abs().max(p.y_axis.y.abs());
     let zero = |v: f64| v.abs() <= CAMERA_MATRIX * scale;
     let bad = |why| Err(CameraError::Projection { why });
-    if !(zero(p.x_axis.y) && zero(p.x_axis.z) && zero(p.x_axis.w) && zero(p.y_axis.x))
-        || !(zero(p.y_axis.z) && zero(p.y_axis.w))
-    {
+    let mixed = [
+        p.x_axis.y, p.x_axis.z, p.x_axis.w, p.y_axis.x, p.y_axis.z, p.y_axis.w,
+    ];
+    if !mixed.into_iter().all(zero) {
         return bad("its first two columns mix axes (skew or rotation)");
     }
     if !(p.x_axis.x > 0.0 && p.y_axis.y > 0.0) {
@@ -607,6 +627,22 @@ mod tests {
         let a = by_hand.view(&geometry, 100, 100).unwrap();
         let b = matrices.view(&geometry, 100, 100).unwrap();
         assert!((a.scale() - b.scale()).abs() < 1e-4 * a.scale());
+    }
+
+    #[test]
+    fn a_pose_is_the_inverse_of_a_view_matrix() {
+        let eye = DVec3::new(0.3, 2.0, -4.0);
+        let view_m = look_at_mat4(eye, DVec3::new(0.5, 0.2, 0.4), DVec3::Y);
+        let lens = Lens::perspective(35.0, 0.2);
+        let posed = Camera::from_pose(view_m.inverse(), lens).unwrap();
+        let from_view = Camera::from_matrices(
+            view_m,
+            directx::perspective(35f64.to_radians(), 1.0, 0.2, 9.0),
+            ClipSpace::ZeroToOne,
+        )
+        .unwrap();
+        assert!((posed.eye() - eye).length() < 1e-12);
+        assert!(posed.rotation().abs_diff_eq(from_view.rotation(), 1e-12));
     }
 
     #[test]

@@ -93,7 +93,8 @@ use std::path::Path;
 pub use error::{FaceLocation, LoadError};
 #[cfg(feature = "gltf")]
 pub use gltf_load::{
-    GltfInstance, GltfScene, load_gltf, load_gltf_scene, load_gltf_scene_slice, load_gltf_slice,
+    GltfCamera, GltfInstance, GltfProjection, GltfScene, load_gltf, load_gltf_cameras,
+    load_gltf_cameras_slice, load_gltf_scene, load_gltf_scene_slice, load_gltf_slice,
 };
 pub use mesh::{AlphaMode, EmbeddedTexture, Material, Mesh};
 #[cfg(feature = "obj")]

@@ -1,6 +1,9 @@
 //! A glTF scene that exercises the scene path: one cube mesh carried by five nodes, with
 //! instancing, nested and non-uniform scales, a matrix node that mirrors, rotations, and
-//! two instances whose boxes interlock. Buffers embedded as a data URI.
+//! two instances whose boxes interlock. Buffers embedded as a data URI. Two cameras: camera 0
+//! a perspective one (yfov 0.7, aspect ratio 1.5, znear 0.1) off to the side and looking
+//! down, not at the scene's centre; camera 1 an orthographic one (xmag 4.5, ymag 3) under the
+//! rotated root node, so its pose composes two nodes.
 
 use base64::Engine as _;
 
@@ -52,15 +55,21 @@ pub fn cube_scene_gltf() -> String {
         r#"{{
   "asset": {{"version": "2.0"}},
   "scene": 0,
-  "scenes": [{{"nodes": [0, 6]}}],
+  "scenes": [{{"nodes": [0, 6, 7]}}],
   "nodes": [
-    {{"children": [1, 2, 3, 4], "rotation": [0.0, 0.2588190451, 0.0, 0.9659258263]}},
+    {{"children": [1, 2, 3, 4, 8], "rotation": [0.0, 0.2588190451, 0.0, 0.9659258263]}},
     {{"mesh": 0, "rotation": [0.1, 0.2, 0.05, 0.9741], "scale": [1.5, 0.7, 1.0]}},
     {{"mesh": 0, "translation": [0.8, 0.2, 0.1], "rotation": [0.3, 0.0, 0.1, 0.9487]}},
     {{"mesh": 0, "matrix": [-1.0, 0.0, 0.0, 0.0,  0.0, 1.2, 0.0, 0.0,  0.0, 0.0, 0.8, 0.0,  3.5, 0.0, 0.0, 1.0]}},
     {{"children": [5], "translation": [0.0, 2.5, 0.0], "scale": [0.5, 0.5, 0.5]}},
     {{"mesh": 0, "rotation": [0.0, 0.0, 0.3826834324, 0.9238795325], "scale": [2.0, 1.0, 1.0]}},
-    {{"mesh": 0, "translation": [-3.5, 0.0, 0.5], "scale": [1.0, 1.0, -1.0]}}
+    {{"mesh": 0, "translation": [-3.5, 0.0, 0.5], "scale": [1.0, 1.0, -1.0]}},
+    {{"camera": 0, "translation": [2.0, 3.0, 9.0], "rotation": [-0.1300295007, 0.0864101133, 0.0113761072, 0.9876721144]}},
+    {{"camera": 1, "translation": [0.0, 1.0, 10.0]}}
+  ],
+  "cameras": [
+    {{"type": "perspective", "perspective": {{"yfov": 0.7, "aspectRatio": 1.5, "znear": 0.1, "zfar": 100.0}}}},
+    {{"type": "orthographic", "orthographic": {{"xmag": 4.5, "ymag": 3.0, "znear": 0.1, "zfar": 100.0}}}}
   ],
   "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0}}, "indices": 1}}]}}],
   "accessors": [

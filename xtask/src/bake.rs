@@ -55,6 +55,12 @@ pub struct BakeArgs {
     /// Image size (scale "fit" and the HTML page's size).
     #[arg(long, value_name = "WxH", default_value = "512x512", value_parser = render::parse_size)]
     size: (u32, u32),
+    /// A camera that starts the turn instead of yaw, pitch, roll and --persp (as in
+    /// `render`); it must look at the model's centre, about which the model turns. The
+    /// axis is then the camera's screen vertical (yaw), horizontal (pitch) or view direction
+    /// (roll).
+    #[command(flatten)]
+    camera: render::CameraFlags,
     /// Which faces culling removes.
     #[arg(long, value_enum, default_value_t = CullChoice::Back)]
     cull: CullChoice,
@@ -158,10 +164,14 @@ pub fn prepare(args: &BakeArgs) -> Result<Prepared> {
     let (source, mesh) = render::load_mesh(&args.model, args.policy, false)?;
     let geometry =
         Geometry::new(&mesh).map_err(|e| anyhow::anyhow!("{}: {e}", args.model.display()))?;
+    let (size, camera) = match args.camera.camera(&args.model, &geometry.bounds(), false)? {
+        Some(camera) => (camera.image_size(args.size.0), Some(camera)),
+        None => (args.size, None),
+    };
     let view = render::base_view(
         &geometry,
         &BaseView {
-            size: args.size,
+            size,
             yaw: args.yaw,
             pitch: args.pitch,
             roll: args.roll,
@@ -170,8 +180,28 @@ pub fn prepare(args: &BakeArgs) -> Result<Prepared> {
             margin: 0.0,
             scale: None,
             persp: args.persp,
+            camera,
         },
     )?;
+    if camera.is_some() {
+        let view = aimed_at_centre(view)?;
+        let k = match args.axis {
+            AxisChoice::Yaw => [0.0, 1.0, 0.0],
+            AxisChoice::Pitch => [1.0, 0.0, 0.0],
+            AxisChoice::Roll => [0.0, 0.0, 1.0],
+        };
+        let axis = Axis::Direction {
+            axis: k,
+            base: view.rotation().to_cols_array_2d(),
+        };
+        let spin = Spin::new(view, axis).context("axis")?;
+        return Ok(Prepared {
+            source,
+            mesh,
+            geometry,
+            spin,
+        });
+    }
     let axis = match args.axis {
         AxisChoice::Yaw => Axis::Yaw {
             pitch: args.pitch,
@@ -192,6 +222,33 @@ pub fn prepare(args: &BakeArgs) -> Result<Prepared> {
         mesh,
         geometry,
         spin,
+    })
+}
+
+/// A camera's view as a spin template: the model turns about its centre with the eye fixed,
+/// so the camera must look at the centre (no view offset across the view axis, the
+/// principal point at the image centre). Along the axis the offset folds into the scale:
+/// with the eye `D = d/s − t.z` from the centre, scale `d/D` and no offset project every
+/// point to the same pixel.
+fn aimed_at_centre(view: face_sort::View) -> Result<face_sort::View> {
+    let t = view.view_offset();
+    let centre = glam::DVec2::new(f64::from(view.width()), f64::from(view.height())) * 0.5;
+    if t.x.abs().max(t.y.abs()) > 1e-9 * view.diagonal() || view.principal_point() != centre {
+        bail!(
+            "bake turns the model about its centre: the camera must look at the model's centre \
+             (--target defaults to it) with a centred principal point"
+        );
+    }
+    let view = view.with_view_offset(glam::DVec3::ZERO);
+    Ok(match view.projection() {
+        face_sort::Projection::Orthographic => view,
+        face_sort::Projection::Perspective { distance } => {
+            let eye = distance / view.scale() - t.z;
+            if eye.is_nan() || eye <= 0.0 {
+                bail!("the camera's eye is not in front of the model's centre");
+            }
+            view.with_scale(distance / eye)
+        }
     })
 }
 

@@ -47,9 +47,13 @@ pub struct RenderArgs {
         default_value_t = 0.0
     )]
     pub(crate) roll: f64,
-    /// Image size.
+    /// Image size. With a camera of the file that has an aspect ratio, the height follows
+    /// the width.
     #[arg(long, value_name = "WxH", default_value = "512x512", value_parser = parse_size)]
     pub(crate) size: (u32, u32),
+    /// A camera instead of yaw, pitch, roll, scale and --persp.
+    #[command(flatten)]
+    pub(crate) camera: CameraFlags,
     /// Scale in pixels per model unit. Default: fit (0.9 · min(W, H) / L).
     #[arg(long, value_name = "S")]
     pub(crate) scale: Option<f64>,
@@ -318,6 +322,114 @@ fn plan(choice: SorterChoice, geometry: &Geometry) -> (Box<dyn FaceSorter>, Stri
     }
 }
 
+/// A camera on the command line: the model file's own, or a look-at built by hand.
+#[derive(Debug, Args, Clone, Default)]
+pub struct CameraFlags {
+    /// Draw through the glTF file's camera N (its node's transform, `yfov`, `aspectRatio`,
+    /// `znear`; orthographic `xmag`, `ymag`). The first node carrying camera N places it.
+    #[arg(long, value_name = "N", conflicts_with = "look_at")]
+    pub(crate) camera: Option<usize>,
+    /// A look-at camera with its eye here, "X,Y,Z" in model units (perspective, see --fov).
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_point, allow_hyphen_values = true)]
+    pub(crate) look_at: Option<[f64; 3]>,
+    /// The look-at camera's target, "X,Y,Z". Default: the model's centre.
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_point, allow_hyphen_values = true, requires = "look_at")]
+    pub(crate) target: Option<[f64; 3]>,
+    /// The look-at camera's up direction, "X,Y,Z". Default: 0,1,0.
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_point, allow_hyphen_values = true, requires = "look_at")]
+    pub(crate) up: Option<[f64; 3]>,
+    /// The look-at camera's vertical field of view, degrees.
+    #[arg(long, value_name = "DEG", default_value_t = 45.0, requires = "look_at")]
+    pub(crate) fov: f64,
+    /// The look-at camera's near plane, model units. Default: a thousandth of the eye's
+    /// distance to the target.
+    #[arg(long, value_name = "DIST", requires = "look_at")]
+    pub(crate) near: Option<f64>,
+}
+
+impl CameraFlags {
+    /// The camera these flags ask for (`None` when they ask for none), for `model` whose
+    /// bounds are `bounds`.
+    pub fn camera(
+        &self,
+        model: &std::path::Path,
+        bounds: &face_sort::Bounds,
+        allow_outside: bool,
+    ) -> Result<Option<face_sort::Camera>> {
+        use face_sort::{Camera, Lens};
+        if let Some(n) = self.camera {
+            let mut options = obj_quads::LoadOptions::default();
+            options.allow_outside_paths = allow_outside;
+            let cameras = obj_quads::load_gltf_cameras(model, &options)
+                .map_err(|e| anyhow::anyhow!("--camera {n}: {e}"))?;
+            let Some(found) = cameras.iter().find(|c| c.camera == n) else {
+                bail!(
+                    "--camera {n}: {} has {} camera node(s){}",
+                    model.display(),
+                    cameras.len(),
+                    if cameras.is_empty() {
+                        String::new()
+                    } else {
+                        format!(
+                            ", of cameras {:?}",
+                            cameras.iter().map(|c| c.camera).collect::<Vec<_>>()
+                        )
+                    }
+                );
+            };
+            let lens = match found.projection {
+                obj_quads::GltfProjection::Perspective {
+                    yfov,
+                    aspect_ratio,
+                    znear,
+                    ..
+                } => Lens::Perspective {
+                    fov_y_deg: yfov.to_degrees(),
+                    near: znear,
+                    aspect: aspect_ratio,
+                },
+                obj_quads::GltfProjection::Orthographic { xmag, ymag, .. } => Lens::Orthographic {
+                    height: 2.0 * ymag,
+                    aspect: Some(xmag / ymag),
+                },
+            };
+            let camera = Camera::from_pose(found.world, lens)
+                .map_err(|e| anyhow::anyhow!("--camera {n} (node {}): {e}", found.node))?;
+            return Ok(Some(camera));
+        }
+        let Some(eye) = self.look_at else {
+            return Ok(None);
+        };
+        let target = self.target.unwrap_or(bounds.centre().to_array());
+        let distance = glam::DVec3::from(eye).distance(glam::DVec3::from(target));
+        let near = self.near.unwrap_or(distance * 1e-3);
+        let camera = Camera::look_at(
+            eye,
+            target,
+            self.up.unwrap_or([0.0, 1.0, 0.0]),
+            Lens::perspective(self.fov, near),
+        )
+        .map_err(|e| anyhow::anyhow!("--look-at: {e}"))?;
+        Ok(Some(camera))
+    }
+}
+
+/// Parses "X,Y,Z".
+pub fn parse_point(s: &str) -> Result<[f64; 3], String> {
+    let parts: Vec<&str> = s.split(',').collect();
+    let [x, y, z] = parts.as_slice() else {
+        return Err(format!("expected X,Y,Z, e.g. 0,1,5, got {s:?}"));
+    };
+    let parse = |v: &str| {
+        v.trim()
+            .parse::<f64>()
+            .ok()
+            .filter(|v| v.is_finite())
+            .ok_or_else(|| format!("bad coordinate {v:?} in {s:?}"))
+    };
+    Ok([parse(x)?, parse(y)?, parse(z)?])
+}
+
 /// Runs `render`.
 pub fn run(args: &RenderArgs) -> Result<ExitCode> {
     if args.scene {
@@ -357,7 +469,21 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
         Geometry::new(&polygons).map_err(|e| anyhow::anyhow!("{}: {e}", model_path.display()))?;
     let load_ms = ms(start);
 
-    let (width, height) = args.size;
+    let camera = args
+        .camera
+        .camera(&model_path, &model_bounds, args.allow_outside)?;
+    if camera.is_some()
+        && (args.yaw.is_some()
+            || args.pitch.is_some()
+            || args.roll != 0.0
+            || args.scale.is_some()
+            || args.persp.is_some())
+    {
+        bail!("--camera and --look-at replace --yaw, --pitch, --roll, --scale and --persp");
+    }
+    // A file's camera with an aspect ratio sizes the image from the width.
+    let size = camera.map_or(args.size, |c| c.image_size(args.size.0));
+    let (width, height) = size;
     let yaw = args.yaw.unwrap_or(if demo { DEMO_YAW } else { 0.0 });
     let pitch = args.pitch.unwrap_or(if demo { DEMO_PITCH } else { 0.0 });
     // Fit the model, not the (larger) grid: the grid leaves the frame and fades out.
@@ -373,7 +499,7 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
     let view = base_view(
         &geometry,
         &BaseView {
-            size: args.size,
+            size,
             yaw,
             pitch,
             roll: args.roll,
@@ -382,6 +508,7 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
             margin: args.margin,
             scale,
             persp,
+            camera,
         },
     )?;
 
@@ -682,14 +809,23 @@ pub struct BaseView {
     pub scale: Option<f64>,
     /// Perspective eye distance in pixels; `None`: orthographic.
     pub persp: Option<f64>,
+    /// A camera, which replaces yaw, pitch, roll, scale and `persp`.
+    pub camera: Option<face_sort::Camera>,
 }
 
 /// The view of `geometry` for these flags; errors on a scale or distance that is not a
 /// positive number.
 pub fn base_view(geometry: &Geometry, flags: &BaseView) -> Result<View> {
     let (width, height) = flags.size;
-    let mut view = View::fit(&geometry.bounds(), width, height)
-        .with_yaw_pitch_roll(flags.yaw, flags.pitch, flags.roll)
+    let base = match &flags.camera {
+        Some(camera) => camera.view(geometry, width, height)?,
+        None => View::fit(&geometry.bounds(), width, height).with_yaw_pitch_roll(
+            flags.yaw,
+            flags.pitch,
+            flags.roll,
+        ),
+    };
+    let mut view = base
         .with_cull(match flags.cull {
             CullChoice::Back => CullMode::Back,
             CullChoice::Front => CullMode::Front,
@@ -698,6 +834,9 @@ pub fn base_view(geometry: &Geometry, flags: &BaseView) -> Result<View> {
         .with_cull_margin(flags.margin);
     if flags.cw {
         view = view.with_front_face(FrontFace::Clockwise);
+    }
+    if flags.camera.is_some() {
+        return Ok(view);
     }
     if let Some(scale) = flags.scale {
         if !(scale.is_finite() && scale > 0.0) {

@@ -116,6 +116,7 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
     let view = base_view(
         &geometry,
         &BaseView {
+            camera: None,
             size: args.size,
             yaw: args.yaw.unwrap_or(25.0),
             pitch: args.pitch.unwrap_or(35.0),

@@ -540,3 +540,153 @@ fn render_plot_is_the_librarys_plot() {
     );
     assert_eq!(std::fs::read_to_string(&svg).unwrap(), plot.to_svg(1.0));
 }
+
+/// The file's camera, projected independently: glam's own matrices from the glTF values
+/// (node pose, `yfov`, `aspectRatio`, `znear`; `xmag`, `ymag`), a ray per pixel centre
+/// unprojected through their inverse, the nearest triangle by Möller–Trumbore in f64. The
+/// ID image `render --camera N` writes must agree on every pixel that is not ambiguous
+/// (0.75 px from a projected edge, or two nearest depths within 1e-6 of each other).
+#[test]
+fn render_camera_draws_what_the_files_camera_sees() {
+    use glam::{DMat4, DQuat, DVec2, DVec3};
+    let dir = temp_dir("gltf-camera");
+    let model = dir.join("cubes.gltf");
+    std::fs::write(&model, test_support::gltf_scene::cube_scene_gltf()).unwrap();
+    let (mesh, _) = obj_quads::load_gltf(&model, &obj_quads::LoadOptions::default()).unwrap();
+    let triangles: Vec<[DVec3; 3]> = (0..mesh.face_count())
+        .map(|f| {
+            let c = mesh.face(f).unwrap();
+            assert_eq!(c.len(), 3, "the scene is triangles");
+            [0, 1, 2].map(|k| mesh.positions()[c[k] as usize])
+        })
+        .collect();
+    let root = DMat4::from_quat(DQuat::from_xyzw(0.0, 0.2588190451, 0.0, 0.9659258263));
+    let cameras = [
+        (
+            DMat4::from_rotation_translation(
+                DQuat::from_xyzw(-0.1300295007, 0.0864101133, 0.0113761072, 0.9876721144)
+                    .normalize(),
+                DVec3::new(2.0, 3.0, 9.0),
+            ),
+            glam::dcamera::rh::proj::directx::perspective(0.7, 1.5, 0.1, 100.0),
+        ),
+        (
+            root * DMat4::from_translation(DVec3::new(0.0, 1.0, 10.0)),
+            glam::dcamera::rh::proj::directx::orthographic(-4.5, 4.5, -3.0, 3.0, 0.1, 100.0),
+        ),
+    ];
+    let (w, h) = (240u32, 160u32);
+    for (n, (pose, projection)) in cameras.iter().enumerate() {
+        let clip_from_model = *projection * pose.inverse();
+        let model_from_clip = clip_from_model.inverse();
+        let unproject = |ndc: DVec3| {
+            let p = model_from_clip * ndc.extend(1.0);
+            p.truncate() / p.w
+        };
+        let pixel_of = |p: DVec3| {
+            let c = clip_from_model * p.extend(1.0);
+            DVec2::new(
+                f64::from(w) * 0.5 * (1.0 + c.x / c.w),
+                f64::from(h) * 0.5 * (1.0 - c.y / c.w),
+            )
+        };
+        let projected: Vec<[DVec2; 3]> = triangles.iter().map(|t| t.map(pixel_of)).collect();
+        for sorter in ["bsp", "newell"] {
+            let out = dir.join(format!("camera{n}-{sorter}.png"));
+            let result = xtask(&[
+                "render",
+                model.to_str().unwrap(),
+                "--camera",
+                &n.to_string(),
+                "--size",
+                "240x240",
+                "--sorter",
+                sorter,
+                "--ids",
+                "-o",
+                out.to_str().unwrap(),
+            ]);
+            assert!(result.status.success(), "{}", text(&result.stderr));
+            let image = obj_quads::decode_texture(
+                &std::fs::read(&out).unwrap(),
+                "ids.png",
+                &obj_quads::LoadOptions::default(),
+            )
+            .unwrap();
+            assert_eq!(
+                (image.width, image.height),
+                (w, h),
+                "the height follows the aspect"
+            );
+            let (mut compared, mut wrong) = (0usize, 0usize);
+            for y in 0..h {
+                for x in 0..w {
+                    let centre = DVec2::new(f64::from(x) + 0.5, f64::from(y) + 0.5);
+                    let ndc = DVec2::new(
+                        centre.x / f64::from(w) * 2.0 - 1.0,
+                        1.0 - centre.y / f64::from(h) * 2.0,
+                    );
+                    let (a, b) = (unproject(ndc.extend(0.0)), unproject(ndc.extend(1.0)));
+                    let d = (b - a).normalize();
+                    let mut hits: Vec<(f64, usize)> = triangles
+                        .iter()
+                        .enumerate()
+                        .filter_map(|(f, t)| ray_triangle(a, d, t).map(|s| (s, f)))
+                        .collect();
+                    hits.sort_by(|p, q| p.0.total_cmp(&q.0));
+                    let near_edge = projected.iter().any(|t| {
+                        (0..3).any(|k| segment_distance(centre, t[k], t[(k + 1) % 3]) < 0.75)
+                    });
+                    let close = hits.len() > 1 && hits[1].0 - hits[0].0 < 1e-6 * 10.0;
+                    if near_edge || close {
+                        continue;
+                    }
+                    let want = hits.first().map_or(0, |&(_, f)| f as u32 + 1);
+                    let at = 4 * (y * w + x) as usize;
+                    let px = &image.rgba[at..at + 3];
+                    let got = u32::from(px[0]) << 16 | u32::from(px[1]) << 8 | u32::from(px[2]);
+                    if want != 0 {
+                        compared += 1;
+                    }
+                    if got != want {
+                        wrong += 1;
+                    }
+                }
+            }
+            assert_eq!(
+                wrong, 0,
+                "camera {n}, {sorter}: {wrong} of {compared} pixels differ"
+            );
+            assert!(
+                compared > 1000,
+                "camera {n}: only {compared} covered pixels compared"
+            );
+        }
+    }
+}
+
+/// Distance along a unit ray to a triangle (Möller–Trumbore), either side facing.
+fn ray_triangle(o: glam::DVec3, d: glam::DVec3, t: &[glam::DVec3; 3]) -> Option<f64> {
+    let (e1, e2) = (t[1] - t[0], t[2] - t[0]);
+    let p = d.cross(e2);
+    let det = e1.dot(p);
+    if det.abs() < 1e-15 {
+        return None;
+    }
+    let s = o - t[0];
+    let u = s.dot(p) / det;
+    let q = s.cross(e1);
+    let v = d.dot(q) / det;
+    if u < 0.0 || v < 0.0 || u + v > 1.0 {
+        return None;
+    }
+    let along = e2.dot(q) / det;
+    (along > 0.0).then_some(along)
+}
+
+/// Distance from `p` to the segment `a`–`b`.
+fn segment_distance(p: glam::DVec2, a: glam::DVec2, b: glam::DVec2) -> f64 {
+    let ab = b - a;
+    let t = ((p - a).dot(ab) / ab.length_squared().max(1e-300)).clamp(0.0, 1.0);
+    (a + ab * t).distance(p)
+}

@@ -100,6 +100,105 @@ fn parse(bytes: &[u8], file: &str) -> Result<(gltf::Document, Option<Vec<u8>>), 
     Ok((document, blob))
 }
 
+/// A camera of a glTF file, placed by the node that carries it.
+#[derive(Debug, Clone, PartialEq)]
+#[non_exhaustive]
+pub struct GltfCamera {
+    /// The camera's index in the document (`cameras[i]`).
+    pub camera: usize,
+    /// The node that carries it.
+    pub node: usize,
+    /// The camera's name, if it has one.
+    pub name: Option<String>,
+    /// Camera to model space: the node's matrix times its ancestors' (the model space of
+    /// [`load_gltf`]'s positions). The camera looks down its −Z with +Y up.
+    pub world: glam::DMat4,
+    /// Its projection, as the file gives it.
+    pub projection: GltfProjection,
+}
+
+/// A glTF camera's projection, with the file's values (angles in radians, as glTF has them).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum GltfProjection {
+    /// `camera.perspective`.
+    Perspective {
+        /// Vertical field of view, radians.
+        yfov: f64,
+        /// Width ÷ height, when the file gives it (else the viewport's).
+        aspect_ratio: Option<f64>,
+        /// Near plane distance.
+        znear: f64,
+        /// Far plane distance; `None` for an infinite projection.
+        zfar: Option<f64>,
+    },
+    /// `camera.orthographic`.
+    Orthographic {
+        /// Half the width the view spans.
+        xmag: f64,
+        /// Half the height the view spans.
+        ymag: f64,
+        /// Near plane distance.
+        znear: f64,
+        /// Far plane distance.
+        zfar: f64,
+    },
+}
+
+/// The cameras of a `.gltf` or `.glb` file: one per node of the scene that carries a camera,
+/// in the scene walk's order (the order of [`load_gltf`]'s faces), with the same
+/// confinement, limits and errors as [`load_gltf`] (buffers are not read).
+pub fn load_gltf_cameras(
+    path: impl AsRef<Path>,
+    options: &LoadOptions,
+) -> Result<Vec<GltfCamera>, LoadError> {
+    let (bytes, file, _) = read_file(path.as_ref(), options)?;
+    cameras_of(&bytes, &file, options)
+}
+
+/// [`load_gltf_cameras`] from memory.
+pub fn load_gltf_cameras_slice(
+    bytes: &[u8],
+    options: &LoadOptions,
+) -> Result<Vec<GltfCamera>, LoadError> {
+    cameras_of(bytes, crate::obj_memory_name().as_str(), options)
+}
+
+fn cameras_of(
+    bytes: &[u8],
+    file: &str,
+    options: &LoadOptions,
+) -> Result<Vec<GltfCamera>, LoadError> {
+    let (document, _) = parse(bytes, file)?;
+    let walked = scene::walk_scene(&document, file, options)?;
+    Ok(walked
+        .iter()
+        .filter_map(|(node, world)| {
+            let camera = node.camera()?;
+            let projection = match camera.projection() {
+                gltf::camera::Projection::Perspective(p) => GltfProjection::Perspective {
+                    yfov: f64::from(p.yfov()),
+                    aspect_ratio: p.aspect_ratio().map(f64::from),
+                    znear: f64::from(p.znear()),
+                    zfar: p.zfar().map(f64::from),
+                },
+                gltf::camera::Projection::Orthographic(o) => GltfProjection::Orthographic {
+                    xmag: f64::from(o.xmag()),
+                    ymag: f64::from(o.ymag()),
+                    znear: f64::from(o.znear()),
+                    zfar: f64::from(o.zfar()),
+                },
+            };
+            Some(GltfCamera {
+                camera: camera.index(),
+                node: node.index(),
+                name: camera.name().map(str::to_owned),
+                world: *world,
+                projection,
+            })
+        })
+        .collect())
+}
+
 /// A glTF scene as instances: each glTF mesh the scene draws, once, in its own coordinates,
 /// and every node that carries one with its world matrix. Loaded by [`load_gltf_scene`].
 #[derive(Debug, Clone, PartialEq)]

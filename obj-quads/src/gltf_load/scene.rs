@@ -92,7 +92,7 @@ pub(super) fn walk_scene<'a>(
             ));
         }
         let world = parent * local;
-        if node.mesh().is_some() {
+        if node.mesh().is_some() || node.camera().is_some() {
             out.push((node.clone(), world));
         }
         path.push(index);
