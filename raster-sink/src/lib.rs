@@ -57,6 +57,36 @@
 //! assert_eq!((image.width(), image.height()), (64, 64));
 //! ```
 //!
+//! # From your own mesh and camera
+//! A mesh held as `[f32; 3]` positions and triangles, an engine's glam f32 look-at and
+//! perspective matrices, an exact order, and both checks: no order violation, no wrong pixel.
+//!
+//! ```
+//! use raster_sink::face_sort::glam::camera::rh::{proj::directx, view::look_at_mat4};
+//! use raster_sink::face_sort::glam::Vec3;
+//! use raster_sink::face_sort::{Bsp, Camera, ClipSpace, DrawList, FaceSorter, Geometry};
+//! use raster_sink::face_sort::{PolygonMesh, oracle};
+//! use raster_sink::{pixel_error, render_ids, truth};
+//! # fn main() -> Result<(), Box<dyn std::error::Error>> {
+//! let positions: Vec<[f32; 3]> = vec![
+//!     [-1.0, -1.0, 0.0], [1.0, -1.0, 0.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.5], [1.0, -0.2, -0.5],
+//!     [0.5, 1.2, 0.3], [-1.2, 0.3, -0.4], [0.3, -1.2, 0.6], [1.2, 0.8, -0.1], [-0.9, -0.6, 0.7],
+//!     [0.9, -0.4, 0.1], [-0.1, 0.7, 0.2], [-0.6, 1.0, -0.3], [0.2, -0.9, 0.4], [0.8, 0.9, 0.5],
+//! ];
+//! let triangles = [[0u32, 1, 2], [3, 4, 5], [6, 7, 8], [9, 10, 11], [12, 13, 14]];
+//! let view_matrix = look_at_mat4(Vec3::new(1.0, 2.0, 5.0), Vec3::ZERO, Vec3::Y);
+//! let projection = directx::perspective(0.8, 4.0 / 3.0, 0.1, 100.0);
+//!
+//! let geometry = Geometry::new(&PolygonMesh::new(&positions, triangles)?)?;
+//! let view = Camera::from_matrices(view_matrix, projection, ClipSpace::ZeroToOne)?
+//!     .view(&geometry, 320, 240)?;
+//! let mut list = DrawList::new();
+//! Bsp::new(&geometry).sort(&view, &mut list);
+//! assert_eq!(oracle::count_violations(&view, &list), 0);
+//! assert_eq!(pixel_error(&render_ids(&view, &list), &truth(&view, &geometry)).wrong, 0);
+//! # Ok(()) }
+//! ```
+//!
 //! # Feature flags
 //! - `obj-quads`: [`FaceMaterials`] for `obj_quads::Mesh`, so that
 //!   `Style::from_materials(&mesh, ..)` takes a loaded model directly.
