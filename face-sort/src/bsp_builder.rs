@@ -21,7 +21,7 @@ const CONVEX_LEAF_MAX: usize = 48;
 /// faster than `n log n`); the median plane splits a large set in halves for a few splits.
 /// Measured before the candidate pre-selection, 256 gave fewer fragments than 128, 512 and
 /// 1,024 on spot and blub, and than 512 and no median plane on all four real models
-/// (`face-sort/README.md`).
+/// (`docs/experiments/face-sort.md`).
 const MEDIAN_CANDIDATE_MIN: usize = 256;
 
 /// Sets of at most this many polygons score every one of them as a splitter.
@@ -30,7 +30,7 @@ const SMALL_SET: usize = 32;
 /// Larger sets rank `PRESELECT` times [`BspOptions::candidates`] evenly spread candidates by
 /// their score on `PRESELECT_SAMPLE` of their polygons, and score the best in full. With
 /// [`SMALL_SET`], 1.751x fragments on spot instead of 1.831x for 12 candidates scored in full
-/// (`face-sort/README.md`).
+/// (`docs/experiments/face-sort.md`).
 const PRESELECT: usize = 4;
 
 /// See [`PRESELECT`].
