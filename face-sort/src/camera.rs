@@ -24,7 +24,7 @@ use glam::{DMat3, DMat4, DQuat, DVec2, DVec3, DVec4};
 use thiserror::Error;
 
 use crate::convert::{Matrix4, Point3};
-use crate::tolerance::{CAMERA_MATRIX, NEAR_W};
+use crate::tolerance::{CAMERA_MATRIX, NEAR_W, ORTHONORMAL_ROUNDING};
 use crate::{Geometry, View};
 
 /// A camera's lens: perspective or orthographic, resolution-free.
@@ -378,8 +378,18 @@ impl Camera {
 }
 
 /// The nearest rotation to a nearly orthonormal matrix, orthonormal to f64 rounding: the
-/// rotation of its normalised quaternion.
+/// rotation of its normalised quaternion. A matrix already orthonormal to a few rounding
+/// errors is kept bit for bit, so that setting a rotation read back from a view is no
+/// change.
 pub(crate) fn orthonormalised(m: DMat3) -> DMat3 {
+    let gram = m.transpose() * m - DMat3::IDENTITY;
+    let deviation = [gram.x_axis, gram.y_axis, gram.z_axis]
+        .iter()
+        .map(|c| c.abs().max_element())
+        .fold(0.0, f64::max);
+    if deviation <= ORTHONORMAL_ROUNDING && m.determinant() > 0.0 {
+        return m;
+    }
     DMat3::from_quat(DQuat::from_mat3(&m).normalize())
 }
 

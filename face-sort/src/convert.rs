@@ -13,6 +13,11 @@ impl From<DVec3> for Point3 {
         Point3(p)
     }
 }
+impl From<&DVec3> for Point3 {
+    fn from(p: &DVec3) -> Self {
+        Point3(*p)
+    }
+}
 impl From<glam::Vec3> for Point3 {
     fn from(p: glam::Vec3) -> Self {
         Point3(p.as_dvec3())

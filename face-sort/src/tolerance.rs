@@ -51,6 +51,11 @@ pub const OVERLAP_AREA: f64 = 1e-14;
 /// pass are orthonormalised, so this bounds what is accepted, not the accuracy of the view.
 pub const CAMERA_MATRIX: f64 = 1e-4;
 
+/// Absolute: a rotation whose `|RᵀR − I|` is at most this (a few f64 roundings) is taken as
+/// orthonormal and kept as given; one further from it (an f32 look-at is about `1e-7` off)
+/// is orthonormalised ([`View::with_rotation`](crate::View::with_rotation)).
+pub const ORTHONORMAL_ROUNDING: f64 = 16.0 * f64::EPSILON;
+
 /// Perspective near plane: geometry is clipped to `w ≥ NEAR_W` (CONVENTIONS.md).
 pub const NEAR_W: f64 = 1e-3;
 

@@ -67,3 +67,12 @@ pub enum RasterError {
         message: String,
     },
 }
+
+impl From<sprite_compose::TextureError> for RasterError {
+    fn from(e: sprite_compose::TextureError) -> Self {
+        RasterError::Texture {
+            path: e.path,
+            source: e.source,
+        }
+    }
+}

@@ -117,12 +117,12 @@ pub use error::RasterError;
 pub use fill::{for_each_pixel_near_segment, for_each_span};
 pub use grid::GroundGrid;
 pub use ids::{IdImage, MAX_ID_FACE, render_ids, render_ids_into};
-pub use materials::{
-    FaceMaterials, MaterialOptions, MaterialStyle, load_texture, load_texture_with,
-};
+pub use materials::{MaterialStyle, load_texture, load_texture_with};
+// Materials are resolved by sprite-compose, which owns brushes; re-exported for raster users.
 pub use overlay::draw_overlay;
 pub use overlay_truth::{OverlayError, OverlayTruth, Seen};
-pub use style::{Brush, Style, TextureBrush, UvMap};
+pub use sprite_compose::{FaceMaterials, MaterialOptions, UvMap};
+pub use style::{Brush, Style, TextureBrush};
 pub use truth::{PixelError, Truth, pixel_error, truth};
 
 pub use face_sort;

@@ -25,10 +25,6 @@ pub const SHARED_EDGE_PX: f64 = 1e-3;
 /// their angle, `|n1 × n2|`, is at most `PARALLEL_EDGES`.
 pub const PARALLEL_EDGES: f64 = 1e-9;
 
-/// A texture's uv map is singular (the face is drawn without it) when its 3×3 system's
-/// determinant is at most `SINGULAR_DET · m³`, `m` the system's largest entry.
-pub const SINGULAR_DET: f64 = 1e-12;
-
 /// Absolute: magnitudes below this count as zero (the area of a texture's uv axes, a grid
 /// line's pixel footprint before dividing by it).
 pub const UNDERFLOW_ABS: f64 = 1e-300;

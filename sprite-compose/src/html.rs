@@ -185,8 +185,9 @@ pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
          #scene>div{{position:absolute;left:0;top:0;transform-origin:0 0}}\n\
          .x{{overflow:hidden}}\n\
          .x>div{{position:absolute;left:0;top:0;width:100%;height:100%;overflow:hidden}}\n\
-         .x img{{position:absolute;left:0;top:0;width:100%;height:100%;transform-origin:0 0}}\n\
-         </style></head><body><div id=\"scene\">\n",
+         .x i{{position:absolute;left:0;top:0;width:100%;height:100%;transform-origin:0 0;background-size:100% 100%}}\n\
+         {texture_rules}</style></head><body><div id=\"scene\">\n",
+        texture_rules = texture_rules(options),
         bg = hex(options.background),
         scene_style = match options.mode {
             HtmlMode::Flat => String::new(),
@@ -231,7 +232,7 @@ pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
             Brush::Texture { texture, uv, .. } if !options.ids => options
                 .textures
                 .get(texture.0 as usize)
-                .map(|src| (src, uv)),
+                .map(|_| (texture.0, uv)),
             _ => None,
         };
         // A textured element is the sprite's whole unit square: its size follows the square's
@@ -256,7 +257,7 @@ pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
                 .is_finite()
                 .then(|| (extent.max(1.0) * options.oversize).ceil().max(size))
         });
-        if let Some((src, uv)) = texture
+        if let Some((id, uv)) = texture
             && let Some(size) = square_size
             && let Some(place) = image_placement(uv, size)
         {
@@ -282,7 +283,7 @@ pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
             });
             let _ = writeln!(
                 page,
-                "<div class=\"x\" style=\"width:{size}px;height:{size}px;transform:{}\"><div{clip}><img src=\"{src}\" alt=\"\" style=\"transform:{place}\"></div></div>",
+                "<div class=\"x\" style=\"width:{size}px;height:{size}px;transform:{}\"><div{clip}><i class=\"t{id}\" style=\"transform:{place}\"></i></div></div>",
                 css_matrix3d(&m)
             );
             continue;
@@ -568,6 +569,42 @@ fn triangle_matrix(a: DVec2, b: DVec2, c: DVec2) -> DMat4 {
         DVec4::Z,
         DVec4::new(a.x, a.y, 0.0, 1.0),
     )
+}
+
+/// One CSS rule per texture, `.t<k>`, holding its image once for the whole page.
+fn texture_rules(options: &HtmlOptions) -> String {
+    if options.ids {
+        return String::new();
+    }
+    let mut rules = String::new();
+    for (k, src) in options.textures.iter().enumerate() {
+        let _ = writeln!(
+            rules,
+            ".t{k}{{background-image:url(\"{}\")}}",
+            escape_css_string(src)
+        );
+    }
+    rules
+}
+
+/// `text` escaped for a double-quoted CSS string: quotes, backslashes and line breaks as
+/// CSS escapes, and `<` so that no `</style>` can end the style element.
+fn escape_css_string(text: &str) -> std::borrow::Cow<'_, str> {
+    if !text.contains(['"', '\\', '\n', '\r', '<']) {
+        return std::borrow::Cow::Borrowed(text);
+    }
+    let mut out = String::with_capacity(text.len() + 16);
+    for c in text.chars() {
+        match c {
+            '"' => out.push_str("\\22 "),
+            '\\' => out.push_str("\\5c "),
+            '\n' => out.push_str("\\a "),
+            '\r' => out.push_str("\\d "),
+            '<' => out.push_str("\\3c "),
+            c => out.push(c),
+        }
+    }
+    std::borrow::Cow::Owned(out)
 }
 
 #[cfg(test)]

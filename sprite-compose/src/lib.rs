@@ -45,6 +45,31 @@
 //! assert!(painter.pick(128.0, 128.0).is_some());
 //! ```
 //!
+//! # Export a loaded model
+//! From a model file to SVG, PDF and HTML in the model's own materials, without a raster
+//! crate: the size is the view's, textures are embedded once per file.
+//!
+//! ```
+//! use sprite_compose::face_sort::{Geometry, PolygonMesh, View};
+//! use sprite_compose::obj_quads::{LoadOptions, load};
+//! use sprite_compose::{Export, Materials};
+//! # fn main() -> Result<(), Box<dyn std::error::Error>> {
+//! # let model = concat!(env!("CARGO_MANIFEST_DIR"), "/../assets/models/keenan-crane/spot/spot_control_mesh_texture.obj");
+//! # let out = std::env::temp_dir().join(format!("sprite-compose-export-{}", std::process::id()));
+//! # std::fs::create_dir_all(&out)?;
+//! let (mesh, _) = load(model, &LoadOptions::DEFAULT)?;
+//! let geometry = Geometry::new(&PolygonMesh::new(mesh.positions(), mesh.faces())?)?;
+//! let view = View::fit(&geometry.bounds(), 512, 512).with_yaw_pitch_roll(145.0, -25.0, 0.0);
+//! let export = Export::new(&geometry, view).with_materials(&Materials::of(&mesh, &geometry)?);
+//! std::fs::write(out.join("spot.svg"), export.svg())?;
+//! std::fs::write(out.join("spot.pdf"), export.pdf())?;
+//! std::fs::write(out.join("spot.html"), export.html())?;
+//! # assert_eq!(export.svg().matches("data:image/png;base64,").count(), 1);
+//! # assert!(export.html().contains("data:image/png;base64,"));
+//! # std::fs::remove_dir_all(&out)?;
+//! # Ok(()) }
+//! ```
+//!
 //! # Feature flags
 //! None yet. Beside `face-sort` and `glam` the crate depends on `i_overlay` (hidden-part
 //! removal: 2D boolean operations), `pdf-writer` (the PDF writer) and `aspect-bake` (the
@@ -53,8 +78,10 @@
 mod bake;
 mod bake_player;
 mod compositor;
+mod export;
 mod hidden;
 mod html;
+mod materials;
 mod occlusion;
 mod order;
 mod overlay;
@@ -78,8 +105,13 @@ pub use bake::{
 };
 pub use bake_player::BakePlayer;
 pub use compositor::{Brush, Compositor, OpCounts, SpriteId, TextureId};
+pub use export::Export;
 pub use hidden::{HiddenParts, Visibility, visible_parts};
 pub use html::{HtmlMode, HtmlOptions, HtmlPieces, css_matrix3d, write_html};
+pub use materials::{
+    FaceMaterials, FacePaint, Image, MaterialOptions, Materials, TextureError, UvMap, decode_image,
+    load_image,
+};
 pub use overlay::{Dot, DrawnOverlay, Line, Overlay, Point, Stroke, visible_overlay};
 pub use painter::{FrameStats, RotationHandle, RotationSource, SpritePainter};
 pub use pdf::{PdfOptions, write_pdf};
@@ -94,6 +126,7 @@ pub use svg::{SvgOptions, project_sprite, write_svg};
 pub use transform::{MapKind, PieceMap, PieceMaps, SpriteSpace, SpriteTransform, piece_map};
 
 pub use face_sort;
+pub use obj_quads;
 // The ID colour for the writers (`crate::id_colour`); exported once, by face-sort.
 use face_sort::colours::id_colour;
 pub use glam;

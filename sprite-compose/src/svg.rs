@@ -209,12 +209,29 @@ pub fn write_svg(scene: &Scene, options: &SvgOptions) -> String {
             opacity(bg)
         );
     }
+    // Each texture once, in <defs>; textured cells <use> it.
+    let shapes = vector_shapes(scene, options.ids, options.hidden);
+    let textured = !options.ids
+        && shapes
+            .iter()
+            .any(|s| matches!(s.sprite.brush, Brush::Texture { .. }));
+    if textured && !options.textures.is_empty() {
+        svg.push_str("<defs>");
+        for (k, href) in options.textures.iter().enumerate() {
+            let href = escape_attribute(href);
+            let _ = write!(
+                svg,
+                "<image id=\"t{k}\" xlink:href=\"{href}\" width=\"1\" height=\"1\" preserveAspectRatio=\"none\"/>"
+            );
+        }
+        svg.push_str("</defs>\n");
+    }
     let mut clip_count = 0usize;
     for VectorShape {
         sprite,
         polygon,
         visible,
-    } in vector_shapes(scene, options.ids, options.hidden)
+    } in shapes
     {
         // The element's geometry: the polygon, or the even-odd path of its visible parts.
         let shape = match &visible {
@@ -225,10 +242,10 @@ pub fn write_svg(scene: &Scene, options: &SvgOptions) -> String {
             Brush::Texture { texture, uv, .. } if !options.ids => options
                 .textures
                 .get(texture.0 as usize)
-                .map(|href| (href, uv)),
+                .map(|_| (texture.0, uv)),
             _ => None,
         };
-        if let Some((href, uv)) = texture
+        if let Some((id, uv)) = texture
             && let Some(cells) = texture_cells(scene.root(), sprite, uv, options.texture_tolerance)
         {
             clip_count += 1;
@@ -250,7 +267,7 @@ pub fn write_svg(scene: &Scene, options: &SvgOptions) -> String {
             for (k, (cell, place)) in cells.iter().enumerate() {
                 let m = place.to_cols_array();
                 let image = format!(
-                    "<image href=\"{href}\" xlink:href=\"{href}\" width=\"1\" height=\"1\" preserveAspectRatio=\"none\" transform=\"matrix({} {} {} {} {} {})\"/>",
+                    "<use xlink:href=\"#t{id}\" transform=\"matrix({} {} {} {} {} {})\"/>",
                     m[0], m[1], m[2], m[3], m[4], m[5]
                 );
                 if single {
@@ -445,4 +462,23 @@ fn texture_cells(
         }
         n = (n * 2).min(SVG_TEXTURE_MAX_CELLS);
     }
+}
+
+/// `text` escaped for an XML attribute value in double quotes.
+pub(crate) fn escape_attribute(text: &str) -> std::borrow::Cow<'_, str> {
+    if !text.contains(['&', '<', '>', '"', '\'']) {
+        return std::borrow::Cow::Borrowed(text);
+    }
+    let mut out = String::with_capacity(text.len() + 16);
+    for c in text.chars() {
+        match c {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '"' => out.push_str("&quot;"),
+            '\'' => out.push_str("&apos;"),
+            c => out.push(c),
+        }
+    }
+    std::borrow::Cow::Owned(out)
 }

@@ -107,3 +107,8 @@ pub const PLOT_JOIN_PX: f64 = 1e-6;
 /// this times the model's diagonal `L` of both its ends (planar faces are snapped onto their
 /// plane by up to `face_sort::tolerance::PLANARITY` of their size).
 pub const PLOT_SAME_CORNER: f64 = 1e-5;
+
+/// A face's uv map ([`UvMap::fit`](crate::UvMap::fit)) does not exist when its 3 × 3
+/// least-squares system's determinant is at most `UV_SYSTEM_SINGULAR · m³`, `m` the
+/// system's largest entry (the face is then painted without its texture).
+pub const UV_SYSTEM_SINGULAR: f64 = 1e-12;

@@ -234,12 +234,20 @@ fn textured_html_in_chromium_follows_the_exact_map() {
     let (mean, far, n) = colour_error(&rgba, &b.reference, &b.truth);
     println!(
         "chromium textured boxes: {} images, {} bytes; vs raster-sink over {n} pixels: mean {mean:.2}/255, {:.3} % off by > 48 ({seconds:.1} s)",
-        html.matches("<img").count(),
+        html.matches("class=\"t").count(),
         html.len(),
         far * 100.0
     );
     assert!(n > 5_000, "the comparison covers pixels: {n}");
-    assert_eq!(html.matches("<img").count(), b.painter.draw_list().len());
+    assert_eq!(
+        html.matches("class=\"t").count(),
+        b.painter.draw_list().len()
+    );
+    assert_eq!(
+        html.matches(&b.data_uri).count(),
+        1,
+        "the texture once, in its CSS rule"
+    );
     assert!(far <= 0.005, "textured page: mean {mean}, far {far}");
 }
 
@@ -325,7 +333,7 @@ fn textured_spot_html_in_chromium_matches_raster_sink() {
     println!(
         "chromium textured spot: {} textured sprites, {} images, {} bytes; vs raster-sink over {n} pixels: mean {mean:.2}/255, {:.3} % off by > 48 ({seconds:.1} s)",
         spot.textured,
-        html.matches("<img").count(),
+        html.matches("class=\"t").count(),
         html.len(),
         far * 100.0
     );

@@ -223,7 +223,10 @@ fn textured_sprites_become_clipped_images() {
         p.compositor().scene(),
         &SvgOptions::DEFAULT.with_textures(vec![png.to_owned()]),
     );
-    assert_eq!(svg.matches("<image").count(), p.draw_list().len());
+    // The image once, in <defs>; one <use> of it per sprite.
+    assert_eq!(svg.matches("<image").count(), 1);
+    assert_eq!(svg.matches("data:image/png").count(), 1);
+    assert_eq!(svg.matches("<use").count(), p.draw_list().len());
     assert_eq!(svg.matches("<clipPath").count(), p.draw_list().len());
     let _ = rasterise_svg(&svg);
 }

@@ -1,0 +1,129 @@
+//! One path from a geometry, a view and materials to an SVG, a PDF or an HTML page.
+
+use face_sort::{Geometry, SorterKind, View};
+
+use crate::{
+    HiddenParts, HtmlOptions, Materials, PdfOptions, RecordingCompositor, Scene, SpritePainter,
+    SpriteSpace, SvgOptions, write_html, write_pdf, write_svg,
+};
+
+/// A picture ready to be written as a vector file: the model's sprites in an exact paint
+/// order, in its own materials, at the view's size.
+///
+/// ```
+/// use sprite_compose::face_sort::{Geometry, PolygonMesh, View};
+/// use sprite_compose::Export;
+///
+/// let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.5, 0.5, 0.5]];
+/// let mesh = PolygonMesh::new(positions, [[0u32, 2, 1], [0, 1, 3], [1, 2, 3], [2, 0, 3]]).unwrap();
+/// let geometry = Geometry::new(&mesh).unwrap();
+/// let view = View::fit(&geometry.bounds(), 200, 100).with_yaw_pitch_roll(30.0, 20.0, 0.0);
+/// let export = Export::new(&geometry, view);
+/// assert!(export.svg().starts_with("<svg"));
+/// assert!(export.pdf().starts_with(b"%PDF"));
+/// assert!(export.html().contains("200px"));
+/// ```
+pub struct Export {
+    painter: SpritePainter<RecordingCompositor>,
+    textured: Option<Scene>,
+    texture_uris: Vec<String>,
+    hidden: HiddenParts,
+}
+
+impl Export {
+    /// The picture of `geometry` through `view`, ordered by the BSP (exact), every face in
+    /// its palette colour until [`with_materials`](Self::with_materials).
+    #[must_use]
+    pub fn new(geometry: &Geometry, view: View) -> Self {
+        Self::with_sorter(geometry, view, SorterKind::Bsp)
+    }
+
+    /// [`new`](Self::new) with another sorter.
+    #[must_use]
+    pub fn with_sorter(geometry: &Geometry, view: View, sorter: SorterKind) -> Self {
+        let mut painter = SpritePainter::new(
+            geometry,
+            sorter.build(geometry),
+            view,
+            RecordingCompositor::new(),
+        );
+        painter.frame();
+        Export {
+            painter,
+            textured: None,
+            texture_uris: Vec::new(),
+            hidden: HiddenParts::Remove,
+        }
+    }
+
+    /// Paints each face as `materials` say: colours, and textures (embedded once per file
+    /// as `data:` URIs) in SVG and HTML; a texture's mean colour in PDF.
+    #[must_use]
+    pub fn with_materials(mut self, materials: &Materials) -> Self {
+        self.painter.set_brushes(|face| materials.brush(face));
+        self.painter.frame();
+        let mut textured = self.painter.compositor().scene().clone();
+        let space = SpriteSpace::of_view(self.painter.view());
+        if materials.set_textures(&mut textured, &space) > 0 {
+            self.texture_uris = materials.images().iter().map(|i| i.data_uri()).collect();
+            self.textured = Some(textured);
+        }
+        self
+    }
+
+    /// Keeps hidden polygons (and parts) in SVG and PDF instead of removing them.
+    #[must_use]
+    pub fn with_hidden(mut self, hidden: HiddenParts) -> Self {
+        self.hidden = hidden;
+        self
+    }
+
+    fn size(&self) -> (u32, u32) {
+        (self.painter.view().width(), self.painter.view().height())
+    }
+
+    /// The scene with flat colours (PDF), and with textures where it has them (SVG, HTML).
+    fn scenes(&self) -> (&Scene, &Scene) {
+        let flat = self.painter.compositor().scene();
+        (flat, self.textured.as_ref().unwrap_or(flat))
+    }
+
+    /// The SVG file.
+    #[must_use]
+    pub fn svg(&self) -> String {
+        let (width, height) = self.size();
+        write_svg(
+            self.scenes().1,
+            &SvgOptions::DEFAULT
+                .with_size(width, height)
+                .with_seam_stroke(1.0)
+                .with_hidden(self.hidden)
+                .with_textures(self.texture_uris.clone()),
+        )
+    }
+
+    /// The one-page PDF file (one pixel to one point).
+    #[must_use]
+    pub fn pdf(&self) -> Vec<u8> {
+        let (width, height) = self.size();
+        write_pdf(
+            self.scenes().0,
+            &PdfOptions::DEFAULT
+                .with_size(width, height)
+                .with_seam_stroke(1.0)
+                .with_hidden(self.hidden),
+        )
+    }
+
+    /// The HTML/CSS 3D page.
+    #[must_use]
+    pub fn html(&self) -> String {
+        let (width, height) = self.size();
+        write_html(
+            self.scenes().1,
+            &HtmlOptions::DEFAULT
+                .with_size(width, height)
+                .with_textures(self.texture_uris.clone()),
+        )
+    }
+}

@@ -1,0 +1,294 @@
+//! A loaded model's materials resolved per face: what every sink paints each face with.
+//!
+//! sprite-compose owns brushes, so it owns materials too: a loader describes each face
+//! through [`FaceMaterials`] (implemented for `obj_quads::Mesh`), and [`Materials::resolve`]
+//! decodes its textures once (within obj-quads' texture limits), tints them by their factor
+//! and fits each textured face's [`UvMap`]. The writers take sprite [`Brush`]es from it
+//! ([`Materials::brush`], [`Materials::set_textures`]); raster-sink turns the same
+//! resolution into its raster brushes.
+
+mod image;
+mod obj_mesh;
+mod uv_map;
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use glam::{DVec2, DVec3, Vec2};
+
+pub use image::{Image, decode_image, load_image};
+use image::{TextureSource, alpha_byte};
+pub use uv_map::UvMap;
+
+use crate::{Brush, Scene, SpriteSpace, TextureId};
+
+/// What sprite-compose needs to know about a loaded model's faces to paint them: positions,
+/// each face's corners, uvs, diffuse colour and texture.
+///
+/// Face indices are those of the draw list (the file order of CONVENTIONS.md).
+pub trait FaceMaterials {
+    /// Number of faces.
+    fn face_count(&self) -> usize;
+    /// Vertex positions in model space.
+    fn positions(&self) -> &[DVec3];
+    /// A face's corners as indices into [`positions`](Self::positions); `None` when out of
+    /// range.
+    fn face_corners(&self, face: usize) -> Option<&[u32]>;
+    /// A face's uvs, one per corner, `v = 0` at the texture's bottom (OBJ and glTF as
+    /// loaded by obj-quads); `None` when the face has none.
+    fn face_uvs(&self, face: usize) -> Option<&[Vec2]>;
+    /// A face's diffuse colour, RGBA in 0..=1, mapped linearly to bytes; `None` when the
+    /// face has no material (it is then painted in its palette colour).
+    fn face_diffuse(&self, face: usize) -> Option<[f32; 4]>;
+    /// A face's diffuse texture file (PNG or JPEG), if its material has one.
+    fn face_texture(&self, face: usize) -> Option<&Path>;
+    /// A face's diffuse texture held in the model file (encoded PNG or JPEG), with a name for
+    /// messages, when it has no texture file. Default: none.
+    fn face_embedded_texture(&self, face: usize) -> Option<(&str, &[u8])> {
+        let _ = face;
+        None
+    }
+    /// The factor a face's texture is multiplied by (linear RGBA, e.g. glTF's
+    /// `baseColorFactor`); `None` leaves the texture as it is. Default: none.
+    fn face_texture_factor(&self, face: usize) -> Option<[f32; 4]> {
+        let _ = face;
+        None
+    }
+    /// How a face's alpha is used (glTF `alphaMode`): opaque, blended, or masked at a
+    /// cutoff. Default: blended.
+    fn face_alpha_mode(&self, face: usize) -> obj_quads::AlphaMode {
+        let _ = face;
+        obj_quads::AlphaMode::Blend
+    }
+    /// A face's model-space normal (any length) for flat shading: by default Newell's
+    /// normal of its corners.
+    fn face_normal(&self, face: usize) -> Option<DVec3> {
+        let positions = self.positions();
+        let corners: Vec<DVec3> = self
+            .face_corners(face)?
+            .iter()
+            .map(|&i| positions.get(i as usize).copied())
+            .collect::<Option<_>>()?;
+        Some(face_sort::newell_normal(&corners))
+    }
+}
+
+/// Options of [`Materials::resolve`].
+#[derive(Clone, Debug, Default, PartialEq)]
+#[non_exhaustive]
+pub struct MaterialOptions {
+    /// A texture for faces that have uvs but no texture of their own (e.g. a model whose
+    /// OBJ has uvs and no MTL). Unlike a material's texture, failing to load it is an error.
+    /// Default: none.
+    pub texture: Option<PathBuf>,
+}
+
+impl MaterialOptions {
+    /// The defaults.
+    pub const DEFAULT: MaterialOptions = MaterialOptions { texture: None };
+
+    /// The texture for faces with uvs and no texture of their own.
+    #[must_use]
+    pub fn with_texture(mut self, texture: impl Into<PathBuf>) -> Self {
+        self.texture = Some(texture.into());
+        self
+    }
+}
+
+/// A texture that could not be loaded.
+#[derive(Debug, thiserror::Error)]
+#[error("{source}")]
+pub struct TextureError {
+    /// The file (or, for a texture held in the model file, its name).
+    pub path: PathBuf,
+    /// What the texture loader said (boxed: it is large).
+    #[source]
+    pub source: Box<obj_quads::LoadError>,
+}
+
+/// How one face is painted, resolved from its material.
+#[derive(Clone, Debug, PartialEq)]
+pub enum FacePaint {
+    /// The golden-angle palette colour of the face (no material).
+    Palette,
+    /// One colour, sRGB with straight alpha.
+    Solid([u8; 4]),
+    /// A texture.
+    Texture {
+        /// Index into [`Materials::images`].
+        image: usize,
+        /// Where each point of the face (centred model space) lands in the texture.
+        map: UvMap,
+    },
+}
+
+/// A model's materials resolved per face ([`Materials::resolve`]): decoded (and tinted)
+/// images, each face's paint, and the material textures that could not be loaded (their
+/// faces fall back to the diffuse colour).
+#[derive(Clone, Debug, Default)]
+pub struct Materials {
+    faces: Vec<FacePaint>,
+    images: Vec<Arc<Image>>,
+    warnings: Vec<Arc<TextureError>>,
+}
+
+impl Materials {
+    /// Every face in its palette colour.
+    #[must_use]
+    pub fn palette() -> Self {
+        Materials::default()
+    }
+
+    /// Resolves each face's material: its texture (or `options.texture`) where the face has
+    /// uvs, fitted per face ([`UvMap::fit`]); else its diffuse colour; faces without a
+    /// material keep the palette. `centre` is the draw lists' centre,
+    /// `geometry.bounds().centre()`. Each texture is decoded once, within
+    /// `obj_quads::LoadOptions::DEFAULT`'s texture limits, and tinted once per factor.
+    ///
+    /// A material texture that does not load becomes a warning and its faces use the
+    /// diffuse colour; `options.texture` failing to load is an error.
+    pub fn resolve(
+        faces: &impl FaceMaterials,
+        centre: DVec3,
+        options: &MaterialOptions,
+    ) -> Result<Materials, TextureError> {
+        let mut out = Materials::default();
+        let mut decoded: HashMap<image::TextureKey, Option<Arc<Image>>> = HashMap::new();
+        let mut tinted: HashMap<(image::TextureKey, [u32; 4], image::AlphaKey), usize> =
+            HashMap::new();
+        let mut index_of: HashMap<*const Image, usize> = HashMap::new();
+        let positions = faces.positions();
+        let (mut corners, mut uv_points) = (Vec::new(), Vec::new());
+        for face in 0..faces.face_count() {
+            let source = faces
+                .face_texture(face)
+                .map(TextureSource::File)
+                .or_else(|| {
+                    faces
+                        .face_embedded_texture(face)
+                        .map(|(name, bytes)| TextureSource::Embedded(name, bytes))
+                })
+                .or(options.texture.as_deref().map(TextureSource::File));
+            let mut paint = None;
+            if let (Some(source), Some(uvs), Some(indices)) =
+                (source, faces.face_uvs(face), faces.face_corners(face))
+            {
+                let key = source.key();
+                let image = match decoded.get(&key) {
+                    Some(image) => image.clone(),
+                    None => {
+                        let image = match source.decode() {
+                            Ok(image) => Some(Arc::new(image)),
+                            Err(e) if matches!(source, TextureSource::File(p) if options.texture.as_deref() == Some(p)) =>
+                            {
+                                return Err(e);
+                            }
+                            Err(e) => {
+                                out.warnings.push(Arc::new(e));
+                                None
+                            }
+                        };
+                        decoded.insert(key.clone(), image.clone());
+                        image
+                    }
+                };
+                corners.clear();
+                corners.extend(
+                    indices
+                        .iter()
+                        .filter_map(|&i| positions.get(i as usize))
+                        .map(|&p| p - centre),
+                );
+                uv_points.clear();
+                uv_points.extend(
+                    uvs.iter()
+                        .map(|uv| DVec2::new(f64::from(uv.x), 1.0 - f64::from(uv.y))),
+                );
+                if let (Some(image), Some(map)) = (image, UvMap::fit(&corners, &uv_points)) {
+                    let factor = faces.face_texture_factor(face).unwrap_or([1.0; 4]);
+                    let alpha = faces.face_alpha_mode(face);
+                    let slot = if factor != [1.0; 4] || alpha != obj_quads::AlphaMode::Blend {
+                        *tinted
+                            .entry((key, factor.map(f32::to_bits), image::alpha_key(alpha)))
+                            .or_insert_with(|| {
+                                out.images.push(Arc::new(image.tinted(factor, alpha)));
+                                out.images.len() - 1
+                            })
+                    } else {
+                        *index_of.entry(Arc::as_ptr(&image)).or_insert_with(|| {
+                            out.images.push(Arc::clone(&image));
+                            out.images.len() - 1
+                        })
+                    };
+                    paint = Some(FacePaint::Texture { image: slot, map });
+                }
+            }
+            let paint = paint.or_else(|| {
+                faces.face_diffuse(face).map(|d| {
+                    let mut colour = d.map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8);
+                    colour[3] = alpha_byte(colour[3], faces.face_alpha_mode(face));
+                    FacePaint::Solid(colour)
+                })
+            });
+            out.faces.push(paint.unwrap_or(FacePaint::Palette));
+        }
+        Ok(out)
+    }
+
+    /// [`resolve`](Self::resolve) with the default options for `geometry`'s draw lists.
+    pub fn of(
+        faces: &impl FaceMaterials,
+        geometry: &face_sort::Geometry,
+    ) -> Result<Materials, TextureError> {
+        Self::resolve(faces, geometry.bounds().centre(), &MaterialOptions::DEFAULT)
+    }
+
+    /// A face's paint ([`FacePaint::Palette`] for faces past the resolved ones).
+    #[must_use]
+    pub fn face(&self, face: u32) -> &FacePaint {
+        self.faces.get(face as usize).unwrap_or(&FacePaint::Palette)
+    }
+
+    /// The number of resolved faces.
+    #[must_use]
+    pub fn face_count(&self) -> usize {
+        self.faces.len()
+    }
+
+    /// The distinct images, each once (a tinted texture is its own image), in the order
+    /// [`FacePaint::Texture`] and [`TextureId`]s index them.
+    #[must_use]
+    pub fn images(&self) -> &[Arc<Image>] {
+        &self.images
+    }
+
+    /// The material textures that could not be loaded.
+    #[must_use]
+    pub fn warnings(&self) -> &[Arc<TextureError>] {
+        &self.warnings
+    }
+
+    /// The sprite brush of a face for a writer that draws no textures: its colour, a
+    /// texture as the image's mean colour, the palette.
+    #[must_use]
+    pub fn brush(&self, face: u32) -> Brush {
+        match self.face(face) {
+            FacePaint::Palette => Brush::Palette,
+            FacePaint::Solid(colour) => Brush::Solid(*colour),
+            FacePaint::Texture { image, .. } => Brush::Solid(self.images[*image].mean_colour()),
+        }
+    }
+
+    /// Gives every visible sprite of `scene` whose face has a texture its exact texture
+    /// brush ([`set_plane_textures`](crate::set_plane_textures) with the faces' uv maps),
+    /// [`TextureId`] `i` being [`images`](Self::images)`[i]`; the other sprites keep theirs.
+    /// `space` is the painter's `SpriteSpace::of_view(view)`. Returns how many sprites got
+    /// a texture.
+    pub fn set_textures(&self, scene: &mut Scene, space: &SpriteSpace) -> usize {
+        crate::set_plane_textures(scene, space, |face, p| match self.face(face) {
+            FacePaint::Texture { image, map } => Some((TextureId(*image as u32), map.uv(p))),
+            _ => None,
+        })
+    }
+}
