@@ -68,13 +68,13 @@ fn main() {
             println!(
                 "| {name} | {} | {kind} | {:.0} ms (+ tree {tree_ms:.0} ms) | {} | {} | {:.1} MB | {:.2} MB | {checked} | {:.0} ms | {missed} of {} |",
                 geometry.pieces().len(),
-                exact.bake_ms,
-                exact.breakpoints.len(),
-                exact.cells.len(),
+                exact.bake_ms(),
+                exact.breakpoints().len(),
+                exact.cells().len(),
                 sizes.full_bytes as f64 / 1e6,
                 sizes.delta_bytes as f64 / 1e6,
-                sampled.bake_ms,
-                exact.breakpoints.len(),
+                sampled.bake_ms(),
+                exact.breakpoints().len(),
             );
         }
     }

@@ -1,5 +1,6 @@
 //! The animation: a rotation by `θ` about a fixed axis, composed with a fixed base view.
 
+use crate::BakeError;
 use face_sort::{Projection, View};
 use glam::{DMat3, DVec3, EulerRot};
 
@@ -90,16 +91,19 @@ pub struct Spin {
 
 impl Spin {
     /// The spin of `axis` with the other parameters of `template` (its rotation is ignored).
-    /// `None` when an angle, the base matrix or the template's scale or eye distance is not
-    /// finite, or a [`Axis::Direction`] axis has no length.
-    #[must_use]
-    pub fn new(template: View, axis: Axis) -> Option<Self> {
+    /// [`BakeError::Spin`] when an angle, the base matrix or the template's scale or eye
+    /// distance is not finite, or a [`Axis::Direction`] axis has no length;
+    /// [`BakeError::ViewOffset`] when the template has a view offset or an off-centre
+    /// principal point.
+    pub fn new(template: View, axis: Axis) -> Result<Self, BakeError> {
         let (a, k, b) = match axis {
             Axis::Yaw { pitch, roll } => (DMat3::IDENTITY, DVec3::Y, euler(0.0, pitch, roll)),
             Axis::Pitch { yaw, roll } => (euler(yaw, 0.0, 0.0), DVec3::X, euler(0.0, 0.0, roll)),
             Axis::Roll { yaw, pitch } => (euler(yaw, pitch, 0.0), DVec3::Z, DMat3::IDENTITY),
             Axis::Direction { axis, base } => {
-                let k = DVec3::from_array(axis).try_normalize()?;
+                let k = DVec3::from_array(axis)
+                    .try_normalize()
+                    .ok_or(BakeError::Spin { what: "axis" })?;
                 (DMat3::IDENTITY, k, DMat3::from_cols_array_2d(&base))
             }
         };
@@ -113,14 +117,22 @@ impl Spin {
             Projection::Orthographic => 1.0,
             Projection::Perspective { distance } => distance,
         };
-        if !(c.iter().all(|m| m.is_finite())
-            && template.scale().is_finite()
-            && template.scale() > 0.0
-            && distance.is_finite())
-        {
-            return None;
+        if !c.iter().all(|m| m.is_finite()) {
+            return Err(BakeError::Spin {
+                what: "rotation (angles or base matrix)",
+            });
         }
-        Some(Spin {
+        if !(template.scale().is_finite() && template.scale() > 0.0 && distance.is_finite()) {
+            return Err(BakeError::Spin {
+                what: "scale or eye distance",
+            });
+        }
+        let centre =
+            glam::DVec2::new(f64::from(template.width()), f64::from(template.height())) * 0.5;
+        if template.view_offset() != DVec3::ZERO || template.principal_point() != centre {
+            return Err(BakeError::ViewOffset);
+        }
+        Ok(Spin {
             axis,
             template,
             factors: (a, k, b),
@@ -149,15 +161,21 @@ impl Spin {
 
     /// `R(θ)`, `θ` in radians (the animated parameter itself for yaw, pitch and roll).
     #[must_use]
-    pub fn rotation(&self, theta: f64) -> DMat3 {
+    pub fn rotation_rad(&self, theta: f64) -> DMat3 {
         let (s, c) = theta.sin_cos();
         self.c[0] + self.c[1] * c + self.c[2] * s
     }
 
-    /// The view at `θ` (radians).
+    /// The view at `θ` radians.
     #[must_use]
-    pub fn view_at(&self, theta: f64) -> View {
-        self.template.with_rotation(self.rotation(theta))
+    pub fn view_at_rad(&self, theta: f64) -> View {
+        self.template.with_rotation(self.rotation_rad(theta))
+    }
+
+    /// The view at an angle in degrees (as [`Bake::cell_at`](crate::Bake::cell_at) takes it).
+    #[must_use]
+    pub fn view_at(&self, degrees: f64) -> View {
+        self.view_at_rad(degrees.to_radians())
     }
 
     /// `Rᵀ·ẑ`, the unit vector toward the viewer in centred model space, as `(p₀, p₁, p₂)`:
@@ -224,6 +242,20 @@ mod tests {
     }
 
     #[test]
+    fn a_camera_off_the_centre_is_refused_and_degrees_match_radians() {
+        let yaw = Axis::Yaw {
+            pitch: 20.0,
+            roll: 0.0,
+        };
+        let moved = template().with_view_offset(DVec3::new(0.1, 0.0, 0.0));
+        assert!(matches!(Spin::new(moved, yaw), Err(BakeError::ViewOffset)));
+        let off_centre = template().with_principal_point(10.0, 32.0);
+        assert!(matches!(Spin::new(off_centre, yaw), Err(BakeError::ViewOffset)));
+        let spin = Spin::new(template(), yaw).unwrap();
+        assert_eq!(spin.view_at(30.0), spin.view_at_rad(30f64.to_radians()));
+    }
+
+    #[test]
     fn non_finite_input_is_refused() {
         assert!(
             Spin::new(
@@ -233,13 +265,13 @@ mod tests {
                     roll: 0.0
                 }
             )
-            .is_none()
+            .is_err()
         );
         let zero = Axis::Direction {
             axis: [0.0; 3],
             base: DMat3::IDENTITY.to_cols_array_2d(),
         };
-        assert!(Spin::new(template(), zero).is_none());
+        assert!(Spin::new(template(), zero).is_err());
         let far = template().with_perspective(f64::INFINITY);
         assert!(
             Spin::new(
@@ -249,7 +281,7 @@ mod tests {
                     pitch: 0.0
                 }
             )
-            .is_none()
+            .is_err()
         );
     }
 
@@ -264,7 +296,7 @@ mod tests {
             let spin = Spin::new(template(), axis).unwrap();
             let (which, ypr) = angles;
             let want = euler(ypr[0], ypr[1], ypr[2]);
-            let got = spin.rotation(ypr[which].to_radians());
+            let got = spin.rotation_rad(ypr[which].to_radians());
             assert!(
                 (want - got)
                     .abs()

@@ -275,7 +275,7 @@ pub fn bake(
         let mids: Vec<f64> = block.iter().map(|i| 0.5 * (i.0 + i.1)).collect();
         for (i, order) in block
             .iter()
-            .zip(lists_at(source, &mids, |&t| spin.view_at(t)))
+            .zip(lists_at(source, &mids, |&t| spin.view_at_rad(t)))
         {
             merger.push(i.0, i.1, order, i.2);
         }
@@ -325,7 +325,7 @@ pub fn bake_sampled(
         (end - start) / (samples - 1) as f64
     };
     let thetas: Vec<f64> = (0..samples).map(|k| start + step * k as f64).collect();
-    let lists = lists_at(source, &thetas, |&t| spin.view_at(t));
+    let lists = lists_at(source, &thetas, |&t| spin.view_at_rad(t));
     // Brackets (left angle, right angle) whose lists differ, the last wrapping round.
     let pairs = if periodic { samples } else { samples - 1 };
     let changes: Vec<usize> = (0..pairs)
@@ -340,7 +340,7 @@ pub fn bake_sampled(
             let mut right = lists[(k + 1) % samples].clone();
             while hi - lo > tolerance {
                 let mid = 0.5 * (lo + hi);
-                sorter.sort(&spin.view_at(mid), &mut list);
+                sorter.sort(&spin.view_at_rad(mid), &mut list);
                 if same_order(&list, &lists[k]) {
                     lo = mid;
                 } else {

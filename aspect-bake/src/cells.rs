@@ -128,25 +128,25 @@ pub struct Sizes {
 #[derive(Clone, Debug)]
 pub struct Bake {
     /// What turns.
-    pub axis: Axis,
+    pub(crate) axis: Axis,
     /// The sorter whose draw lists these are.
-    pub sorter: String,
+    pub(crate) sorter: String,
     /// How the bake was made.
-    pub method: Method,
+    pub(crate) method: Method,
     /// The domain in degrees: `[lo, lo + 360)` for a full period, else `[lo, hi]`.
-    pub domain: AngleRange,
+    pub(crate) domain: AngleRange,
     /// Polygons the orders refer to (the sorter's shared set, centred model space).
-    pub polygons: Arc<PolygonSet>,
+    pub(crate) polygons: Arc<PolygonSet>,
     /// Cells in increasing angle. Over a full period the first starts at the smallest
     /// breakpoint and the last wraps past 360.
-    pub cells: Vec<BakeCell>,
+    pub(crate) cells: Vec<BakeCell>,
     /// Where the list changes, increasing.
-    pub breakpoints: Vec<Breakpoint>,
+    pub(crate) breakpoints: Vec<Breakpoint>,
     /// Exact bakes: sign changes of every event function in the domain, before merging.
     /// Sampled bakes: sample steps whose two lists differ (each bisected once).
-    pub events: usize,
+    pub(crate) events: usize,
     /// Wall time of the bake, milliseconds.
-    pub bake_ms: f64,
+    pub(crate) bake_ms: f64,
 }
 
 /// One step of the delta timeline: entering the next cell, replace `removed` items from
@@ -202,6 +202,59 @@ pub fn cell_bytes(items: usize) -> usize {
 }
 
 impl Bake {
+    /// What turns.
+    #[must_use]
+    pub fn axis(&self) -> Axis {
+        self.axis
+    }
+    /// The sorter whose draw lists these are (`"picture"` for picture bakes).
+    #[must_use]
+    pub fn sorter(&self) -> &str {
+        &self.sorter
+    }
+    /// How the bake was made.
+    #[must_use]
+    pub fn method(&self) -> Method {
+        self.method
+    }
+    /// The domain in degrees: `[lo, lo + 360)` for a full period, else `[lo, hi]`.
+    #[must_use]
+    pub fn domain(&self) -> AngleRange {
+        self.domain
+    }
+    /// Polygons the orders refer to (centred model space).
+    #[must_use]
+    pub fn polygons(&self) -> &Arc<PolygonSet> {
+        &self.polygons
+    }
+    /// Cells in increasing angle. Over a full period the first starts at the smallest
+    /// breakpoint and the last wraps past 360.
+    #[must_use]
+    pub fn cells(&self) -> &[BakeCell] {
+        &self.cells
+    }
+    /// Where the list changes, increasing.
+    #[must_use]
+    pub fn breakpoints(&self) -> &[Breakpoint] {
+        &self.breakpoints
+    }
+    /// Exact bakes: sign changes of every event function in the domain, before merging.
+    /// Sampled bakes: sample steps whose two lists differ (each bisected once).
+    #[must_use]
+    pub fn events(&self) -> usize {
+        self.events
+    }
+    /// Wall time of the bake, milliseconds.
+    #[must_use]
+    pub fn bake_ms(&self) -> f64 {
+        self.bake_ms
+    }
+    /// The paint order (polygon indices, back to front) at an angle in degrees: the order
+    /// of [`cell_at`](Self::cell_at)'s cell; `None` outside the domain.
+    #[must_use]
+    pub fn draw_list_at(&self, degrees: f64) -> Option<&[u32]> {
+        self.cell_at(degrees).map(|c| &self.cells[c].order[..])
+    }
     /// Index of the cell holding `degrees`: O(log cells). `None` outside a bounded domain.
     #[must_use]
     pub fn cell_at(&self, degrees: f64) -> Option<usize> {

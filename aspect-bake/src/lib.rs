@@ -77,7 +77,7 @@
 //! .unwrap();
 //! let source = BspSource::of(&geometry);
 //! let baked = bake(&source, &spin, &BakeOptions::DEFAULT).unwrap();
-//! let at: Vec<f64> = baked.breakpoints.iter().map(|b| b.degrees).collect();
+//! let at: Vec<f64> = baked.breakpoints().iter().map(|b| b.degrees).collect();
 //! assert_eq!(at.len(), 4); // 0°, 90°, 180°, 270°
 //! assert!(verify(&baked, &source, &spin, 4, 1).is_ok());
 //! ```
@@ -104,8 +104,8 @@ pub use picture::{
 };
 pub use source::{BspSource, CentroidSource, Event, EventSource};
 pub use two_axes::{
-    Bake2, Bake2Options, Curve, EventCircle, Row, Slab, Verify2Error, Verify2Report, YawPitch,
-    bake_two_axes, verify_two_axes,
+    Curve, EventCircle, Row, Slab, TwoAxisBake, TwoAxisOptions, Verify2Error, Verify2Report,
+    YawPitch, bake_two_axes, verify_two_axes,
 };
 pub use verify::{VerifyError, VerifyReport, verify};
 
@@ -195,6 +195,20 @@ pub enum BakeError {
         /// Farthest corner from the centre, model units.
         reach: f64,
     },
+    /// The spin cannot be made: an angle, the base matrix, or the template's scale or eye
+    /// distance is not finite, or a direction axis has no length.
+    #[error("the spin's {what} is not finite or has no length")]
+    Spin {
+        /// Which input.
+        what: &'static str,
+    },
+    /// The template view places the model off its centre (a camera's view offset or a moved
+    /// principal point): a spin turns the model about its centre in front of a centred eye.
+    #[error(
+        "the spin's view has a view offset or an off-centre principal point; aim the camera at \
+         the model's centre"
+    )]
+    ViewOffset,
     /// A sampled bake with fewer than 2 samples or a tolerance that is not positive.
     #[error(
         "sampling needs at least 2 samples and a positive tolerance ({samples}, {tolerance_deg}°)"

@@ -28,7 +28,7 @@
 //! cut into trapezoid-like pieces by the slab boundaries through the arrangement's vertices
 //! and the curves' turning points; neighbouring pieces of one slab with equal lists are
 //! merged. Every point of the domain lies in exactly one cell (slabs `[lo, hi)` in pitch,
-//! gaps `[curve, next curve)` in yaw), found by [`Bake2::cell_at`] with two binary searches.
+//! gaps `[curve, next curve)` in yaw), found by [`TwoAxisBake::cell_at`] with two binary searches.
 //!
 //! Crossings are found between every pair of circles (a budget bounds them): a sweep over the
 //! pitch with a kinetic list of adjacent curves would find only the crossings inside the
@@ -186,7 +186,7 @@ impl Chart {
 /// One event curve inside a slab: the `down` (value falling with yaw) or up root of a circle.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub struct Curve {
-    /// Index into [`Bake2::circles`].
+    /// Index into [`TwoAxisBake::circles`].
     pub circle: u32,
     /// The root where the value falls (else where it rises).
     pub down: bool,
@@ -210,31 +210,32 @@ pub struct Slab {
     pub cells: Vec<u32>,
 }
 
-/// A two-axis bake: cells over yaw × pitch, each with one draw list.
+/// A two-axis bake: cells over yaw × pitch (the [`YawPitch`] domain), each with one draw
+/// list that is exact over the whole cell, found in closed form ([`bake_two_axes`]).
 #[derive(Clone, Debug)]
-pub struct Bake2 {
+pub struct TwoAxisBake {
     /// The domain.
-    pub domain: YawPitch,
+    pub(crate) domain: YawPitch,
     /// The sorter's name.
-    pub sorter: String,
+    pub(crate) sorter: String,
     /// The polygons the lists refer to.
-    pub polygons: Arc<PolygonSet>,
+    pub(crate) polygons: Arc<PolygonSet>,
     /// The event circles.
-    pub circles: Vec<EventCircle>,
+    pub(crate) circles: Vec<EventCircle>,
     /// Pitch slabs in increasing pitch.
-    pub slabs: Vec<Slab>,
+    pub(crate) slabs: Vec<Slab>,
     /// Draw lists, back to front, per cell. A cell is a union of gaps between two curves
     /// in consecutive slabs (see [`Slab::cells`]); cells partition the domain.
-    pub cells: Vec<Vec<u32>>,
+    pub(crate) cells: Vec<Vec<u32>>,
     /// Pitches that bound slabs, found in closed form (before merging the close ones).
-    pub critical_pitches: usize,
+    pub(crate) critical_pitches: usize,
     /// Milliseconds the bake took.
-    pub bake_ms: f64,
+    pub(crate) bake_ms: f64,
 }
 
 /// Options of [`bake_two_axes`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Bake2Options {
+pub struct TwoAxisOptions {
     /// Stop with [`BakeError::EventBudget`] beyond this many critical pitches (curve
     /// crossings, turning points, boundary crossings) or circle pairs examined / 64.
     pub max_events: usize,
@@ -244,16 +245,56 @@ pub struct Bake2Options {
     pub budget_bytes: usize,
 }
 
-impl Default for Bake2Options {
+impl Default for TwoAxisOptions {
     fn default() -> Self {
-        Bake2Options {
+        TwoAxisOptions {
             max_events: 2_000_000,
             budget_bytes: 1 << 30,
         }
     }
 }
 
-impl Bake2 {
+impl TwoAxisBake {
+    /// The domain.
+    #[must_use]
+    pub fn domain(&self) -> &YawPitch {
+        &self.domain
+    }
+    /// The sorter's name.
+    #[must_use]
+    pub fn sorter(&self) -> &str {
+        &self.sorter
+    }
+    /// The polygons the lists refer to.
+    #[must_use]
+    pub fn polygons(&self) -> &Arc<PolygonSet> {
+        &self.polygons
+    }
+    /// The event circles.
+    #[must_use]
+    pub fn circles(&self) -> &[EventCircle] {
+        &self.circles
+    }
+    /// Pitch slabs in increasing pitch.
+    #[must_use]
+    pub fn slabs(&self) -> &[Slab] {
+        &self.slabs
+    }
+    /// Draw lists, back to front, per cell; cells partition the domain.
+    #[must_use]
+    pub fn cells(&self) -> &[Vec<u32>] {
+        &self.cells
+    }
+    /// Pitches that bound slabs, found in closed form (before merging the close ones).
+    #[must_use]
+    pub fn critical_pitches(&self) -> usize {
+        self.critical_pitches
+    }
+    /// Milliseconds the bake took.
+    #[must_use]
+    pub fn bake_ms(&self) -> f64 {
+        self.bake_ms
+    }
     /// The yaw (radians) of curve `k` of slab `s` at `pitch` (radians).
     fn yaw_of(&self, s: usize, k: usize, pitch: f64, window: (f64, f64, bool)) -> f64 {
         let slab = &self.slabs[s];
@@ -504,8 +545,8 @@ fn circle_crossings(a: &EventCircle, b: &EventCircle) -> Option<[DVec3; 2]> {
 pub fn bake_two_axes(
     source: &dyn EventSource,
     domain: &YawPitch,
-    options: &Bake2Options,
-) -> Result<Bake2, BakeError> {
+    options: &TwoAxisOptions,
+) -> Result<TwoAxisBake, BakeError> {
     let started = Instant::now();
     domain.check()?;
     let mut rows = Vec::new();
@@ -670,7 +711,7 @@ pub fn bake_two_axes(
             cells: cell_of_gap,
         });
     }
-    Ok(Bake2 {
+    Ok(TwoAxisBake {
         domain: *domain,
         sorter: source.name().to_owned(),
         polygons: Arc::clone(source.polygons()),
@@ -724,14 +765,14 @@ pub enum Verify2Error {
 /// Checks a two-axis bake against the live sorter, cell by cell: at `per_cell` random points
 /// strictly inside each cell (a random gap of the cell, a random pitch of its slab, then a
 /// random yaw between the gap's curves at that pitch) the live list is the cell's and
-/// [`Bake2::cell_at`] finds the cell; and across one bounding curve of each cell (a random
+/// [`TwoAxisBake::cell_at`] finds the cell; and across one bounding curve of each cell (a random
 /// one), at a random pitch of its slab, the circle's value has opposite strict signs just
 /// before and after in yaw, and the live lists there are the two cells'.
 ///
 /// # Errors
 /// The first disagreement found.
 pub fn verify_two_axes(
-    bake: &Bake2,
+    bake: &TwoAxisBake,
     source: &dyn EventSource,
     per_cell: usize,
     seed: u64,

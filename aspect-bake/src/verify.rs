@@ -130,7 +130,7 @@ pub fn verify(
                 let cell = &bake.cells[k];
                 let mut state = cell_state(seed, k);
                 let mut live_is = |degrees: f64, order: &[u32]| {
-                    sorter.sort(&spin.view_at(degrees.to_radians()), list);
+                    sorter.sort(&spin.view_at(degrees), list);
                     same_order(list, order)
                 };
                 for _ in 0..per_cell {
@@ -189,7 +189,7 @@ pub fn verify(
                     )));
                 }
                 let mut live_is = |theta: f64, order: &[u32]| {
-                    sorter.sort(&spin.view_at(theta), list);
+                    sorter.sort(&spin.view_at_rad(theta), list);
                     same_order(list, order)
                 };
                 if !live_is(t - side, &bake.cells[left].order) {

@@ -29,7 +29,7 @@ fn yaw_spin(geometry: &Geometry, persp: Option<f64>) -> Spin {
 }
 
 fn degrees(bake: &Bake) -> Vec<f64> {
-    bake.breakpoints.iter().map(|b| b.degrees).collect()
+    bake.breakpoints().iter().map(|b| b.degrees).collect()
 }
 
 /// Every breakpoint within 1e-9° of a multiple of `step` degrees.
@@ -55,7 +55,7 @@ fn unit_cube_yaw_bsp_breaks_at_quarter_turns() {
             assert_eq!(at.len(), 4, "{at:?}");
             on_multiples(&at, 90.0);
         }
-        assert_eq!(b.cells.len(), at.len());
+        assert_eq!(b.cells().len(), at.len());
         verify(&b, &source, &spin, 8, 7).unwrap();
     }
 }
@@ -67,7 +67,7 @@ fn unit_cube_yaw_centroid_has_eight_cells_at_multiples_of_45() {
     let source = CentroidSource::of(&g);
     let b = bake(&source, &spin, &BakeOptions::DEFAULT).unwrap();
     let at = degrees(&b);
-    assert_eq!(b.cells.len(), 8, "{at:?}");
+    assert_eq!(b.cells().len(), 8, "{at:?}");
     assert_eq!(at.len(), 8);
     on_multiples(&at, 45.0);
     let report = verify(&b, &source, &spin, 8, 3).unwrap();
@@ -79,7 +79,7 @@ fn cell_at_finds_the_cell_and_the_delta_timeline_rebuilds_every_list() {
     let g = cube();
     let spin = yaw_spin(&g, None);
     let b = bake(&CentroidSource::of(&g), &spin, &BakeOptions::DEFAULT).unwrap();
-    for (k, cell) in b.cells.iter().enumerate() {
+    for (k, cell) in b.cells().iter().enumerate() {
         for f in [0.0, 0.3, 0.999] {
             let d = cell.range.lerp(f);
             assert_eq!(b.cell_at(d), Some(k));
@@ -87,11 +87,11 @@ fn cell_at_finds_the_cell_and_the_delta_timeline_rebuilds_every_list() {
             assert_eq!(b.cell_at(d - 360.0), Some(k));
         }
     }
-    let mut list = b.cells[0].order.clone();
+    let mut list = b.cells()[0].order.clone();
     for (delta, cell) in b
         .delta_timeline()
         .iter()
-        .zip(b.cells.iter().cycle().skip(1))
+        .zip(b.cells().iter().cycle().skip(1))
     {
         delta.apply(&mut list);
         assert_eq!(&list, &cell.order);
@@ -207,8 +207,8 @@ fn a_range_bakes_only_its_part() {
     let at = degrees(&b);
     assert_eq!(at.len(), 2, "{at:?}");
     on_multiples(&at, 45.0);
-    assert_eq!(b.cells.first().unwrap().range.lo, 10.0);
-    assert!((b.cells.last().unwrap().range.hi - 100.0).abs() < 1e-12);
+    assert_eq!(b.cells().first().unwrap().range.lo, 10.0);
+    assert!((b.cells().last().unwrap().range.hi - 100.0).abs() < 1e-12);
     assert_eq!(b.cell_at(5.0), None);
     verify(&b, &source, &spin, 8, 2).unwrap();
 }
@@ -238,9 +238,9 @@ fn real_model(path: &str, persp: bool, source_kind: &str) {
         &centroid
     };
     let b = bake(source, &spin, &BakeOptions::DEFAULT).unwrap();
-    assert!(b.cells.len() > 1);
+    assert!(b.cells().len() > 1);
     let report = verify(&b, source, &spin, 2, 99).unwrap();
-    assert_eq!(report.breakpoint_checks, b.breakpoints.len());
+    assert_eq!(report.breakpoint_checks, b.breakpoints().len());
 }
 
 #[test]
@@ -296,7 +296,7 @@ proptest! {
         let report = verify(&b, source, &spin, 3, 17);
         prop_assert!(report.is_ok(), "{:?}", report);
         // Cells tile the period.
-        let total: f64 = b.cells.iter().map(|c| c.range.hi - c.range.lo).sum();
+        let total: f64 = b.cells().iter().map(|c| c.range.hi - c.range.lo).sum();
         prop_assert!((total - 360.0).abs() < 1e-9);
     }
 }
@@ -309,15 +309,15 @@ fn a_bake_saves_and_reloads() {
     let b = bake(&BspSource::of(&g), &spin, &BakeOptions::DEFAULT).unwrap();
     let text = serde_json::to_string(&b).unwrap();
     let back: Bake = serde_json::from_str(&text).unwrap();
-    assert_eq!(back.cells, b.cells);
-    assert_eq!(back.breakpoints, b.breakpoints);
-    assert_eq!(back.domain, b.domain);
-    assert_eq!((back.axis, back.method), (b.axis, b.method));
-    assert_eq!(back.polygons.len(), b.polygons.len());
-    for i in 0..b.polygons.len() {
-        assert_eq!(back.polygons.corners(i), b.polygons.corners(i));
-        assert_eq!(back.polygons.face(i), b.polygons.face(i));
-        let (p, q) = (back.polygons.plane(i), b.polygons.plane(i));
+    assert_eq!(back.cells(), b.cells());
+    assert_eq!(back.breakpoints(), b.breakpoints());
+    assert_eq!(back.domain(), b.domain());
+    assert_eq!((back.axis(), back.method()), (b.axis(), b.method()));
+    assert_eq!(back.polygons().len(), b.polygons().len());
+    for i in 0..b.polygons().len() {
+        assert_eq!(back.polygons().corners(i), b.polygons().corners(i));
+        assert_eq!(back.polygons().face(i), b.polygons().face(i));
+        let (p, q) = (back.polygons().plane(i), b.polygons().plane(i));
         // Normalised again on load: equal up to the last bits.
         assert!((p.normal() - q.normal()).length() < 1e-15);
         assert!((p.offset() - q.offset()).abs() <= 1e-15 * (1.0 + q.offset().abs()));
@@ -371,21 +371,21 @@ fn picture_bakes_are_exact_for_the_picture_in_few_cells() {
             .unwrap();
             let (baked, stats) = bake_picture(&g, &spin, &PictureOptions::DEFAULT).unwrap();
             assert!(
-                (1..=most).contains(&baked.cells.len()),
+                (1..=most).contains(&baked.cells().len()),
                 "{name} {persp:?}: {} cells",
-                baked.cells.len()
+                baked.cells().len()
             );
-            assert_eq!(stats.pieces, baked.polygons.len());
+            assert_eq!(stats.pieces, baked.polygons().len());
             // Every cell holds every piece once.
-            for c in &baked.cells {
+            for c in baked.cells() {
                 let mut o = c.order.clone();
                 o.sort_unstable();
-                assert_eq!(o, (0..baked.polygons.len() as u32).collect::<Vec<_>>());
+                assert_eq!(o, (0..baked.polygons().len() as u32).collect::<Vec<_>>());
             }
             let report = verify_picture(&baked, &spin, 3, 7).unwrap();
-            assert_eq!(report.interior_checks, 3 * baked.cells.len());
+            assert_eq!(report.interior_checks, 3 * baked.cells().len());
             let lists = drawn_lists(&baked, &spin).unwrap();
-            assert_eq!(lists.len(), baked.cells.len());
+            assert_eq!(lists.len(), baked.cells().len());
         }
     }
 }
@@ -429,9 +429,9 @@ fn a_picture_bake_round_trips_through_the_binary_encoding() {
     let (b, _) = bake_picture(&g, &spin, &PictureOptions::DEFAULT).unwrap();
     let bytes = b.to_binary().unwrap();
     let back = Bake::from_binary(&bytes).unwrap();
-    assert_eq!(back.cells, b.cells);
-    assert_eq!(back.method, b.method);
-    assert_eq!(back.polygons.len(), b.polygons.len());
+    assert_eq!(back.cells(), b.cells());
+    assert_eq!(back.method(), b.method());
+    assert_eq!(back.polygons().len(), b.polygons().len());
     assert!(bytes.len() < serde_json::to_string(&b).unwrap().len());
     assert!(Bake::from_binary(&bytes[..bytes.len() / 2]).is_err());
 }

@@ -4,7 +4,7 @@
 mod common;
 
 use aspect_bake::{
-    Bake2, Bake2Options, BakeError, BspSource, CentroidSource, EventSource, YawPitch,
+    BakeError, BspSource, CentroidSource, EventSource, TwoAxisBake, TwoAxisOptions, YawPitch,
     bake_two_axes, verify_two_axes,
 };
 use common::{close_pair, cube};
@@ -26,15 +26,15 @@ fn domain(g: &Geometry, persp: Option<f64>, pitch: (f64, f64)) -> YawPitch {
 }
 
 /// Bakes and verifies; checks that random points land in a cell whose list is the live one.
-fn bake_and_verify(source: &dyn EventSource, d: &YawPitch) -> Bake2 {
-    let b = bake_two_axes(source, d, &Bake2Options::default()).unwrap();
+fn bake_and_verify(source: &dyn EventSource, d: &YawPitch) -> TwoAxisBake {
+    let b = bake_two_axes(source, d, &TwoAxisOptions::default()).unwrap();
     let report = verify_two_axes(&b, source, 3, 5).unwrap();
     assert!(report.interior_checks > 0);
-    for slab in &b.slabs {
+    for slab in b.slabs() {
         assert_eq!(slab.cells.len(), slab.curves.len() + 1);
         // Neighbouring gaps of a slab are different cells with different lists.
         for w in slab.cells.windows(2) {
-            assert_ne!(b.cells[w[0] as usize], b.cells[w[1] as usize]);
+            assert_ne!(b.cells()[w[0] as usize], b.cells()[w[1] as usize]);
         }
     }
     b
@@ -50,7 +50,7 @@ fn unit_cube_over_yaw_and_pitch() {
         ] {
             let d = domain(&g, persp, (-60.0, 60.0));
             let b = bake_and_verify(source, &d);
-            assert!(b.cells.len() > 4, "{} cells", b.cells.len());
+            assert!(b.cells().len() > 4, "{} cells", b.cells().len());
         }
     }
     // Orthographic BSP of a cube: the event circles are the three great circles x = 0,
@@ -58,7 +58,7 @@ fn unit_cube_over_yaw_and_pitch() {
     // make the slabs.
     let d = domain(&g, None, (-60.0, 60.0));
     let b = bake_and_verify(&BspSource::of(&g), &d);
-    let bounds: Vec<f64> = b.slabs.iter().map(|s| s.lo).collect();
+    let bounds: Vec<f64> = b.slabs().iter().map(|s| s.lo).collect();
     assert!(bounds.iter().any(|&p| p.abs() < 1e-12), "{bounds:?}");
 }
 
@@ -76,7 +76,7 @@ fn book_over_yaw_and_pitch_orthographic_and_perspective() {
                 ..domain(&g, persp, (-45.0, 45.0))
             };
             let b = bake_and_verify(source, &d);
-            assert!(b.slabs.len() > 1);
+            assert!(b.slabs().len() > 1);
             assert_eq!(b.cell_at(175.0, 0.0), None);
             assert_eq!(b.cell_at(0.0, 50.0), None);
         }
@@ -89,16 +89,16 @@ fn spot_control_mesh_verifies_under_bsp() {
     let g = Geometry::new(&mesh).unwrap();
     let d = domain(&g, None, (10.0, 30.0));
     let source = BspSource::of(&g);
-    let b = bake_two_axes(&source, &d, &Bake2Options::default()).unwrap();
+    let b = bake_two_axes(&source, &d, &TwoAxisOptions::default()).unwrap();
     let report = verify_two_axes(&b, &source, 2, 3).unwrap();
     assert!(report.curve_checks > 0);
     eprintln!(
         "spot control mesh, yaw 0-360 x pitch 10-30: {} circles, {} slabs, {} cells, {:.1} MB of lists, {:.0} ms; {report:?}",
-        b.circles.len(),
-        b.slabs.len(),
-        b.cells.len(),
+        b.circles().len(),
+        b.slabs().len(),
+        b.cells().len(),
         b.full_bytes() as f64 / 1e6,
-        b.bake_ms
+        b.bake_ms()
     );
 }
 
@@ -109,25 +109,25 @@ fn a_sampled_grid_misses_thin_cells_the_exact_bake_has() {
     let b = bake_and_verify(&BspSource::of(&g), &d);
     // A 1° grid over the domain: 360 × 60 samples.
     let missed = b.missed_by_grid(360, 60);
-    assert!(missed > 0, "{} cells, none missed", b.cells.len());
-    assert!(missed < b.cells.len());
+    assert!(missed > 0, "{} cells, none missed", b.cells().len());
+    assert!(missed < b.cells().len());
 }
 
 #[test]
 fn budgets_and_errors() {
     let g = cube();
     let d = domain(&g, None, (-30.0, 30.0));
-    let tight = Bake2Options {
+    let tight = TwoAxisOptions {
         budget_bytes: 10,
-        ..Bake2Options::default()
+        ..TwoAxisOptions::default()
     };
     assert!(matches!(
         bake_two_axes(&BspSource::of(&g), &d, &tight),
         Err(BakeError::SizeBudget { budget: 10, .. })
     ));
-    let few = Bake2Options {
+    let few = TwoAxisOptions {
         max_events: 5,
-        ..Bake2Options::default()
+        ..TwoAxisOptions::default()
     };
     assert!(matches!(
         bake_two_axes(&CentroidSource::of(&g), &d, &few),
@@ -138,7 +138,7 @@ fn budgets_and_errors() {
         ..d
     };
     assert!(matches!(
-        bake_two_axes(&BspSource::of(&g), &bad, &Bake2Options::default()),
+        bake_two_axes(&BspSource::of(&g), &bad, &TwoAxisOptions::default()),
         Err(BakeError::Range { .. })
     ));
 }
@@ -163,7 +163,7 @@ proptest! {
         };
         let source = common::source(&g, centroid);
         let source = source.as_ref();
-        let b = bake_two_axes(source, &d, &Bake2Options::default()).unwrap();
+        let b = bake_two_axes(source, &d, &TwoAxisOptions::default()).unwrap();
         let report = verify_two_axes(&b, source, 2, 23);
         prop_assert!(report.is_ok(), "{:?}", report);
     }
@@ -282,9 +282,9 @@ fn a_curve_at_the_window_start_inside_a_thin_slab() {
         roll: spec.roll,
     };
     let source = CentroidSource::of(&g);
-    let b = bake_two_axes(&source, &d, &Bake2Options::default()).unwrap();
+    let b = bake_two_axes(&source, &d, &TwoAxisOptions::default()).unwrap();
     // The thin slab is there, and every cell verifies (the failing seed among them).
-    assert!(b.slabs.iter().any(|s| s.hi - s.lo < 1e-10));
+    assert!(b.slabs().iter().any(|s| s.hi - s.lo < 1e-10));
     verify_two_axes(&b, &source, 3, 23).unwrap();
     for seed in 0..20 {
         verify_two_axes(&b, &source, 4, seed).unwrap();

@@ -2,7 +2,7 @@
 //!
 //! `aspect-bake` computes cells `[lo, hi)` of an angle with a constant painter order
 //! ([`Bake`]); this module realises a bake as one container per cell, shown only while the
-//! angle lies in the cell ([`BakedGraph`]). A
+//! angle lies in the cell ([`BakedSpriteTree`]). A
 //! backend turns each container's [`AngleRange`] into its own animation expression (e.g. a
 //! composition expression or CSS), so that the animation needs no per-frame CPU.
 
@@ -18,9 +18,9 @@ use crate::{Brush, PieceMaps, SpriteSpace, SpriteTransform};
 /// One sprite of a baked container.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct BakedSprite {
-    /// Polygon of the bake (its transform and clip: [`BakedGraph::polygon_map`]).
+    /// Polygon of the bake (its transform and clip: [`BakedSpriteTree::polygon_map`]).
     pub polygon: u32,
-    /// Source face (its brush: [`BakedGraph::brush`]).
+    /// Source face (its brush: [`BakedSpriteTree::brush`]).
     pub face: u32,
 }
 
@@ -33,16 +33,18 @@ pub struct BakedContainer {
     pub sprites: Vec<BakedSprite>,
 }
 
-/// A bake realised as containers of sprites with fixed transforms. Swapping materials only
-/// changes [`brush`](Self::brush) results; the containers are reused.
+/// A bake realised as a sprite tree: under the root, one container per cell of the bake
+/// holding that cell's sprites in paint order, each sprite with a fixed transform, and each
+/// container shown only while the angle lies in its cell. Swapping materials only changes
+/// [`brush`](Self::brush) results; the containers are reused.
 #[derive(Clone, Debug)]
-pub struct BakedGraph {
+pub struct BakedSpriteTree {
     maps: Vec<Option<(SpriteTransform, Option<Vec<DVec2>>)>>,
     containers: Vec<BakedContainer>,
     brushes: Vec<Brush>,
 }
 
-impl BakedGraph {
+impl BakedSpriteTree {
     /// Realises `bake` for `geometry` in the sprite space of `view` (scale and size). A
     /// polygon gets its source piece's transform (matched by face and plane) and a clip
     /// polygon unless it is a whole quad piece. Polygons without a piece map are left out.
@@ -51,7 +53,7 @@ impl BakedGraph {
         let maps = PieceMaps::new(geometry, view);
         let space = *maps.space();
         let pieces = geometry.pieces();
-        let set = &bake.polygons;
+        let set = &bake.polygons();
         let polygon_maps = (0..set.len())
             .map(|i| {
                 let (face, plane, corners) = (set.face(i), set.plane(i), set.corners(i));
@@ -71,7 +73,7 @@ impl BakedGraph {
             })
             .collect::<Vec<_>>();
         let containers = bake
-            .cells
+            .cells()
             .iter()
             .map(|cell| BakedContainer {
                 visible_while: cell.range,
@@ -86,7 +88,7 @@ impl BakedGraph {
                     .collect(),
             })
             .collect();
-        BakedGraph {
+        BakedSpriteTree {
             maps: polygon_maps,
             containers,
             brushes: vec![Brush::Palette; geometry.face_count()],
@@ -155,25 +157,26 @@ fn clip_of(space: &SpriteSpace, t: &SpriteTransform, corners: &[DVec3]) -> Vec<D
         .collect()
 }
 
-/// Holds the baked graph being shown; a new one (computed on any thread) replaces it in one
-/// step. Cloning the slot shares it.
+/// A shared, swappable holder of the [`BakedSpriteTree`] being shown: a new tree (baked on
+/// any thread, e.g. after the model changed) replaces it in one step, and every clone of
+/// the slot sees the replacement.
 #[derive(Clone, Debug)]
-pub struct BakeSlot {
-    current: Arc<Mutex<Arc<BakedGraph>>>,
+pub struct BakedTreeSlot {
+    current: Arc<Mutex<Arc<BakedSpriteTree>>>,
 }
 
-impl BakeSlot {
+impl BakedTreeSlot {
     /// A slot showing `graph`.
     #[must_use]
-    pub fn new(graph: BakedGraph) -> Self {
-        BakeSlot {
+    pub fn new(graph: BakedSpriteTree) -> Self {
+        BakedTreeSlot {
             current: Arc::new(Mutex::new(Arc::new(graph))),
         }
     }
 
     /// The graph shown now.
     #[must_use]
-    pub fn load(&self) -> Arc<BakedGraph> {
+    pub fn load(&self) -> Arc<BakedSpriteTree> {
         match self.current.lock() {
             Ok(g) => Arc::clone(&g),
             Err(poisoned) => Arc::clone(&poisoned.into_inner()),
@@ -181,7 +184,7 @@ impl BakeSlot {
     }
 
     /// Shows `graph` from now on.
-    pub fn store(&self, graph: BakedGraph) {
+    pub fn store(&self, graph: BakedSpriteTree) {
         let graph = Arc::new(graph);
         match self.current.lock() {
             Ok(mut g) => *g = graph,

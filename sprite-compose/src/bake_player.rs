@@ -5,7 +5,7 @@ use aspect_bake::{Bake, Spin};
 use face_sort::Geometry;
 
 use crate::spin_culled::copies;
-use crate::{BakedGraph, Brush, Compositor, SpriteId, root_transform};
+use crate::{BakedSpriteTree, Brush, Compositor, SpriteId, root_transform};
 
 /// A picture bake ([`aspect_bake::bake_picture`]) realised on a [`Compositor`]: one sprite
 /// per piece and place (the elements of
@@ -36,12 +36,12 @@ impl<C: Compositor> BakePlayer<C> {
         brush: impl Fn(u32) -> Brush,
         mut compositor: C,
     ) -> Self {
-        let graph = BakedGraph::realise(&bake, geometry, &spin.view_at(0.0));
-        let copies = copies(lists, bake.polygons.len());
+        let graph = BakedSpriteTree::realise(&bake, geometry, &spin.view_at(0.0));
+        let copies = copies(lists, bake.polygons().len());
         let shown = copies.visibility(lists);
         for (e, &p) in copies.pieces.iter().enumerate() {
             let id = SpriteId(e as u32);
-            let face = bake.polygons.face(p as usize);
+            let face = bake.polygons().face(p as usize);
             compositor.create_sprite(id, face);
             if let Some((transform, clip)) = graph.polygon_map(p) {
                 compositor.set_transform(id, transform);
@@ -73,7 +73,7 @@ impl<C: Compositor> BakePlayer<C> {
             }
             self.cell = Some(cell);
         }
-        let view = self.spin.view_at(degrees.to_radians());
+        let view = self.spin.view_at(degrees);
         self.compositor.set_root_transform(&root_transform(&view));
         Some(cell)
     }

@@ -12,7 +12,7 @@
 //! Also here: picking and selection outlines ([`ProjectedFrame`]), the SVG writer
 //! ([`write_svg`]) and the HTML/CSS 3D writer ([`write_html`], flat or `preserve-3d`), both
 //! with a CONVENTIONS.md ID-colour mode, and the realisation of an `aspect-bake` bake
-//! ([`Bake`]) as containers of sprites ([`BakedGraph`], [`FacingPredicate`]).
+//! ([`Bake`]) as containers of sprites ([`BakedSpriteTree`], [`FacingPredicate`]).
 //!
 //! ```
 //! use sprite_compose::face_sort::{Geometry, PolygonMesh, SorterKind, View};
@@ -101,7 +101,8 @@ mod transform;
 pub use aspect_bake;
 pub use aspect_bake::{AngleRange, Bake, BakeCell};
 pub use bake::{
-    BakeSlot, BakedContainer, BakedGraph, BakedSprite, FacingPredicate, convex_facing_predicates,
+    BakedContainer, BakedSprite, BakedSpriteTree, BakedTreeSlot, FacingPredicate,
+    convex_facing_predicates,
 };
 pub use bake_player::BakePlayer;
 pub use compositor::{Brush, Compositor, OpCounts, SpriteId, TextureId};

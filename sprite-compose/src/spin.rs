@@ -9,7 +9,7 @@ use face_sort::Geometry;
 use glam::{DMat3, DMat4, DVec2, DVec3};
 
 use crate::svg::hex;
-use crate::{BakedGraph, css_matrix3d, id_colour, perspective_matrix};
+use crate::{BakedSpriteTree, css_matrix3d, id_colour, perspective_matrix};
 
 /// Options of [`write_spin_html`].
 #[derive(Clone, Debug, PartialEq)]
@@ -113,7 +113,7 @@ pub fn write_spin_html(
     options: &SpinOptions,
 ) -> String {
     let view = spin.view_at(0.0);
-    let graph = BakedGraph::realise(bake, geometry, &view);
+    let graph = BakedSpriteTree::realise(bake, geometry, &view);
     let (w, h) = (view.width(), view.height());
     let origin = DVec3::new(f64::from(w) * 0.5, f64::from(h) * 0.5, 0.0);
     let (a, k, b) = spin.factors();
@@ -151,7 +151,7 @@ pub fn write_spin_html(
         bg = hex(options.background),
     );
     // One class per polygon (its elements): transform, size, colour.
-    let set = &bake.polygons;
+    let set = &bake.polygons();
     let mut elements: Vec<Vec<String>> = vec![Vec::new(); set.len()];
     for (p, out) in elements.iter_mut().enumerate() {
         let Some((transform, clip)) = graph.polygon_map(p as u32) else {
@@ -200,11 +200,11 @@ pub fn write_spin_html(
         }
     }
     // Visibility keyframes per cell.
-    let domain_lo = bake.domain.lo;
-    for (c, cell) in bake.cells.iter().enumerate() {
+    let domain_lo = bake.domain().lo;
+    for (c, cell) in bake.cells().iter().enumerate() {
         let (lo, hi) = (cell.range.lo - domain_lo, cell.range.hi - domain_lo);
         // (offset %, visible) in increasing offset; at equal offsets the later one holds.
-        let mut keys: Vec<(f64, bool)> = if bake.cells.len() == 1 {
+        let mut keys: Vec<(f64, bool)> = if bake.cells().len() == 1 {
             vec![(0.0, true)]
         } else if hi > 360.0 {
             // Wraps: visible from lo to the end and from the start to hi − 360.
@@ -231,7 +231,7 @@ pub fn write_spin_html(
         let _ = writeln!(page, "}}\n#c{c}{{animation-name:c{c}}}");
     }
     page.push_str("</style></head><body><div id=\"scene\">\n");
-    for (c, cell) in bake.cells.iter().enumerate() {
+    for (c, cell) in bake.cells().iter().enumerate() {
         let _ = write!(page, "<div id=\"c{c}\" class=\"cell\">");
         for &p in &cell.order {
             for class in &elements[p as usize] {

@@ -10,7 +10,7 @@ use glam::{DMat3, DMat4, DVec3};
 use crate::spin::SpinOptions;
 use crate::svg::hex;
 use crate::tolerance::HTML_SEAM_PX;
-use crate::{BakedGraph, id_colour};
+use crate::{BakedSpriteTree, id_colour};
 
 /// The elements of a culled realisation: a sequence of copies of pieces such that every
 /// cell's list of drawn pieces is a subsequence of it (one copy per piece per cell).
@@ -280,7 +280,7 @@ pub fn write_culled_spin_html(
     options: &SpinOptions,
 ) -> String {
     let view = spin.view_at(0.0);
-    let graph = BakedGraph::realise(bake, geometry, &view);
+    let graph = BakedSpriteTree::realise(bake, geometry, &view);
     let (w, h) = (view.width(), view.height());
     let (a, k, b) = spin.factors();
     let flip = DMat3::from_diagonal(DVec3::new(1.0, -1.0, 1.0));
@@ -294,7 +294,7 @@ pub fn write_culled_spin_html(
     // A centred model point (times the scale) to page pixels about the centre.
     let place_point = flip * a * b;
     let axis = -(flip * (a * k));
-    let start = bake.domain.lo;
+    let start = bake.domain().lo;
     let period = options.period_s;
     let (delay, state) = match options.paused_at_s {
         Some(t) => (format!("{}s", num(-t)), "paused"),
@@ -302,7 +302,7 @@ pub fn write_culled_spin_html(
     };
     let timing = format!("{period}s linear {delay} infinite {state}");
     let steps = format!("{period}s step-end {delay} infinite {state}");
-    let copies = copies(lists, bake.polygons.len());
+    let copies = copies(lists, bake.polygons().len());
     let mut page = String::new();
     let _ = write!(
         page,
@@ -324,7 +324,7 @@ pub fn write_culled_spin_html(
         a1 = num(start + 360.0),
     );
     // One class per piece element: size, colour, transform (shared by the piece's copies).
-    let set = &bake.polygons;
+    let set = &bake.polygons();
     let whole: std::collections::HashSet<(u32, Vec<[u64; 3]>)> = {
         let pieces = geometry.pieces();
         (0..pieces.len())
@@ -449,7 +449,7 @@ pub fn write_culled_spin_html(
     for (k, visible) in patterns.iter().enumerate() {
         // (offset %, visible), offsets from the page's start angle.
         let mut keys: Vec<(f64, bool)> = Vec::new();
-        for (c, cell) in bake.cells.iter().enumerate() {
+        for (c, cell) in bake.cells().iter().enumerate() {
             let lo = (cell.range.lo - start).rem_euclid(360.0);
             keys.push((lo / 360.0 * 100.0, visible[c]));
         }

@@ -295,12 +295,12 @@ pub fn run(args: &BakeArgs) -> Result<ExitCode> {
     let mut line = format!(
         "{} {} {}: {:.1} ms, {} breakpoints, {} cells, {} events, {} B full lists, {} B delta timeline",
         args.axis_name(),
-        baked.sorter,
+        baked.sorter(),
         method_name(&baked),
-        baked.bake_ms,
-        baked.breakpoints.len(),
-        baked.cells.len(),
-        baked.events,
+        baked.bake_ms(),
+        baked.breakpoints().len(),
+        baked.cells().len(),
+        baked.events(),
         sizes.full_bytes,
         sizes.delta_bytes,
     );
@@ -381,8 +381,8 @@ fn run_picture(args: &BakeArgs, prepared: &Prepared) -> Result<ExitCode> {
     let mut line = format!(
         "{} picture: {:.1} ms, {} cells, {} pieces ({} cuts), {} candidate pairs, {} constraints, moved per boundary [{}]",
         args.axis_name(),
-        baked.bake_ms,
-        baked.cells.len(),
+        baked.bake_ms(),
+        baked.cells().len(),
         stats.pieces,
         stats.cuts,
         stats.candidate_pairs,
@@ -454,7 +454,7 @@ fn event_source(sorter: SorterChoice, geometry: &Geometry) -> Result<Box<dyn Eve
 }
 
 fn method_name(bake: &Bake) -> &'static str {
-    match bake.method {
+    match bake.method() {
         Method::Exact => "exact",
         Method::Sampled { .. } => "sampled",
         Method::Picture => "picture",
@@ -473,9 +473,9 @@ fn write(path: &std::path::Path, text: &str) -> Result<()> {
 /// to front; an item is the face index when the polygon is the whole face, else the face and
 /// the polygon's corners in model space.
 pub fn bake_json(bake: &Bake, prepared: &Prepared, missed: Option<usize>) -> Value {
-    let items = item_values(&bake.polygons, &prepared.geometry, prepared);
+    let items = item_values(bake.polygons(), &prepared.geometry, prepared);
     let cells: Vec<Value> = bake
-        .cells
+        .cells()
         .iter()
         .map(|c| {
             let list: Vec<&Value> = c.order.iter().map(|&p| &items[p as usize]).collect();
@@ -483,11 +483,11 @@ pub fn bake_json(bake: &Bake, prepared: &Prepared, missed: Option<usize>) -> Val
         })
         .collect();
     json!({
-        "axis": bake.axis.name(),
-        "sorter": bake.sorter,
+        "axis": bake.axis().name(),
+        "sorter": bake.sorter(),
         "method": method_name(bake),
-        "bake_ms": bake.bake_ms,
-        "breakpoints": bake.breakpoints.iter().map(|b| b.degrees).collect::<Vec<_>>(),
+        "bake_ms": bake.bake_ms(),
+        "breakpoints": bake.breakpoints().iter().map(|b| b.degrees).collect::<Vec<_>>(),
         "cells": cells,
         "missed": missed,
     })
@@ -499,19 +499,19 @@ pub fn bake_json(bake: &Bake, prepared: &Prepared, missed: Option<usize>) -> Val
 /// to front; `"culling": "sink"`: a list holds every piece, and the sink must hide those that
 /// face away.
 fn picture_json(bake: &Bake, geometry: &Geometry, prepared: &Prepared) -> Value {
-    let pieces = item_values(&bake.polygons, geometry, prepared);
+    let pieces = item_values(bake.polygons(), geometry, prepared);
     let cells: Vec<Value> = bake
-        .cells
+        .cells()
         .iter()
         .map(|c| json!({"lo": c.range.lo, "hi": c.range.hi, "draw_list": c.order}))
         .collect();
     json!({
-        "axis": bake.axis.name(),
-        "sorter": bake.sorter,
+        "axis": bake.axis().name(),
+        "sorter": bake.sorter(),
         "method": method_name(bake),
         "culling": "sink",
-        "bake_ms": bake.bake_ms,
-        "breakpoints": bake.breakpoints.iter().map(|b| b.degrees).collect::<Vec<_>>(),
+        "bake_ms": bake.bake_ms(),
+        "breakpoints": bake.breakpoints().iter().map(|b| b.degrees).collect::<Vec<_>>(),
         "pieces": pieces,
         "draw_list_items": "piece indices",
         "cells": cells,
@@ -592,9 +592,9 @@ fn run_two_axes(args: &BakeArgs, prepared: &Prepared, pitch: (f64, f64)) -> Resu
         pitch,
         roll: args.roll,
     };
-    let options = aspect_bake::Bake2Options {
+    let options = aspect_bake::TwoAxisOptions {
         budget_bytes: args.budget_mib.saturating_mul(1 << 20),
-        ..aspect_bake::Bake2Options::default()
+        ..aspect_bake::TwoAxisOptions::default()
     };
     let baked = aspect_bake::bake_two_axes(source, &domain, &options)?;
     let columns = 360;
@@ -605,11 +605,11 @@ fn run_two_axes(args: &BakeArgs, prepared: &Prepared, pitch: (f64, f64)) -> Resu
          a 1-degree grid ({columns} x {rows} samples) misses {missed} cells",
         pitch.0,
         pitch.1,
-        baked.sorter,
-        baked.bake_ms,
-        baked.circles.len(),
-        baked.slabs.len(),
-        baked.cells.len(),
+        baked.sorter(),
+        baked.bake_ms(),
+        baked.circles().len(),
+        baked.slabs().len(),
+        baked.cells().len(),
         baked.full_bytes(),
     );
     let mut code = ExitCode::SUCCESS;
@@ -623,25 +623,25 @@ fn run_two_axes(args: &BakeArgs, prepared: &Prepared, pitch: (f64, f64)) -> Resu
         code = report_verify(&mut line, checked);
     }
     if let Some(path) = &args.json {
-        let items = item_values(&baked.polygons, &prepared.geometry, prepared);
+        let items = item_values(baked.polygons(), &prepared.geometry, prepared);
         let value = json!({
             "axes": ["yaw", "pitch"],
-            "sorter": baked.sorter,
-            "bake_ms": baked.bake_ms,
+            "sorter": baked.sorter(),
+            "bake_ms": baked.bake_ms(),
             "yaw": [0.0, 360.0],
             "pitch": [pitch.0, pitch.1],
             "roll": args.roll,
-            "circles": baked.circles.iter().map(|c| json!({
+            "circles": baked.circles().iter().map(|c| json!({
                 "normal": c.normal.to_array(),
                 "offset": c.offset,
             })).collect::<Vec<_>>(),
-            "slabs": baked.slabs.iter().map(|s| json!({
+            "slabs": baked.slabs().iter().map(|s| json!({
                 "lo": s.lo,
                 "hi": s.hi,
                 "curves": s.curves.iter().zip(&s.mid_yaws).map(|(c, y)| json!({"circle": c.circle, "down": c.down, "mid_yaw": y})).collect::<Vec<_>>(),
                 "cells": s.cells,
             })).collect::<Vec<_>>(),
-            "cells": baked.cells.iter().map(|c| json!({
+            "cells": baked.cells().iter().map(|c| json!({
                 "draw_list": c.iter().map(|&p| &items[p as usize]).collect::<Vec<_>>(),
             })).collect::<Vec<_>>(),
             "missed_by_1deg_grid": missed,

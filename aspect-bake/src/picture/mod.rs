@@ -534,7 +534,7 @@ pub fn verify_picture(
             }
             let mut counts = (0, 0);
             for (degrees, boundary) in angles {
-                let view = spin.view_at(degrees.to_radians());
+                let view = spin.view_at(degrees);
                 cell_list(bake, k, list);
                 let violations = oracle::count_violations(&view, list);
                 if violations > 0 {

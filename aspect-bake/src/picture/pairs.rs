@@ -182,7 +182,7 @@ impl<'a> Pieces<'a> {
     /// For a pair that spans each other's planes without crossing, which one is in front at
     /// `theta`: `Some(true)` for `i`, `None` when the projections do not overlap there.
     fn in_front_at(&self, i: usize, j: usize, theta: f64) -> Option<bool> {
-        let view = self.spin.view_at(theta);
+        let view = self.spin.view_at_rad(theta);
         let mut scratch = ProjectionScratch::default();
         let (mut pi, mut pj) = (Vec::new(), Vec::new());
         view.project_polygon(self.set.corners(i), &mut pi, &mut scratch);
@@ -337,7 +337,7 @@ fn candidates(pieces: &Pieces, bins: usize, max_pairs: usize) -> Result<Vec<Cand
         .into_par_iter()
         .map(|bin| {
             let (lo, hi) = (bin as f64 * width, (bin + 1) as f64 * width);
-            let view = pieces.spin.view_at(0.5 * (lo + hi));
+            let view = pieces.spin.view_at_rad(0.5 * (lo + hi));
             let mut boxes: Vec<(DVec2, DVec2, u32)> = (0..pieces.set.len())
                 .filter(|&i| pieces.drawn[i].meets(lo, hi))
                 .map(|i| {

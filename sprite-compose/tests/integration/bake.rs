@@ -4,7 +4,7 @@
 use sprite_compose::aspect_bake::{Axis, BakeOptions, BspSource, Spin, bake};
 use sprite_compose::face_sort::{Geometry, View};
 use sprite_compose::{
-    AngleRange, Bake, BakeSlot, BakedGraph, Brush, convex_facing_predicates,
+    AngleRange, Bake, BakedSpriteTree, BakedTreeSlot, Brush, convex_facing_predicates,
     rotation_from_yaw_pitch_roll,
 };
 
@@ -41,13 +41,13 @@ fn cube_bake() -> (Geometry, View, Bake) {
 #[test]
 fn one_container_per_cell_with_wrapping_predicates() {
     let (g, view, bake) = spot_bake();
-    let graph = BakedGraph::realise(&bake, &g, &view);
-    let n = bake.cells.len();
+    let graph = BakedSpriteTree::realise(&bake, &g, &view);
+    let n = bake.cells().len();
     assert!(n > 2);
     assert_eq!(graph.containers().len(), n);
     let mut angles = vec![0.0, 29.9, 30.0, 359.0, 365.0, -1.0, 719.0];
     // Every cell boundary and a point inside every cell.
-    for cell in &bake.cells {
+    for cell in bake.cells() {
         angles.extend([cell.range.lo, cell.range.lerp(0.5)]);
     }
     for angle in angles {
@@ -70,7 +70,7 @@ fn one_container_per_cell_with_wrapping_predicates() {
     );
     // Every baked sprite has a transform; the first container shows the first cell's order.
     let c = &graph.containers()[0];
-    assert_eq!(c.sprites.len(), bake.cells[0].order.len());
+    assert_eq!(c.sprites.len(), bake.cells()[0].order.len());
     assert!(
         c.sprites
             .iter()
@@ -81,7 +81,7 @@ fn one_container_per_cell_with_wrapping_predicates() {
 #[test]
 fn materials_swap_brushes_only_and_bakes_swap_in_one_step() {
     let (g, view, bake) = spot_bake();
-    let mut graph = BakedGraph::realise(&bake, &g, &view);
+    let mut graph = BakedSpriteTree::realise(&bake, &g, &view);
     let before: Vec<_> = graph.containers().to_vec();
     let told = graph.set_brushes(|f| {
         if f == 3 {
@@ -98,11 +98,11 @@ fn materials_swap_brushes_only_and_bakes_swap_in_one_step() {
     assert_eq!(told, expected);
     assert_eq!(graph.containers(), &before[..], "containers reused");
     assert_eq!(graph.brush(3), Brush::Solid([1, 2, 3, 255]));
-    let slot = BakeSlot::new(graph);
+    let slot = BakedTreeSlot::new(graph);
     let reader = slot.clone();
-    let spot_cells = bake.cells.len();
+    let spot_cells = bake.cells().len();
     let (g2, view2, bake2) = cube_bake();
-    let worker = std::thread::spawn(move || BakedGraph::realise(&bake2, &g2, &view2));
+    let worker = std::thread::spawn(move || BakedSpriteTree::realise(&bake2, &g2, &view2));
     assert_eq!(
         reader.load().containers().len(),
         spot_cells,

@@ -24,10 +24,10 @@ fn a_played_bake_shows_an_exact_order_and_switches_only_what_changes() {
         };
         let spin = Spin::new(view, axis).unwrap();
         let (baked, _) = bake_picture(&g, &spin, &PictureOptions::DEFAULT).unwrap();
-        assert!(baked.cells.len() > 1, "the turn needs several cells");
+        assert!(baked.cells().len() > 1, "the turn needs several cells");
         let lists = drawn_lists(&baked, &spin).unwrap();
-        let polygons = std::sync::Arc::clone(&baked.polygons);
-        let cells = baked.cells.clone();
+        let polygons = std::sync::Arc::clone(baked.polygons());
+        let cells = baked.cells().to_vec();
         let mut player = BakePlayer::new(
             baked,
             &lists,
@@ -65,7 +65,7 @@ fn a_played_bake_shows_an_exact_order_and_switches_only_what_changes() {
                     })
                     .collect();
                 // What the compositor shows is an exact order of what the view draws.
-                let view = spin.view_at(degrees.to_radians());
+                let view = spin.view_at(degrees);
                 let mut list = DrawList::new();
                 list.begin(&polygons);
                 for (id, s) in scene.visible() {

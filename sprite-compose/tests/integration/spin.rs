@@ -29,7 +29,7 @@ fn check(name: &str, g: &Geometry, view: View, angles: &[f64]) {
     // A chosen angle and the middle of the first cell (a screenshot of these ~16 MB pages
     // takes about 13 s on the 2-core machine).
     let mut degrees = angles.to_vec();
-    degrees.extend(baked.cells.first().map(|c| c.range.lerp(0.5) % 360.0));
+    degrees.extend(baked.cells().first().map(|c| c.range.lerp(0.5) % 360.0));
     for d in degrees {
         let t = d / 360.0 * PERIOD_S;
         let page = write_spin_html(
@@ -43,10 +43,10 @@ fn check(name: &str, g: &Geometry, view: View, angles: &[f64]) {
         );
         let rgba = screenshot(browser, &page, &format!("spin-{name}-{d}"));
         let shot = ids_of_rgba(SIZE, SIZE, &rgba);
-        let e = pixel_error(&shot, &truth(&spin.view_at(d.to_radians()), g));
+        let e = pixel_error(&shot, &truth(&spin.view_at(d), g));
         println!(
             "spin {name} at {d:.3}° ({} cells, page {} B): {}/{} = {:.4} %",
-            baked.cells.len(),
+            baked.cells().len(),
             page.len(),
             e.wrong,
             e.pixels,

@@ -31,8 +31,8 @@ fn check(name: &str, g: &Geometry, view: View, random: usize) {
     // Seconds into the turn: random ones, and 1 ms either side of each breakpoint.
     let mut rng = test_support::Rng::new(0x5EED);
     let mut times: Vec<f64> = (0..random).map(|_| PERIOD_S * rng.unit()).collect();
-    for b in &baked.breakpoints {
-        let t = (b.degrees - baked.domain.lo).rem_euclid(360.0) / 360.0 * PERIOD_S;
+    for b in baked.breakpoints() {
+        let t = (b.degrees - baked.domain().lo).rem_euclid(360.0) / 360.0 * PERIOD_S;
         times.extend([t - 1e-3, t + 1e-3]);
     }
     let none = |_: u32| [0, 0, 0, 255];
@@ -49,10 +49,10 @@ fn check(name: &str, g: &Geometry, view: View, random: usize) {
                 .with_ids(true)
                 .with_paused_at(Some(t)),
         );
-        let degrees = baked.domain.lo + 360.0 * t / PERIOD_S;
+        let degrees = baked.domain().lo + 360.0 * t / PERIOD_S;
         let rgba = screenshot_at(browser, &page, &format!("spin-culled-{name}-{t}"), size);
         let shot = ids_of_rgba(size, size, &rgba);
-        let t_img = truth(&spin.view_at(degrees.to_radians()), g);
+        let t_img = truth(&spin.view_at(degrees), g);
         let e = pixel_error(&shot, &t_img);
         if std::env::var("DIAG").is_ok() {
             for k in 0..t_img.ids.len() {
@@ -69,7 +69,7 @@ fn check(name: &str, g: &Geometry, view: View, random: usize) {
         }
         println!(
             "culled spin {name} at {t:.4} s = {degrees:.3}° ({} cells, page {} B): {}/{}",
-            baked.cells.len(),
+            baked.cells().len(),
             page.len(),
             e.wrong,
             e.pixels
