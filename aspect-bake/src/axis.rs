@@ -250,7 +250,10 @@ mod tests {
         let moved = template().with_view_offset(DVec3::new(0.1, 0.0, 0.0));
         assert!(matches!(Spin::new(moved, yaw), Err(BakeError::ViewOffset)));
         let off_centre = template().with_principal_point(10.0, 32.0);
-        assert!(matches!(Spin::new(off_centre, yaw), Err(BakeError::ViewOffset)));
+        assert!(matches!(
+            Spin::new(off_centre, yaw),
+            Err(BakeError::ViewOffset)
+        ));
         let spin = Spin::new(template(), yaw).unwrap();
         assert_eq!(spin.view_at(30.0), spin.view_at_rad(30f64.to_radians()));
     }

@@ -4,6 +4,7 @@
 //!
 //! `cargo bench -p face-sort --bench plan -- --warm-up-time 0.5 --measurement-time 1 --sample-size 20`
 
+use face_sort::sorter_api::DrawListWriter;
 use std::hint::black_box;
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};

@@ -124,11 +124,11 @@ impl DrawList {
         }
     }
 
-    // --- for sorters ---
+    // --- for sorters (public through crate::sorter_api::DrawListWriter) ---
 
     /// Starts a frame over `shared` polygons: clears the items and the per-frame set.
     /// Costs no allocation when the same `Arc` (or any, once capacity is reached) is passed.
-    pub fn begin(&mut self, shared: &Arc<PolygonSet>) {
+    pub(crate) fn begin(&mut self, shared: &Arc<PolygonSet>) {
         match &self.shared {
             Some(current) if Arc::ptr_eq(current, shared) => {}
             _ => self.shared = Some(Arc::clone(shared)),
@@ -140,21 +140,21 @@ impl DrawList {
 
     /// Appends an item.
     #[inline]
-    pub fn push(&mut self, polygon: u32, face: u32) {
+    pub(crate) fn push(&mut self, polygon: u32, face: u32) {
         self.items.push(DrawItem { polygon, face });
         self.seal = 0;
     }
 
     /// Adds a per-frame polygon (a fragment cut this frame) and returns its polygon index
-    /// (not yet an item: call [`push`](Self::push) to draw it).
-    pub fn add_frame_polygon(&mut self, corners: &[DVec3], face: u32, plane: Plane) -> u32 {
+    /// (not yet an item: push it to draw it).
+    pub(crate) fn add_frame_polygon(&mut self, corners: &[DVec3], face: u32, plane: Plane) -> u32 {
         let shared_len = self.shared.as_ref().map_or(0, |s| s.len()) as u32;
         self.seal = 0;
         shared_len + self.frame.push(corners, face, plane)
     }
 
     /// The items, mutable, for sorters that fill them in place.
-    pub fn items_mut(&mut self) -> &mut Vec<DrawItem> {
+    pub(crate) fn items_mut(&mut self) -> &mut Vec<DrawItem> {
         self.seal = 0;
         &mut self.items
     }

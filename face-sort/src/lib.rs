@@ -55,6 +55,7 @@ mod scene;
 mod screen_grid;
 mod small;
 mod sorter;
+pub mod sorter_api;
 #[cfg(any(test, feature = "proptest"))]
 pub mod strategies;
 mod t_junctions;

@@ -3,6 +3,7 @@
 mod common;
 
 use face_sort::generate::{torus, uv_sphere};
+use face_sort::sorter_api::DrawListWriter;
 use face_sort::{
     Auto, CullMode, DrawList, FaceSorter, Geometry, Plan, PlanHint, PolygonMesh, Strategy, View,
     oracle,

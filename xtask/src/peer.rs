@@ -9,6 +9,7 @@
 //! order. plane-split takes 4-point polygons: triangles repeat their last corner, larger
 //! polygons are cut into a fan of quads.
 
+use face_sort::sorter_api::DrawListWriter;
 use std::sync::Arc;
 
 use euclid::default::{Point3D, Vector3D};

@@ -1,5 +1,6 @@
 //! `cargo xtask render`: one model, one view, one image.
 
+use face_sort::sorter_api::DrawListWriter;
 use std::collections::HashSet;
 use std::path::PathBuf;
 use std::process::ExitCode;

@@ -2,6 +2,7 @@
 //! `face_sort::SceneSorter`: interlocking objects, translucent ones, a cloud of translucent
 //! billboards, a backdrop in the background layer and a marker in the overlay layer.
 
+use face_sort::sorter_api::DrawListWriter;
 use std::process::ExitCode;
 use std::time::Instant;
 

@@ -44,6 +44,7 @@ mod pairs;
 mod pieces;
 mod sweep;
 
+use face_sort::sorter_api::DrawListWriter;
 use std::sync::Arc;
 use std::time::Instant;
 

@@ -2,6 +2,7 @@
 
 #![allow(dead_code, reason = "each test module uses a different subset")]
 
+use face_sort::sorter_api::DrawListWriter;
 use std::sync::Arc;
 
 use raster_sink::face_sort::glam::{DVec2, DVec3};

@@ -1,5 +1,6 @@
 //! The ID fill leaves no cracks and no double cover where fragments meet.
 
+use face_sort::sorter_api::DrawListWriter;
 use raster_sink::face_sort::glam::{DVec2, DVec3};
 use raster_sink::face_sort::{DrawList, Geometry, Plane, View, split_polygon};
 use raster_sink::{for_each_span, render_ids};

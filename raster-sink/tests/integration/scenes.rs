@@ -1,5 +1,6 @@
 //! Scenes shared by the golden and grid tests.
 
+use face_sort::sorter_api::DrawListWriter;
 use std::sync::Arc;
 
 use raster_sink::face_sort::glam::DVec3;

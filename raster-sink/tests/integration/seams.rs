@@ -1,6 +1,7 @@
 //! A closed one-colour mesh on a contrasting background shows no background tint inside
 //! its silhouette.
 
+use face_sort::sorter_api::DrawListWriter;
 use raster_sink::face_sort::glam::DVec3;
 use raster_sink::face_sort::{
     Centroid, DrawList, FaceSorter, Geometry, Plane, PolygonMesh, View, split_polygon,

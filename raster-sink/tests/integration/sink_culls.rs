@@ -2,6 +2,7 @@
 //! skips those the view does not draw while painting, so the picture equals that of the list
 //! culled beforehand, and the oracle judges only what is painted.
 
+use face_sort::sorter_api::DrawListWriter;
 use face_sort::{Bsp, DrawList, FaceSorter, Geometry, View, oracle};
 use raster_sink::render_ids;
 

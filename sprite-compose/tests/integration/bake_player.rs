@@ -3,6 +3,7 @@
 //! of the pieces the view draws (the oracle), and entering a cell switches only the sprites
 //! whose visibility changes.
 
+use face_sort::sorter_api::DrawListWriter;
 use sprite_compose::aspect_bake::{Axis, PictureOptions, Spin, bake_picture, drawn_lists};
 use sprite_compose::face_sort::{DrawList, Geometry, View, oracle};
 use sprite_compose::{BakePlayer, Brush, RecordingCompositor};

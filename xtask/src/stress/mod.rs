@@ -497,6 +497,7 @@ fn non_finite(list: &DrawList) -> usize {
 mod tests {
     use super::cases::separated;
     use super::*;
+    use face_sort::sorter_api::DrawListWriter;
 
     /// The fast subset: every class of the issue once, at 64 × 64 pixels. Exact sorters must
     /// have no violation, no wrong pixel, no non-finite output and no fallback, and nothing
