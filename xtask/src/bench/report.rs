@@ -269,7 +269,7 @@ pub(super) fn check_format(text: &str) -> Result<()> {
         &parsed.scaling,
         parsed.resolution,
     );
-    if again.trim_end() == text {
+    if again.trim_end() == text.trim_end() {
         return Ok(());
     }
     let (line, (want, got)) = again
