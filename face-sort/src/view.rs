@@ -260,6 +260,13 @@ impl View {
         self.rotation * centred + self.offset
     }
 
+    /// The model-space point of a centred point (draw-list corners are centred): `p + c`.
+    #[inline]
+    #[must_use]
+    pub fn to_model(&self, centred: DVec3) -> DVec3 {
+        centred + self.centre
+    }
+
     /// View-space direction of a model-space direction (a normal, an axis): `R · d`.
     #[inline]
     #[must_use]

@@ -1,11 +1,8 @@
 //! The BSP build's growth: a large smooth surface gets a shallow tree. Face planes of a
-//! smooth surface mostly peel a few polygons off at a time; before large sets could also
-//! split at a median plane across their widest axis, a planar torus of 10k faces had a tree
-//! 956 deep and one of 100k faces 10,475 deep, with 2.31× and 2.41× its pieces in fragments
-//! (one-off builds of `test_support::models::planar_torus` with a temporary example, not
-//! kept), and the build grew far faster than `n log n` (132 s at 1M faces in `cargo xtask
-//! bench --full` on 7ec9817). With it, depth 165 and 2.28× here (this test's figures, printed
-//! by its assertions' messages when they fail).
+//! smooth surface mostly peel a few polygons off at a time; large sets also split at a median
+//! plane across their widest axis, which keeps the tree shallow and the build near
+//! `n log n` (the figures from before that split are in docs/bench.md's notes). This test's
+//! own figures are printed by its assertions' messages when they fail.
 
 use face_sort::{BspOptions, BspTree, Geometry};
 

@@ -1,5 +1,5 @@
 //! The spinning page of a picture bake (back faces culled by the browser) in headless
-//! Chromium, paused at random times and 1 ms either side of every breakpoint, compared with
+//! Chromium, paused at random times and a millisecond either side of every breakpoint, compared with
 //! raster-sink's truth at the same angle. The bar is that of the other Chromium page tests
 //! (at most 0.2 % wrong unambiguous pixels); every frame's count is printed, and the issue's
 //! target of none is not met everywhere yet (a few pixels in some frames, where the oracle
