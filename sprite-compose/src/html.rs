@@ -143,7 +143,7 @@ pub fn css_matrix3d(m: &DMat4) -> String {
             s.push(',');
         }
         let v = if v.abs() < UNDERFLOW_ABS { 0.0 } else { *v };
-        let _ = write!(s, "{v:e}");
+        s.push_str(&crate::numbers::matrix_entry(v));
     }
     s.push(')');
     s
@@ -176,6 +176,10 @@ pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
             * DMat4::from_translation(-origin)
             * root;
     }
+    // Flat pages: the root's perspective on the container (CSS `perspective` about the
+    // principal point is CONVENTIONS.md's `w = 1 − z/d`), so each element carries only an
+    // affine matrix.
+    let flat = FlatRoot::of(&root);
     let mut page = String::new();
     let _ = write!(
         page,
@@ -186,17 +190,27 @@ pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
          .x{{overflow:hidden}}\n\
          .x>div{{position:absolute;left:0;top:0;width:100%;height:100%;overflow:hidden}}\n\
          .x i{{position:absolute;left:0;top:0;width:100%;height:100%;transform-origin:0 0;background-size:100% 100%}}\n\
-         {texture_rules}</style></head><body><div id=\"scene\">\n",
+         {texture_rules}",
         texture_rules = texture_rules(options),
         bg = hex(options.background),
         scene_style = match options.mode {
-            HtmlMode::Flat => String::new(),
+            HtmlMode::Flat => format!(
+                "perspective:{}px;perspective-origin:{}px {}px",
+                crate::numbers::matrix_entry(flat.distance),
+                crate::numbers::pixel(flat.origin.x),
+                crate::numbers::pixel(flat.origin.y)
+            ),
             HtmlMode::Preserve3d => format!(
                 "transform-style:preserve-3d;transform-origin:0 0;transform:{}",
                 css_matrix3d(&root)
             ),
         },
     );
+    // The elements go to `body`; what repeats (colours, box sizes) becomes one class each,
+    // written into the style sheet once the body is known.
+    let head = page;
+    let mut page = String::new();
+    let mut classes = Classes::default();
     let sprites: Vec<&SceneSprite> = scene.visible().map(|(_, s)| s).collect();
     let projections: Vec<Vec<DVec2>> = sprites
         .iter()
@@ -225,7 +239,7 @@ pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
         });
         let unscale = DMat4::from_scale(DVec3::new(1.0 / size, 1.0 / size, 1.0));
         let outer = match options.mode {
-            HtmlMode::Flat => root,
+            HtmlMode::Flat => flat.affine,
             HtmlMode::Preserve3d => DMat4::IDENTITY,
         };
         let texture = match sprite.brush {
@@ -293,7 +307,9 @@ pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
                 let m = outer * sprite.transform.matrix * unscale;
                 let _ = writeln!(
                     page,
-                    "<div style=\"width:{size}px;height:{size}px;background:{colour};transform:{}\"></div>",
+                    "<div class=\"{} {}\" style=\"transform:{}\"></div>",
+                    classes.of(format!("width:{size}px;height:{size}px")),
+                    classes.of(format!("background:{colour}")),
                     css_matrix3d(&m)
                 );
             }
@@ -307,7 +323,13 @@ pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
                     let m = outer * sprite.transform.matrix * corner * unscale;
                     let _ = writeln!(
                         page,
-                        "<div style=\"width:0;height:0;border-style:solid;border-width:{size}px {size}px 0 0;border-color:{colour} transparent transparent transparent;transform:{}\"></div>",
+                        "<div class=\"{} {}\" style=\"transform:{}\"></div>",
+                        classes.of(format!(
+                            "width:0;height:0;border-style:solid;border-width:{size}px {size}px 0 0"
+                        )),
+                        classes.of(format!(
+                            "border-color:{colour} transparent transparent transparent"
+                        )),
                         css_matrix3d(&m)
                     );
                 }
@@ -320,19 +342,101 @@ pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
                     .filter(|&&k| k > index)
                     .map(|&k| projections[k].as_slice());
                 let seams = seam_strips(scene.root(), sprite, projected, later);
-                for quad in clip_quads(clip).into_iter().chain(seams) {
+                let colour_alpha = if options.ids {
+                    255
+                } else {
+                    sprite.brush.solid_colour(sprite.face)[3]
+                };
+                let quads = if colour_alpha == 255 {
+                    opaque_clip_quads(clip)
+                } else {
+                    clip_quads(clip)
+                };
+                for quad in quads.into_iter().chain(seams) {
                     let m = outer * sprite.transform.matrix * quad * unscale;
                     let _ = writeln!(
                         page,
-                        "<div style=\"width:{size}px;height:{size}px;background:{colour};transform:{}\"></div>",
+                        "<div class=\"{} {}\" style=\"transform:{}\"></div>",
+                        classes.of(format!("width:{size}px;height:{size}px")),
+                        classes.of(format!("background:{colour}")),
                         css_matrix3d(&m)
                     );
                 }
             }
         }
     }
-    page.push_str("</div></body></html>\n");
-    page
+    let mut out = head;
+    out.push_str(&classes.rules());
+    out.push_str("</style></head><body><div id=\"scene\">\n");
+    out.push_str(&page);
+    out.push_str("</div></body></html>\n");
+    out
+}
+
+/// A perspective root `T(P₀) · P · A` split into the container's perspective (distance `d`
+/// and origin `P₀`, which CSS applies as `T(P₀) · P · T(−P₀)`) and the affine rest
+/// `T(P₀) · A` each element carries. The root's last row is `(0, 0, −1/d, 1) · A`
+/// and `A`'s 3 × 3 part is a rotation, so `1/d` is that row's length in x, y, z; `P₀` follows
+/// from the first two rows, whose rotation parts are orthogonal to the third.
+struct FlatRoot {
+    distance: f64,
+    origin: DVec2,
+    affine: DMat4,
+}
+
+impl FlatRoot {
+    fn of(root: &DMat4) -> Self {
+        let last = root.row(3);
+        let inverse_d = last.truncate().length();
+        let distance = 1.0 / inverse_d.max(UNDERFLOW_ABS);
+        let third = -last.truncate() * distance; // A's third row, a unit vector
+        let origin = DVec2::new(
+            -distance * root.row(0).truncate().dot(third),
+            -distance * root.row(1).truncate().dot(third),
+        );
+        let mut perspective = DMat4::IDENTITY;
+        perspective.z_axis.w = -inverse_d;
+        // CSS applies the container's perspective about its origin: T(P₀) · P · T(−P₀).
+        let about = |m: DMat4| {
+            DMat4::from_translation(origin.extend(0.0))
+                * m
+                * DMat4::from_translation(-origin.extend(0.0))
+        };
+        let affine = about(perspective.inverse()) * *root;
+        FlatRoot {
+            distance,
+            origin,
+            affine,
+        }
+    }
+}
+
+/// CSS classes for declarations that repeat: one short class per distinct declaration.
+#[derive(Default)]
+struct Classes {
+    names: HashMap<String, usize>,
+    order: Vec<String>,
+}
+
+impl Classes {
+    /// The class of `declaration` (made on first use).
+    fn of(&mut self, declaration: String) -> String {
+        let next = self.order.len();
+        let k = *self.names.entry(declaration.clone()).or_insert_with(|| {
+            self.order.push(declaration);
+            next
+        });
+        format!("k{k:x}")
+    }
+
+    /// The style rules of every class made.
+    fn rules(&self) -> String {
+        let mut out = String::new();
+        for (k, declaration) in self.order.iter().enumerate() {
+            let _ = writeln!(out, ".k{k:x}{{{declaration}}}");
+        }
+        out
+    }
 }
 
 /// Thin quads (maps of the unit square, unit-square coordinates) reaching
@@ -514,6 +618,25 @@ pub(crate) fn clip_quads(clip: &[DVec2]) -> Vec<DMat4> {
     out
 }
 
+/// [`clip_quads`] for an opaque sprite, which may overlap itself: a lone triangle is two
+/// quads instead of three, the trapezoid `(a, b, m_bc, m_ca)` and the parallelogram
+/// `(m_ab, m_bc, c, m_ca)` (`m` the edge midpoints), overlapping on the medial triangle. Both
+/// are well-shaped whenever the triangle has area, and their union is the triangle: what the
+/// trapezoid leaves, the triangle `(m_ca, m_bc, c)`, lies in the parallelogram.
+pub(crate) fn opaque_clip_quads(clip: &[DVec2]) -> Vec<DMat4> {
+    if let [a, b, c] = *clip {
+        let (ab, bc, ca) = ((a + b) * 0.5, (b + c) * 0.5, (c + a) * 0.5);
+        let quads: Option<Vec<DMat4>> = [[a, b, bc, ca], [ab, bc, c, ca]]
+            .into_iter()
+            .map(quad_matrix)
+            .collect();
+        if let Some(quads) = quads {
+            return quads;
+        }
+    }
+    clip_quads(clip)
+}
+
 /// The triangle `(a, b, c)` as three quads meeting at its centroid (corner, edge midpoint,
 /// centroid, edge midpoint): convex, well-shaped whenever the triangle has area.
 fn triangle_quads(a: DVec2, b: DVec2, c: DVec2, out: &mut Vec<DMat4>) {
@@ -609,6 +732,39 @@ fn escape_css_string(text: &str) -> std::borrow::Cow<'_, str> {
 
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn a_flat_root_splits_into_the_container_perspective_and_an_affine_rest() {
+        use face_sort::{Bounds, View};
+        let bounds = Bounds {
+            min: DVec3::splat(-1.0),
+            max: DVec3::splat(1.0),
+        };
+        for view in [
+            View::fit(&bounds, 300, 200)
+                .with_yaw_pitch_roll(35.0, 25.0, -10.0)
+                .with_perspective(300.0),
+            View::fit(&bounds, 300, 200)
+                .with_yaw_pitch_roll(-70.0, 5.0, 0.0)
+                .with_perspective(450.0)
+                .with_view_offset(DVec3::new(0.3, -0.2, -0.7))
+                .with_principal_point(170.0, 80.0),
+        ] {
+            let root = crate::root_transform(&view);
+            let flat = FlatRoot::of(&root);
+            assert!((flat.affine.row(3) - DVec4::W).abs().max_element() < 1e-12);
+            let mut perspective = DMat4::IDENTITY;
+            perspective.z_axis.w = -1.0 / flat.distance;
+            let o = flat.origin.extend(0.0);
+            let again = DMat4::from_translation(o)
+                * perspective
+                * DMat4::from_translation(-o)
+                * flat.affine;
+            assert!(again.abs_diff_eq(root, 1e-9), "{again} vs {root}");
+            assert!((flat.origin - view.principal_point()).length() < 1e-9);
+        }
+    }
+
     use super::*;
 
     /// Whether `p` is inside the image of the unit square under `m` (2D part), by inverting
@@ -642,6 +798,50 @@ mod tests {
             return None;
         }
         Some(sides.iter().all(|s| *s > 0.0))
+    }
+
+    #[test]
+    fn opaque_triangles_are_two_quads_covering_exactly_the_triangle() {
+        let triangles = [
+            [
+                DVec2::new(0.1, 0.1),
+                DVec2::new(0.9, 0.2),
+                DVec2::new(0.3, 0.8),
+            ],
+            [
+                DVec2::new(0.0, 0.0),
+                DVec2::new(1.0, 0.0),
+                DVec2::new(0.5, 0.01),
+            ],
+            [
+                DVec2::new(0.2, 0.9),
+                DVec2::new(0.95, 0.5),
+                DVec2::new(0.1, 0.1),
+            ],
+        ];
+        for t in triangles {
+            let ccw = if (t[1] - t[0]).perp_dot(t[2] - t[0]) > 0.0 {
+                t.to_vec()
+            } else {
+                vec![t[0], t[2], t[1]]
+            };
+            let quads = opaque_clip_quads(&t);
+            assert_eq!(quads.len(), 2);
+            for i in 0..=60 {
+                for j in 0..=60 {
+                    let p = DVec2::new(f64::from(i) / 60.0, f64::from(j) / 60.0);
+                    let Some(inside) = in_polygon(&ccw, p, 1e-9) else {
+                        continue;
+                    };
+                    let Some(sides): Option<Vec<bool>> =
+                        quads.iter().map(|q| in_quad(q, p, 1e-9)).collect()
+                    else {
+                        continue; // on a quad's edge line: not a clean sample
+                    };
+                    assert_eq!(inside, sides.contains(&true), "{p} in {t:?}");
+                }
+            }
+        }
     }
 
     #[test]

@@ -82,6 +82,7 @@ mod export;
 mod hidden;
 mod html;
 mod materials;
+mod numbers;
 mod occlusion;
 mod order;
 mod overlay;

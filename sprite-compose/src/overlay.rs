@@ -170,7 +170,7 @@ impl DrawnOverlay {
     #[must_use]
     pub fn to_svg(&self) -> String {
         use std::fmt::Write as _;
-        let f = crate::svg::fmt;
+        let f = crate::numbers::pixel;
         let mut s = String::from("<g fill=\"none\" stroke-linecap=\"butt\">\n");
         for stroke in &self.strokes {
             let [a, b] = stroke.ends;
@@ -209,7 +209,7 @@ fn alpha(name: &str, colour: [u8; 4]) -> String {
     } else {
         format!(
             " {name}=\"{}\"",
-            crate::svg::fmt(f64::from(colour[3]) / 255.0)
+            crate::numbers::pixel(f64::from(colour[3]) / 255.0)
         )
     }
 }

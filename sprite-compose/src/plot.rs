@@ -201,7 +201,7 @@ impl Plot {
         let (w, h) = self.size;
         let mut s = format!(
             "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\">\n<g fill=\"none\" stroke=\"black\" stroke-width=\"{}\" stroke-linecap=\"round\" stroke-linejoin=\"round\">\n",
-            crate::svg::fmt(stroke_px)
+            crate::numbers::pixel(stroke_px)
         );
         for line in &self.polylines {
             s.push_str("<path d=\"");
@@ -210,8 +210,8 @@ impl Plot {
                     s,
                     "{}{} {}",
                     if k == 0 { "M" } else { " L" },
-                    crate::svg::fmt(p.x),
-                    crate::svg::fmt(p.y)
+                    crate::numbers::pixel(p.x),
+                    crate::numbers::pixel(p.y)
                 );
             }
             s.push_str("\"/>\n");

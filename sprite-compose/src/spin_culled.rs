@@ -130,22 +130,7 @@ pub(crate) fn copies(lists: &[Vec<u32>], pieces: usize) -> Copies {
 
 /// A number with about six significant digits, no trailing zeros (CSS accepts it).
 fn num(v: f64) -> String {
-    num_to(v, 6)
-}
-
-/// A number with about `significant` significant digits, no trailing zeros.
-fn num_to(v: f64, significant: i32) -> String {
-    if v == 0.0 || !v.is_finite() {
-        return "0".to_owned();
-    }
-    let digits = (significant - 1 - v.abs().log10().floor() as i32).clamp(0, 12) as usize;
-    let s = format!("{v:.digits$}");
-    let s = if s.contains('.') {
-        s.trim_end_matches('0').trim_end_matches('.').to_owned()
-    } else {
-        s
-    };
-    if s == "-0" { "0".to_owned() } else { s }
+    crate::numbers::significant(v, 6)
 }
 
 /// `matrix3d(…)` with compact numbers: five significant digits (a thousandth of a pixel
@@ -156,7 +141,7 @@ fn matrix(m: &DMat4) -> String {
         .to_cols_array()
         .iter()
         .enumerate()
-        .map(|(k, &v)| num_to(v, if (8..12).contains(&k) { 2 } else { 5 }))
+        .map(|(k, &v)| crate::numbers::significant(v, if (8..12).contains(&k) { 2 } else { 5 }))
         .collect();
     format!("matrix3d({})", cols.join(","))
 }

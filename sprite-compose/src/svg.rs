@@ -1,11 +1,13 @@
 //! The SVG writer: a scene's visible sprites as polygons in paint order.
 
+use std::collections::HashMap;
 use std::fmt::Write as _;
 
 use face_sort::tolerance::NEAR_W;
 use glam::{DAffine2, DMat4, DVec2, DVec4};
 
 use crate::hidden::{VectorShape, vector_shapes};
+use crate::numbers::{matrix_entry, pixel};
 use crate::tolerance::{SVG_CELL_OVERLAP_PX, SVG_TEXTURE_MAX_CELLS, SVG_TEXTURE_PX};
 use crate::{Brush, HiddenParts, Scene, SceneSprite, Visibility, id_colour};
 
@@ -226,6 +228,43 @@ pub fn write_svg(scene: &Scene, options: &SvgOptions) -> String {
         }
         svg.push_str("</defs>\n");
     }
+    // Colour mode: one class per brush colour (fill, and the seam stroke of opaque ones);
+    // the attributes every shape shares sit on one group.
+    let mut classes: HashMap<[u8; 4], usize> = HashMap::new();
+    if !options.ids {
+        let mut rules = String::new();
+        for shape in &shapes {
+            let colour = shape.sprite.brush.solid_colour(shape.sprite.face);
+            let next = classes.len();
+            classes.entry(colour).or_insert_with(|| {
+                let stroke = if options.seam_stroke > 0.0 && colour[3] == 255 {
+                    format!(";stroke:{}", hex(colour))
+                } else {
+                    String::new()
+                };
+                let _ = write!(
+                    rules,
+                    ".{}{{fill:{}{}{stroke}}}",
+                    class_name(next),
+                    hex(colour),
+                    opacity_css(colour)
+                );
+                next
+            });
+        }
+        if !rules.is_empty() {
+            let _ = writeln!(svg, "<style>{rules}</style>");
+        }
+    }
+    svg.push_str("<g fill-rule=\"evenodd\" clip-rule=\"evenodd\"");
+    if !options.ids && options.seam_stroke > 0.0 {
+        let _ = write!(
+            svg,
+            " stroke-width=\"{}\" stroke-linejoin=\"round\"",
+            pixel(options.seam_stroke)
+        );
+    }
+    svg.push_str(">\n");
     let mut clip_count = 0usize;
     for VectorShape {
         sprite,
@@ -267,8 +306,12 @@ pub fn write_svg(scene: &Scene, options: &SvgOptions) -> String {
             for (k, (cell, place)) in cells.iter().enumerate() {
                 let m = place.to_cols_array();
                 let image = format!(
-                    "<use xlink:href=\"#t{id}\" transform=\"matrix({} {} {} {} {} {})\"/>",
-                    m[0], m[1], m[2], m[3], m[4], m[5]
+                    "<use xlink:href=\"#t{id}\" transform=\"matrix({})\"/>",
+                    m[..6]
+                        .iter()
+                        .map(|&v| matrix_entry(v))
+                        .collect::<Vec<_>>()
+                        .join(" ")
                 );
                 if single {
                     svg.push_str(&image);
@@ -283,23 +326,15 @@ pub fn write_svg(scene: &Scene, options: &SvgOptions) -> String {
             svg.push_str("</g>\n");
             continue;
         }
-        let colour = if options.ids {
-            id_colour(sprite.face)
+        let paint = if options.ids {
+            format!(" fill=\"{}\"", hex(id_colour(sprite.face)))
         } else {
-            sprite.brush.solid_colour(sprite.face)
+            let colour = sprite.brush.solid_colour(sprite.face);
+            format!(" class=\"{}\"", class_name(classes[&colour]))
         };
-        let stroke = if !options.ids && options.seam_stroke > 0.0 && colour[3] == 255 {
-            format!(
-                " stroke=\"{}\" stroke-width=\"{}\" stroke-linejoin=\"round\"",
-                hex(colour),
-                options.seam_stroke
-            )
-        } else {
-            String::new()
-        };
-        let paint = format!(" fill=\"{}\"{}{stroke}", hex(colour), opacity(colour));
         let _ = writeln!(svg, "{}", shape.element(&paint));
     }
+    svg.push_str("</g>\n");
     svg.push_str(&options.overlay);
     svg.push_str("</svg>\n");
     svg
@@ -318,9 +353,8 @@ impl Shape {
     fn element(&self, attributes: &str) -> String {
         match self {
             Shape::Polygon(points) => format!("<polygon points=\"{points}\"{attributes}/>"),
-            Shape::Path(d) => {
-                format!("<path d=\"{d}\" fill-rule=\"evenodd\" clip-rule=\"evenodd\"{attributes}/>")
-            }
+            // fill-rule and clip-rule (even-odd) come from the enclosing group.
+            Shape::Path(d) => format!("<path d=\"{d}\"{attributes}/>"),
         }
     }
 }
@@ -334,14 +368,43 @@ fn path_data(shapes: &[Vec<Vec<DVec2>>]) -> String {
                 d,
                 "{}{},{} ",
                 if k == 0 { "M" } else { "L" },
-                fmt(p.x),
-                fmt(p.y)
+                pixel(p.x),
+                pixel(p.y)
             );
         }
         d.push_str("Z ");
     }
     d.truncate(d.trim_end().len());
     d
+}
+
+/// A short class name for class `k`: `c` and `k` in base 36.
+fn class_name(k: usize) -> String {
+    let digits = b"0123456789abcdefghijklmnopqrstuvwxyz";
+    let mut n = k;
+    let mut out = Vec::new();
+    loop {
+        out.push(digits[n % 36]);
+        n /= 36;
+        if n == 0 {
+            break;
+        }
+    }
+    out.push(b'c');
+    out.reverse();
+    String::from_utf8(out).unwrap_or_default()
+}
+
+/// `;fill-opacity:a` for a translucent colour, else nothing.
+fn opacity_css(c: [u8; 4]) -> String {
+    if c[3] == 255 {
+        String::new()
+    } else {
+        format!(
+            ";fill-opacity:{}",
+            crate::numbers::significant(f64::from(c[3]) / 255.0, 4)
+        )
+    }
 }
 
 fn opacity(c: [u8; 4]) -> String {
@@ -358,7 +421,7 @@ fn points_attribute(polygon: &[DVec2]) -> String {
         if k > 0 {
             s.push(' ');
         }
-        let _ = write!(s, "{},{}", fmt(p.x), fmt(p.y));
+        let _ = write!(s, "{},{}", pixel(p.x), pixel(p.y));
     }
     s
 }
@@ -370,17 +433,6 @@ pub(crate) fn dilate(polygon: &[DVec2], by: f64) -> Vec<DVec2> {
         .iter()
         .map(|&p| p + (p - centre).normalize_or_zero() * by)
         .collect()
-}
-
-/// Shortest text that keeps 1e-4 px.
-pub(crate) fn fmt(v: f64) -> String {
-    let s = format!("{v:.4}");
-    let s = s.trim_end_matches('0').trim_end_matches('.');
-    if s == "-0" {
-        "0".to_owned()
-    } else {
-        s.to_owned()
-    }
 }
 
 /// The texture of a sprite as cells: each a clip polygon in pixels and the affine map
