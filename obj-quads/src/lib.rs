@@ -96,7 +96,7 @@ pub use gltf_load::{
     GltfCamera, GltfInstance, GltfProjection, GltfScene, load_gltf, load_gltf_cameras,
     load_gltf_cameras_slice, load_gltf_scene, load_gltf_scene_slice, load_gltf_slice,
 };
-pub use mesh::{AlphaMode, EmbeddedTexture, Material, Mesh};
+pub use mesh::{AlphaMode, EmbeddedTexture, Material, Mesh, WrapMode};
 #[cfg(feature = "obj")]
 pub use obj::{load_obj, load_obj_reader, load_obj_str};
 pub use options::{FacePolicy, LoadOptions, LoadReport, NonConvexPolicy, NonPlanarPolicy};

@@ -31,6 +31,22 @@ pub struct Material {
     /// How the colour's alpha (the diffuse alpha times the texture's) is used: glTF's
     /// `alphaMode`; an OBJ's `d` blends.
     pub alpha_mode: AlphaMode,
+    /// How the texture is sampled outside `[0, 1]` along u and v (glTF's sampler `wrapS`,
+    /// `wrapT`; OBJ textures repeat).
+    pub wrap: [WrapMode; 2],
+}
+
+/// How a texture is sampled at coordinates outside `[0, 1]` (glTF sampler wrap modes).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+#[non_exhaustive]
+pub enum WrapMode {
+    /// The texture tiles (glTF `REPEAT`, the default).
+    #[default]
+    Repeat,
+    /// The texture tiles, every other tile mirrored (glTF `MIRRORED_REPEAT`).
+    MirroredRepeat,
+    /// Coordinates clamp to the edge texels (glTF `CLAMP_TO_EDGE`).
+    ClampToEdge,
 }
 
 /// How a material's alpha is used (glTF `alphaMode`).
@@ -79,6 +95,7 @@ impl Material {
             embedded_texture: None,
             texture_times_diffuse: false,
             alpha_mode: AlphaMode::Blend,
+            wrap: [WrapMode::Repeat; 2],
         }
     }
 

@@ -27,6 +27,7 @@ pub struct Export {
     painter: SpritePainter<RecordingCompositor>,
     textured: Option<Scene>,
     texture_uris: Vec<String>,
+    images: Vec<std::sync::Arc<crate::Image>>,
     hidden: HiddenParts,
 }
 
@@ -52,12 +53,13 @@ impl Export {
             painter,
             textured: None,
             texture_uris: Vec::new(),
+            images: Vec::new(),
             hidden: HiddenParts::Remove,
         }
     }
 
-    /// Paints each face as `materials` say: colours, and textures (embedded once per file
-    /// as `data:` URIs) in SVG and HTML; a texture's mean colour in PDF.
+    /// Paints each face as `materials` say: colours and textures, each image embedded once
+    /// per file (`data:` URIs in SVG and HTML, an image XObject in PDF).
     #[must_use]
     pub fn with_materials(mut self, materials: &Materials) -> Self {
         self.painter.set_brushes(|face| materials.brush(face));
@@ -66,6 +68,7 @@ impl Export {
         let space = SpriteSpace::of_view(self.painter.view());
         if materials.set_textures(&mut textured, &space) > 0 {
             self.texture_uris = materials.images().iter().map(|i| i.data_uri()).collect();
+            self.images = materials.images().to_vec();
             self.textured = Some(textured);
         }
         self
@@ -82,7 +85,7 @@ impl Export {
         (self.painter.view().width(), self.painter.view().height())
     }
 
-    /// The scene with flat colours (PDF), and with textures where it has them (SVG, HTML).
+    /// The scene, with texture brushes where the materials have textures.
     fn scenes(&self) -> (&Scene, &Scene) {
         let flat = self.painter.compositor().scene();
         (flat, self.textured.as_ref().unwrap_or(flat))
@@ -107,11 +110,12 @@ impl Export {
     pub fn pdf(&self) -> Vec<u8> {
         let (width, height) = self.size();
         write_pdf(
-            self.scenes().0,
+            self.scenes().1,
             &PdfOptions::DEFAULT
                 .with_size(width, height)
                 .with_seam_stroke(1.0)
-                .with_hidden(self.hidden),
+                .with_hidden(self.hidden)
+                .with_images(self.images.clone()),
         )
     }
 

@@ -1,11 +1,15 @@
 //! The PDF writer: a scene's visible sprites as filled vector paths in paint order, through
 //! `pdf-writer`.
 
+use std::sync::Arc;
+
 use pdf_writer::types::{LineCapStyle, LineJoinStyle};
-use pdf_writer::{Content, Finish, Pdf, Rect, Ref};
+use pdf_writer::{Content, Filter, Finish, Name, Pdf, Rect, Ref};
 
 use crate::hidden::{VectorShape, vector_shapes};
-use crate::{DrawnOverlay, HiddenParts, Scene, Visibility, id_colour};
+use crate::svg::{dilate, texture_cells};
+use crate::tolerance::SVG_TEXTURE_PX;
+use crate::{Brush, DrawnOverlay, HiddenParts, Image, Scene, Visibility, id_colour};
 
 /// Options of [`write_pdf`].
 #[derive(Clone, Debug, PartialEq)]
@@ -32,6 +36,16 @@ pub struct PdfOptions {
     /// Lines and points drawn after the faces, in their own colours (their visible parts,
     /// [`visible_overlay`](crate::visible_overlay)), in ID mode too. Default: none.
     pub overlay: Option<DrawnOverlay>,
+    /// The images of [`Brush::Texture`] sprites, indexed by [`TextureId`](crate::TextureId)
+    /// (e.g. [`Materials::images`](crate::Materials::images)): each written once as an image
+    /// XObject (deflated RGB, with a soft mask when it has alpha) and drawn per sprite under
+    /// its clip by the exact affine map, cut into cells under perspective as the SVG writer
+    /// does. A textured sprite without its image is filled with its fallback colour.
+    /// Default: none.
+    pub images: Vec<Arc<Image>>,
+    /// Largest distance (pixels) between a textured cell's affine map and the exact
+    /// projective one. Default: [`SVG_TEXTURE_PX`].
+    pub texture_tolerance: f64,
 }
 
 impl PdfOptions {
@@ -45,7 +59,16 @@ impl PdfOptions {
         seam_stroke: 0.0,
         hidden: HiddenParts::Keep,
         overlay: None,
+        images: Vec::new(),
+        texture_tolerance: SVG_TEXTURE_PX,
     };
+
+    /// The images of textured sprites, indexed by texture id.
+    #[must_use]
+    pub fn with_images(mut self, images: Vec<Arc<Image>>) -> Self {
+        self.images = images;
+        self
+    }
 
     /// Lines and points drawn after the faces.
     #[must_use]
@@ -126,12 +149,62 @@ pub fn write_pdf(scene: &Scene, options: &PdfOptions) -> Vec<u8> {
             .fill_nonzero();
     }
     content.set_line_join(LineJoinStyle::RoundJoin);
+    // Image XObjects in use, by texture id: (name, object).
+    let mut used: Vec<Option<Ref>> = vec![None; options.images.len()];
+    let mut next_ref = 5;
     for VectorShape {
         sprite,
         polygon,
         visible,
     } in vector_shapes(scene, options.ids, options.hidden)
     {
+        if let Brush::Texture { texture, uv, .. } = sprite.brush
+            && !options.ids
+            && let Some(slot) = used.get_mut(texture.0 as usize)
+            && let Some(cells) = texture_cells(scene.root(), sprite, uv, options.texture_tolerance)
+        {
+            if slot.is_none() {
+                *slot = Some(Ref::new(next_ref));
+                next_ref += 2; // the image and its soft mask
+            }
+            content.save_state();
+            match &visible {
+                Visibility::Parts(parts) => {
+                    for contour in parts.iter().flatten() {
+                        trace(&mut content, contour);
+                    }
+                }
+                // The seam cover of the SVG writer: the clip grown by half the stroke.
+                _ if options.seam_stroke > 0.0 => {
+                    trace(&mut content, &dilate(&polygon, options.seam_stroke * 0.5));
+                }
+                _ => trace(&mut content, &polygon),
+            }
+            content.clip_even_odd().end_path();
+            let single = cells.len() == 1;
+            for (cell, place) in &cells {
+                content.save_state();
+                if !single {
+                    trace(&mut content, cell);
+                    content.clip_nonzero().end_path();
+                }
+                // Image space is the unit square with the image's first row at the top
+                // (y = 1): texture (u, v) with v down is image space (u, 1 − v).
+                let m = place.to_cols_array();
+                content.transform([
+                    m[0] as f32,
+                    m[1] as f32,
+                    -m[2] as f32,
+                    -m[3] as f32,
+                    (m[2] + m[4]) as f32,
+                    (m[3] + m[5]) as f32,
+                ]);
+                content.x_object(Name(image_name(texture.0).as_bytes()));
+                content.restore_state();
+            }
+            content.restore_state();
+            continue;
+        }
         let colour = if options.ids {
             id_colour(sprite.face)
         } else {
@@ -169,9 +242,63 @@ pub fn write_pdf(scene: &Scene, options: &PdfOptions) -> Vec<u8> {
         .media_box(Rect::new(0.0, 0.0, w as f32, h as f32))
         .parent(pages)
         .contents(content_id);
+    {
+        let mut resources = page_writer.resources();
+        let mut objects = resources.x_objects();
+        for (k, slot) in used.iter().enumerate() {
+            if let Some(id) = slot {
+                objects.pair(Name(image_name(k as u32).as_bytes()), *id);
+            }
+        }
+    }
     page_writer.finish();
     pdf.stream(content_id, &content.finish());
+    for (image, slot) in options.images.iter().zip(&used) {
+        if let Some(id) = slot {
+            write_image(&mut pdf, *id, image);
+        }
+    }
     pdf.finish()
+}
+
+/// The resource name of texture `k`'s image.
+fn image_name(k: u32) -> String {
+    format!("Im{k}")
+}
+
+/// An image as a deflated RGB image XObject at `id`, with a deflated soft mask at the next
+/// object number when any pixel is not opaque.
+fn write_image(pdf: &mut Pdf, id: Ref, image: &Image) {
+    let rgba = image.rgba();
+    let rgb: Vec<u8> = rgba
+        .chunks_exact(4)
+        .flat_map(|p| [p[0], p[1], p[2]])
+        .collect();
+    let alpha: Vec<u8> = rgba.chunks_exact(4).map(|p| p[3]).collect();
+    let has_alpha = alpha.iter().any(|&a| a < 255);
+    let mask_id = Ref::new(id.get() + 1);
+    let deflate = |bytes: &[u8]| miniz_oxide::deflate::compress_to_vec_zlib(bytes, 6);
+    let samples = deflate(&rgb);
+    let mut xobject = pdf.image_xobject(id, &samples);
+    xobject.filter(Filter::FlateDecode);
+    xobject.width(image.width() as i32);
+    xobject.height(image.height() as i32);
+    xobject.color_space().device_rgb();
+    xobject.bits_per_component(8);
+    if has_alpha {
+        xobject.s_mask(mask_id);
+    }
+    xobject.finish();
+    if has_alpha {
+        let mask = deflate(&alpha);
+        let mut xobject = pdf.image_xobject(mask_id, &mask);
+        xobject.filter(Filter::FlateDecode);
+        xobject.width(image.width() as i32);
+        xobject.height(image.height() as i32);
+        xobject.color_space().device_gray();
+        xobject.bits_per_component(8);
+        xobject.finish();
+    }
 }
 
 /// Strokes (butt caps) then dots (four cubic Béziers each, within 3e-4 of the radius).

@@ -440,7 +440,7 @@ pub(crate) fn dilate(polygon: &[DVec2], by: f64) -> Vec<DVec2> {
 /// corners, the grid as fine as `tolerance` (pixels) asks. One cell (the whole square, no clip
 /// of its own) when the projected map is affine. `None` when a corner of the square is not in
 /// front of the eye or a map is singular.
-fn texture_cells(
+pub(crate) fn texture_cells(
     root: &DMat4,
     sprite: &SceneSprite,
     uv: DAffine2,

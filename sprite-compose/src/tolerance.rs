@@ -112,3 +112,12 @@ pub const PLOT_SAME_CORNER: f64 = 1e-5;
 /// least-squares system's determinant is at most `UV_SYSTEM_SINGULAR · m³`, `m` the
 /// system's largest entry (the face is then painted without its texture).
 pub const UV_SYSTEM_SINGULAR: f64 = 1e-12;
+
+/// Texture coordinates within `UV_TILE_SLACK` (in texture widths) of a tile edge count as on
+/// it when finding the tiles a face spans (a face with `u` from 0 to `1 − 1e-7`, as f32 files
+/// store 1, spans one tile, not two).
+pub const UV_TILE_SLACK: f64 = 1e-5;
+
+/// Absolute: the largest image (pixels) a face's texture tiles are made into; beyond it the
+/// face keeps its untiled map.
+pub const MAX_TILED_PIXELS: u64 = 1 << 24;

@@ -413,7 +413,7 @@ fn run_picture(args: &BakeArgs, prepared: &Prepared) -> Result<ExitCode> {
     }
     if let Some(path) = &args.html {
         let lists = aspect_bake::drawn_lists(&baked, &prepared.spin)?;
-        let style = crate::raster::face_style(&geometry, &prepared.source, None, None)?;
+        let (style, _) = crate::raster::face_style(&geometry, &prepared.source, None, None)?;
         let brushes = style.sprite_brushes(&prepared.source, None);
         let colour = |face: u32| {
             brushes

@@ -10,6 +10,7 @@ use anyhow::Result;
 use face_sort::{DrawList, Geometry, View};
 pub use raster_sink::Truth;
 use raster_sink::{Brush, GroundGrid, MaterialOptions, Style};
+use sprite_compose::Materials;
 
 /// Wrong and unambiguous pixel counts of one draw list.
 #[derive(Clone, Copy, Debug, Default)]
@@ -35,25 +36,27 @@ pub fn pixel_error(view: &View, list: &DrawList, truth: &Truth) -> ErrorCounts {
     }
 }
 
-/// The render command's per-face brushes: the mesh's materials (with `texture` for faces
-/// with uvs and no texture of their own) and the ground grid on its face. Material textures
-/// that fail to load are reported and fall back to the diffuse colour.
+/// The render command's per-face brushes: the mesh's materials resolved once
+/// (sprite-compose's `Materials`, with `texture` for faces with uvs and no texture of their
+/// own), as raster brushes with the ground grid on its face, and as they are for the vector
+/// writers. Material textures that fail to load are reported and fall back to the diffuse
+/// colour.
 pub fn face_style(
     geometry: &Geometry,
     mesh: &obj_quads::Mesh,
     texture: Option<PathBuf>,
     grid: Option<&(u32, GroundGrid)>,
-) -> Result<Style> {
+) -> Result<(Style, Materials)> {
     let mut options = MaterialOptions::DEFAULT;
     options.texture = texture;
-    let resolved = Style::from_materials(mesh, geometry.bounds().centre(), &options)
+    let materials = Materials::resolve(mesh, geometry.bounds().centre(), &options)
         .map_err(|e| anyhow::anyhow!("texture {e}"))?;
-    for warning in &resolved.warnings {
+    for warning in materials.warnings() {
         eprintln!("warning: texture {warning}; using the diffuse colour");
     }
-    let mut style = resolved.style;
+    let mut style = Style::from_resolved(&materials).map_err(|e| anyhow::anyhow!("{e}"))?;
     if let Some((face, grid)) = grid {
         style.set_face(*face, Brush::Grid(Arc::new(grid.clone())));
     }
-    Ok(style)
+    Ok((style, materials))
 }

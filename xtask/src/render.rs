@@ -129,6 +129,11 @@ pub struct RenderArgs {
     /// every polygon, or part of one, that opaque polygons in front cover).
     #[arg(long)]
     pub(crate) keep_hidden: bool,
+    /// In --svg and --html, link each texture file relative to the output file instead of
+    /// embedding it (the default: every file is self-contained). Tinted or embedded
+    /// textures are always embedded.
+    #[arg(long)]
+    pub(crate) link_textures: bool,
     /// Read files the model names (glTF buffers and images, OBJ mtllib, MTL map_Kd) even
     /// when they resolve outside the model's folder. Only for files you trust.
     #[arg(long)]
@@ -547,8 +552,11 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
     let shade = (args.shade || demo).then_some(raster_sink::Light::DEFAULT);
     // ID images need no brushes (and no textures).
     let vector = args.svg.is_some() || args.html.is_some() || args.pdf.is_some();
-    let style = if args.ids && !vector {
-        raster_sink::Style::palette()
+    let (style, materials) = if args.ids && !vector {
+        (
+            raster_sink::Style::palette(),
+            sprite_compose::Materials::palette(),
+        )
     } else {
         raster::face_style(&geometry, &mesh, texture.clone(), grid.as_ref())?
     };
@@ -601,27 +609,37 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
         });
         painter.frame();
         let scene = painter.compositor().scene();
-        // Textured faces in --svg/--html: one exact brush per sprite from the style's plane
-        // uv maps (the brushes above carry a texture's mean colour), when every texture has a
-        // file to point at (its material's, else --texture or the demo's).
+        // Textured faces in --svg/--html: one exact brush per sprite from the materials'
+        // plane uv maps (the brushes above carry a texture's mean colour). Each image is
+        // embedded once per file, or with --link-textures linked relative to the file.
         let textured_scene;
-        let (scene, texture_files) = if args.ids {
-            (scene, Vec::new())
+        let scene = if args.ids {
+            scene
         } else {
             let mut textured = scene.clone();
             let space = sprite_compose::SpriteSpace::of_view(painter.view());
-            let images = style.set_sprite_textures(&mut textured, &space);
-            let files: Option<Vec<String>> = images
-                .iter()
-                .map(|image| texture_file(&style, &mesh, image, texture.as_deref()))
-                .collect();
-            match files {
-                Some(files) if !files.is_empty() => {
-                    textured_scene = textured;
-                    (&textured_scene, files)
-                }
-                _ => (scene, Vec::new()),
+            if materials.set_textures(&mut textured, &space) > 0 {
+                textured_scene = textured;
+                &textured_scene
+            } else {
+                scene
             }
+        };
+        let texture_uri = |out: &std::path::Path| -> Vec<String> {
+            if args.ids {
+                return Vec::new();
+            }
+            materials
+                .images()
+                .iter()
+                .map(|image| {
+                    image
+                        .file()
+                        .filter(|_| args.link_textures)
+                        .and_then(|file| relative_link(out, file))
+                        .unwrap_or_else(|| image.data_uri())
+                })
+                .collect()
         };
         if let Some(path) = &args.svg {
             let start = Instant::now();
@@ -632,7 +650,7 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
                     .with_ids(args.ids)
                     .with_seam_stroke(1.0)
                     .with_hidden(hidden)
-                    .with_textures(texture_files.clone())
+                    .with_textures(texture_uri(path))
                     .with_overlay(overlay.as_ref().map_or_else(String::new, |o| o.to_svg())),
             );
             svg_summary = Some(VectorSummary {
@@ -650,7 +668,12 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
                 .with_ids(args.ids)
                 .with_background(args.ids.then_some([0, 0, 0, 255]))
                 .with_seam_stroke(if args.ids { 0.0 } else { 1.0 })
-                .with_hidden(hidden);
+                .with_hidden(hidden)
+                .with_images(if args.ids {
+                    Vec::new()
+                } else {
+                    materials.images().to_vec()
+                });
             if let Some(overlay) = &overlay {
                 options = options.with_overlay(overlay.clone());
             }
@@ -669,18 +692,7 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
                 &sprite_compose::HtmlOptions::DEFAULT
                     .with_size(width, height)
                     .with_ids(args.ids)
-                    .with_textures(
-                        texture_files
-                            .iter()
-                            .map(|f| {
-                                if f.starts_with("data:") {
-                                    f.clone()
-                                } else {
-                                    format!("file://{f}")
-                                }
-                            })
-                            .collect(),
-                    ),
+                    .with_textures(texture_uri(path)),
             );
             std::fs::write(path, html).with_context(|| format!("writing {}", path.display()))?;
         }
@@ -924,37 +936,25 @@ fn ms(start: Instant) -> f64 {
     start.elapsed().as_secs_f64() * 1e3
 }
 
-/// Where the SVG and HTML writers find `image`: the absolute path of the file it was loaded
-/// from (the texture of the first face that paints it: its material's, else `fallback`, the
-/// --texture or demo texture), or, for a texture held in the model file or multiplied by a
-/// glTF `baseColorFactor`, a PNG data URI of the image itself.
-fn texture_file(
-    style: &raster_sink::Style,
-    mesh: &obj_quads::Mesh,
-    image: &std::sync::Arc<raster_sink::tiny_skia::Pixmap>,
-    fallback: Option<&std::path::Path>,
-) -> Option<String> {
-    use base64::Engine as _;
-    use raster_sink::FaceMaterials as _;
-    let face = (0..mesh.face_count()).find(|&face| {
-        matches!(style.brush(face as u32),
-            Some(raster_sink::Brush::Texture(t)) if std::sync::Arc::ptr_eq(&t.image, image))
-    })?;
-    let tinted = mesh
-        .face_texture_factor(face)
-        .is_some_and(|f| f != [1.0; 4]);
-    match mesh.face_texture(face).or(fallback) {
-        Some(file) if !tinted && mesh.face_embedded_texture(face).is_none() => {
-            let file = std::fs::canonicalize(file).unwrap_or_else(|_| file.to_path_buf());
-            Some(file.display().to_string())
-        }
-        _ => {
-            // Straight-alpha PNG of the (premultiplied) pixmap.
-            let png = image.encode_png().ok()?;
-            Some(format!(
-                "data:image/png;base64,{}",
-                base64::engine::general_purpose::STANDARD.encode(png)
-            ))
-        }
+/// `file` as a link relative to the folder of `out` (`../textures/a.png`), with `/`
+/// separators; `None` when no relative path joins them (different roots) or a path is not
+/// valid UTF-8. Never absolute.
+fn relative_link(out: &std::path::Path, file: &std::path::Path) -> Option<String> {
+    let folder = out
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(std::path::Path::new("."));
+    let folder = std::fs::canonicalize(folder).ok()?;
+    let file = std::fs::canonicalize(file).ok()?;
+    let from: Vec<_> = folder.components().collect();
+    let to: Vec<_> = file.components().collect();
+    let common = from.iter().zip(&to).take_while(|(a, b)| a == b).count();
+    if common == 0 {
+        return None;
     }
+    let mut parts: Vec<String> = vec!["..".to_owned(); from.len() - common];
+    for c in &to[common..] {
+        parts.push(c.as_os_str().to_str()?.to_owned());
+    }
+    Some(parts.join("/"))
 }

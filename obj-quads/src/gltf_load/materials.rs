@@ -7,7 +7,7 @@ use gltf::Document;
 
 use super::buffers::{data_uri, uri_path};
 use crate::paths::Folder;
-use crate::{AlphaMode, EmbeddedTexture, LoadOptions, Material};
+use crate::{AlphaMode, EmbeddedTexture, LoadOptions, Material, WrapMode};
 
 /// Materials in document order: base colour factor and texture.
 pub(super) fn materials(
@@ -41,6 +41,13 @@ pub(super) fn materials(
                 },
             };
             if let Some(info) = pbr.base_color_texture() {
+                let sampler = info.texture().sampler();
+                let wrap = |mode: gltf::texture::WrappingMode| match mode {
+                    gltf::texture::WrappingMode::MirroredRepeat => WrapMode::MirroredRepeat,
+                    gltf::texture::WrappingMode::ClampToEdge => WrapMode::ClampToEdge,
+                    gltf::texture::WrappingMode::Repeat => WrapMode::Repeat,
+                };
+                material.wrap = [wrap(sampler.wrap_s()), wrap(sampler.wrap_t())];
                 let image = info.texture().source();
                 let found = match image.source() {
                     gltf::image::Source::Uri { uri, .. } if !uri.starts_with("data:") => {

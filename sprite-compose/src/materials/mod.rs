@@ -10,6 +10,7 @@
 mod image;
 mod obj_mesh;
 mod uv_map;
+mod wrapping;
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -54,6 +55,12 @@ pub trait FaceMaterials {
     fn face_texture_factor(&self, face: usize) -> Option<[f32; 4]> {
         let _ = face;
         None
+    }
+    /// How a face's texture is sampled outside `[0, 1]` along u and v (glTF's sampler
+    /// wrap modes). Default: repeat.
+    fn face_texture_wrap(&self, face: usize) -> [obj_quads::WrapMode; 2] {
+        let _ = face;
+        [obj_quads::WrapMode::Repeat; 2]
     }
     /// How a face's alpha is used (glTF `alphaMode`): opaque, blended, or masked at a
     /// cutoff. Default: blended.
@@ -206,6 +213,8 @@ impl Materials {
                         .map(|uv| DVec2::new(f64::from(uv.x), 1.0 - f64::from(uv.y))),
                 );
                 if let (Some(image), Some(map)) = (image, UvMap::fit(&corners, &uv_points)) {
+                    let wrap = faces.face_texture_wrap(face);
+                    let tiles = wrapping::tiles_of(&uv_points);
                     let factor = faces.face_texture_factor(face).unwrap_or([1.0; 4]);
                     let alpha = faces.face_alpha_mode(face);
                     let slot = if factor != [1.0; 4] || alpha != obj_quads::AlphaMode::Blend {
@@ -220,6 +229,37 @@ impl Materials {
                             out.images.push(Arc::clone(&image));
                             out.images.len() - 1
                         })
+                    };
+                    // Coordinates outside [0, 1]: the face's tiles as one image (or, for one
+                    // tile that an affine remap reaches, no new image), so that every sink
+                    // samples inside [0, 1] and sees the wrap modes alike.
+                    let (slot, map) = match wrapping::single_tile(tiles, wrap) {
+                        Some((scale, offset)) => (slot, map.remapped(scale, offset)),
+                        None => match wrapping::tiled_size(&out.images[slot], tiles) {
+                            Some(_) => {
+                                let bits = |v: DVec2| [v.x.to_bits(), v.y.to_bits()];
+                                let tiled_slot = *tinted
+                                    .entry((
+                                        image::TextureKey::Tiled(
+                                            slot,
+                                            wrap,
+                                            bits(tiles.0),
+                                            bits(tiles.1),
+                                        ),
+                                        [0; 4],
+                                        (0, 0),
+                                    ))
+                                    .or_insert_with(|| {
+                                        let tiled_image =
+                                            wrapping::tiled(&out.images[slot], wrap, tiles);
+                                        out.images.push(Arc::new(tiled_image));
+                                        out.images.len() - 1
+                                    });
+                                let (lo, n) = tiles;
+                                (tiled_slot, map.remapped(DVec2::ONE / n, -lo / n))
+                            }
+                            None => (slot, map),
+                        },
                     };
                     paint = Some(FacePaint::Texture { image: slot, map });
                 }

@@ -41,6 +41,11 @@ impl FaceMaterials for obj_quads::Mesh {
             .filter(|m| m.texture_times_diffuse)
             .map(|m| m.diffuse)
     }
+    fn face_texture_wrap(&self, face: usize) -> [obj_quads::WrapMode; 2] {
+        self.face_material(face)
+            .and_then(|m| self.materials().get(m as usize))
+            .map_or([obj_quads::WrapMode::Repeat; 2], |m| m.wrap)
+    }
     fn face_alpha_mode(&self, face: usize) -> obj_quads::AlphaMode {
         self.face_material(face)
             .and_then(|m| self.materials().get(m as usize))

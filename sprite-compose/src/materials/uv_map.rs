@@ -66,6 +66,19 @@ impl UvMap {
         let d = p - self.origin;
         self.k[0] * d.dot(self.axis_s) + self.k[1] * d.dot(self.axis_t) + self.k[2]
     }
+
+    /// This map followed by `uv ↦ uv · scale + offset` (per axis).
+    #[must_use]
+    pub(crate) fn remapped(&self, scale: DVec2, offset: DVec2) -> Self {
+        UvMap {
+            k: [
+                self.k[0] * scale,
+                self.k[1] * scale,
+                self.k[2] * scale + offset,
+            ],
+            ..*self
+        }
+    }
 }
 
 /// Solves `m · x = rhs` (3×3, two right-hand sides) by Cramer's rule.
