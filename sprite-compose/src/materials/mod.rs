@@ -235,8 +235,8 @@ impl Materials {
                     // samples inside [0, 1] and sees the wrap modes alike.
                     let (slot, map) = match wrapping::single_tile(tiles, wrap) {
                         Some((scale, offset)) => (slot, map.remapped(scale, offset)),
-                        None => match wrapping::tiled_size(&out.images[slot], tiles) {
-                            Some(_) => {
+                        None => match wrapping::tiles_fit(&out.images[slot], tiles) {
+                            true => {
                                 let bits = |v: DVec2| [v.x.to_bits(), v.y.to_bits()];
                                 let tiled_slot = *tinted
                                     .entry((
@@ -258,7 +258,7 @@ impl Materials {
                                 let (lo, n) = tiles;
                                 (tiled_slot, map.remapped(DVec2::ONE / n, -lo / n))
                             }
-                            None => (slot, map),
+                            false => (slot, map),
                         },
                     };
                     paint = Some(FacePaint::Texture { image: slot, map });

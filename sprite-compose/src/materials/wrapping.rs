@@ -42,14 +42,13 @@ pub(super) fn single_tile((lo, n): (DVec2, DVec2), wrap: [WrapMode; 2]) -> Optio
     Some((DVec2::new(su, sv), DVec2::new(ou, ov)))
 }
 
-/// The size of the tiled image of `image` over `tiles`, `None` when it would exceed
-/// [`MAX_TILED_PIXELS`] or has no tiles to speak of.
-pub(super) fn tiled_size(image: &Image, (_, n): (DVec2, DVec2)) -> Option<(u32, u32)> {
+/// Whether the tiled image of `image` over `tiles` stays within [`MAX_TILED_PIXELS`].
+pub(super) fn tiles_fit(image: &Image, (_, n): (DVec2, DVec2)) -> bool {
     let (w, h) = (
         f64::from(image.width()) * n.x,
         f64::from(image.height()) * n.y,
     );
-    (w * h <= MAX_TILED_PIXELS as f64 && w >= 1.0 && h >= 1.0).then(|| (w as u32, h as u32))
+    w * h <= MAX_TILED_PIXELS as f64 && w >= 1.0 && h >= 1.0
 }
 
 /// `image` tiled over `tiles` (tile `(i, j)` shows texture tile `lo + (i, j)`), each axis
