@@ -6,10 +6,10 @@ use std::collections::HashMap;
 
 use glam::{DAffine2, DMat3, DMat4, DVec2, DVec3, DVec4};
 
-use crate::svg::{hex, project_sprite};
+use crate::svg::{hex, project_sprite, sprite_polygon};
 use crate::tolerance::{
-    HTML_QUAD_WEIGHT_RATIO, HTML_SEAM_PX, HTML_SHARED_EDGE_PX, HTML_TEXTURE_SEAM_PX, SINGULAR_DET,
-    UNDERFLOW_ABS,
+    HTML_QUAD_WEIGHT_RATIO, HTML_SEAM_PX, HTML_SHARED_EDGE_PX, HTML_TEXTURE_MARGIN_PX,
+    HTML_TEXTURE_SEAM_PX, SINGULAR_DET, UNDERFLOW_ABS,
 };
 use crate::{Brush, Scene, SceneSprite, id_colour, perspective_matrix};
 
@@ -271,30 +271,45 @@ pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
                 .is_finite()
                 .then(|| (extent.max(1.0) * options.oversize).ceil().max(size))
         });
+        // The element is the unit square grown by a margin of `e` (HTML_TEXTURE_MARGIN_PX in
+        // pixels of the square), clipped to the sprite's polygon grown by
+        // HTML_TEXTURE_SEAM_PX: no edge of the element's box is an edge of the picture, so
+        // Chromium's composited anti-aliasing of layer edges leaves no hairline between
+        // neighbouring textured sprites.
+        let grown = square_size.map(|size| HTML_TEXTURE_MARGIN_PX / size);
         if let Some((id, uv)) = texture
             && let Some(size) = square_size
-            && let Some(place) = image_placement(uv, size)
+            && let Some(e) = grown
+            && let Some(place) = image_placement(
+                uv * DAffine2::from_scale_angle_translation(
+                    DVec2::splat(1.0 + 2.0 * e),
+                    0.0,
+                    DVec2::splat(-e),
+                ),
+                size,
+            )
         {
             let unscale = DMat4::from_scale(DVec3::new(1.0 / size, 1.0 / size, 1.0));
-            let m = outer * sprite.transform.matrix * unscale;
-            let dilated = sprite
-                .clip
-                .as_ref()
-                .map(|clip| dilate_clip(scene.root(), sprite, clip));
-            let clip = dilated.as_ref().map_or_else(String::new, |clip| {
+            let box_to_square = DMat4::from_translation(DVec3::new(-e, -e, 0.0))
+                * DMat4::from_scale(DVec3::new(1.0 + 2.0 * e, 1.0 + 2.0 * e, 1.0));
+            let m = outer * sprite.transform.matrix * box_to_square * unscale;
+            let polygon = sprite_polygon(sprite);
+            let dilated = dilate_clip(scene.root(), sprite, &polygon);
+            let clip = {
                 let mut c = String::from(" style=\"clip-path:polygon(");
-                for (k, p) in clip.iter().enumerate() {
+                for (k, p) in dilated.iter().enumerate() {
+                    let b = (*p + DVec2::splat(e)) / (1.0 + 2.0 * e);
                     let _ = write!(
                         c,
                         "{}{}% {}%",
                         if k > 0 { "," } else { "" },
-                        p.x * 100.0,
-                        p.y * 100.0
+                        crate::numbers::significant(b.x * 100.0, 6),
+                        crate::numbers::significant(b.y * 100.0, 6)
                     );
                 }
                 c.push_str(")\"");
                 c
-            });
+            };
             let _ = writeln!(
                 page,
                 "<div class=\"x\" style=\"width:{size}px;height:{size}px;transform:{}\"><div{clip}><i class=\"t{id}\" style=\"transform:{place}\"></i></div></div>",

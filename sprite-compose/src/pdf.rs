@@ -285,6 +285,8 @@ fn write_image(pdf: &mut Pdf, id: Ref, image: &Image) {
     xobject.height(image.height() as i32);
     xobject.color_space().device_rgb();
     xobject.bits_per_component(8);
+    // Smooth when scaled, as raster-sink's bilinear texture sampling is.
+    xobject.interpolate(true);
     if has_alpha {
         xobject.s_mask(mask_id);
     }
@@ -297,6 +299,7 @@ fn write_image(pdf: &mut Pdf, id: Ref, image: &Image) {
         xobject.height(image.height() as i32);
         xobject.color_space().device_gray();
         xobject.bits_per_component(8);
+        xobject.interpolate(true);
         xobject.finish();
     }
 }

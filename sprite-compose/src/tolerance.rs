@@ -121,3 +121,8 @@ pub const UV_TILE_SLACK: f64 = 1e-5;
 /// Absolute: the largest image (pixels) a face's texture tiles are made into; beyond it the
 /// face keeps its untiled map.
 pub const MAX_TILED_PIXELS: u64 = 1 << 24;
+
+/// Pixels: a textured HTML element reaches this far beyond its sprite's unit square (and is
+/// clipped back to the sprite), so that the element's box edges, which Chromium's compositor
+/// anti-aliases, lie outside the picture.
+pub const HTML_TEXTURE_MARGIN_PX: f64 = 4.0;

@@ -1,0 +1,198 @@
+//! Vector files that ship: for BoxTextured (embedded-in-folder texture, MIRRORED_REPEAT and
+//! CLAMP_TO_EDGE samplers, u from 0 to 6) and the demo's textured spot, `render --svg --html
+//! --pdf` writes files that, each copied alone into an empty folder, show the model in its
+//! own materials through the real consumers: Chromium (SVG, HTML) and poppler's `pdftoppm`
+//! (PDF). At most 1 % of covered pixels may be off raster-sink's PNG of the same view by
+//! more than 48 in a channel. "Covered" is a pixel whose 3 × 3 neighbourhood the ID image
+//! covers: along the silhouette each consumer blends with its own page background.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn xtask(args: &[&str]) {
+    let out = Command::new(env!("CARGO_BIN_EXE_xtask"))
+        .args(args)
+        .output()
+        .expect("run xtask");
+    assert!(
+        out.status.success(),
+        "xtask {args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+fn fresh_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("xtask-ship-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    dir
+}
+
+fn rgba(path: &Path) -> (u32, u32, Vec<u8>) {
+    let bytes = std::fs::read(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let t = obj_quads::decode_texture(&bytes, "png", &obj_quads::LoadOptions::DEFAULT)
+        .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    (t.width, t.height, t.rgba)
+}
+
+const CHROMIUM: &str = "/usr/bin/chromium";
+
+/// Headless Chromium's screenshot of `file` at `size × size` (the flags of docs/CHROMIUM.md).
+fn chromium_shot(file: &Path, size: u32) -> PathBuf {
+    let dir = file.parent().expect("folder");
+    let shot = dir.join("chromium.png");
+    let out = Command::new(CHROMIUM)
+        .args([
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--no-first-run",
+            "--disable-background-networking",
+            "--disable-component-update",
+            "--disable-sync",
+            &format!("--user-data-dir={}", dir.join("profile").display()),
+            "--hide-scrollbars",
+            "--force-device-scale-factor=1",
+            "--force-color-profile=srgb",
+            "--run-all-compositor-stages-before-draw",
+            &format!("--screenshot={}", shot.display()),
+            &format!("--window-size={size},{size}"),
+            &format!("file://{}", file.display()),
+        ])
+        .output()
+        .expect("run chromium");
+    assert!(
+        shot.exists(),
+        "no screenshot: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    shot
+}
+
+/// poppler's rendering of a one-page PDF at 72 dpi (one point to one pixel).
+fn poppler_shot(file: &Path) -> PathBuf {
+    let prefix = file.with_extension("");
+    let out = Command::new("pdftoppm")
+        .args(["-r", "72", "-png", "-singlefile"])
+        .arg(file)
+        .arg(&prefix)
+        .output()
+        .expect("run pdftoppm");
+    assert!(
+        out.status.success(),
+        "pdftoppm: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    prefix.with_extension("png")
+}
+
+#[test]
+fn rendered_files_travel_alone_and_match_the_png() {
+    if !Path::new(CHROMIUM).exists() || Command::new("pdftoppm").arg("-v").output().is_err() {
+        assert!(
+            std::env::var_os("CI").is_none(),
+            "CI must have chromium and poppler-utils (.ci/run installs them)"
+        );
+        eprintln!("notice: chromium or pdftoppm missing; skipping");
+        return;
+    }
+    let assets = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/models");
+    let spot_texture = assets.join("keenan-crane/spot/spot_texture.png");
+    let size = 512u32;
+    let cases: [(&str, PathBuf, Vec<String>); 2] = [
+        (
+            "boxtextured",
+            assets.join("gltf/BoxTextured/BoxTextured.gltf"),
+            vec![],
+        ),
+        (
+            "spot",
+            assets.join("keenan-crane/spot/spot_quadrangulated.obj"),
+            vec!["--texture".into(), spot_texture.display().to_string()],
+        ),
+    ];
+    for (name, model, extra) in cases {
+        let work = fresh_dir(name);
+        let file = |ext: &str| work.join(format!("{name}.{ext}"));
+        let view = ["--yaw", "145", "--pitch", "-25", "--size", "512x512"];
+        let mut args: Vec<String> = vec!["render".into(), model.display().to_string()];
+        args.extend(view.iter().map(|s| (*s).to_owned()));
+        args.extend(extra.iter().cloned());
+        let ids_args: Vec<String> = args
+            .iter()
+            .cloned()
+            .chain([
+                "--ids".into(),
+                "-o".into(),
+                file("ids.png").display().to_string(),
+            ])
+            .collect();
+        xtask(&ids_args.iter().map(String::as_str).collect::<Vec<_>>());
+        let mut colour_args = args.clone();
+        for (flag, ext) in [
+            ("--svg", "svg"),
+            ("--html", "html"),
+            ("--pdf", "pdf"),
+            ("-o", "png"),
+        ] {
+            colour_args.push(flag.into());
+            colour_args.push(file(ext).display().to_string());
+        }
+        xtask(&colour_args.iter().map(String::as_str).collect::<Vec<_>>());
+        let (w, h, ids) = rgba(&file("ids.png"));
+        let (_, _, reference) = rgba(&file("png"));
+        assert_eq!((w, h), (size, size));
+        let id_at = |x: i64, y: i64| {
+            if x < 0 || y < 0 || x >= i64::from(w) || y >= i64::from(h) {
+                return false;
+            }
+            let k = 4 * (y as usize * w as usize + x as usize);
+            ids[k..k + 3] != [0, 0, 0]
+        };
+        let covered: Vec<usize> = (0..i64::from(h))
+            .flat_map(|y| (0..i64::from(w)).map(move |x| (x, y)))
+            .filter(|&(x, y)| (-1..=1).all(|dy| (-1..=1).all(|dx| id_at(x + dx, y + dy))))
+            .map(|(x, y)| y as usize * w as usize + x as usize)
+            .collect();
+        assert!(
+            covered.len() > 5_000,
+            "{name}: {} covered pixels",
+            covered.len()
+        );
+        for ext in ["svg", "html", "pdf"] {
+            // The file alone, in an empty folder far from the model's.
+            let alone = fresh_dir(&format!("{name}-{ext}-alone"));
+            let copy = alone.join(format!("{name}.{ext}"));
+            std::fs::copy(file(ext), &copy).expect("copy");
+            let text = String::from_utf8_lossy(&std::fs::read(&copy).expect("read")).into_owned();
+            assert!(
+                !text.contains("/assets/") && !text.contains("file://"),
+                "{name}.{ext} names a file outside itself"
+            );
+            let shot = match ext {
+                "pdf" => poppler_shot(&copy),
+                _ => chromium_shot(&copy, size),
+            };
+            let (sw, sh, pixels) = rgba(&shot);
+            assert_eq!((sw, sh), (size, size), "{name}.{ext}: screenshot size");
+            let off = covered
+                .iter()
+                .filter(|&&k| {
+                    (0..3).any(|c| {
+                        (i32::from(pixels[4 * k + c]) - i32::from(reference[4 * k + c])).abs() > 48
+                    })
+                })
+                .count();
+            let share = off as f64 / covered.len() as f64;
+            println!(
+                "{name}.{ext}: {} bytes, {off} of {} covered pixels off by > 48 ({:.3} %)",
+                text.len(),
+                covered.len(),
+                share * 100.0
+            );
+            assert!(share <= 0.01, "{name}.{ext}: {:.3} % off", share * 100.0);
+            let _ = std::fs::remove_dir_all(&alone);
+        }
+        let _ = std::fs::remove_dir_all(&work);
+    }
+}
