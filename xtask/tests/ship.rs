@@ -196,3 +196,95 @@ fn rendered_files_travel_alone_and_match_the_png() {
         let _ = std::fs::remove_dir_all(&work);
     }
 }
+
+/// Spot with the default options: the static HTML page is at most 1.5 MB and the SVG at most
+/// 400 KB, and in ID mode both are exact in Chromium at 1× and zoomed 4× (device scale
+/// factor 4 against the truth of the same view at 4× the resolution): not one unambiguous
+/// pixel shows another face.
+#[test]
+fn spot_pages_are_small_and_exact_in_id_mode_at_one_and_four_times() {
+    if !Path::new(CHROMIUM).exists() {
+        assert!(std::env::var_os("CI").is_none(), "CI must have chromium");
+        eprintln!("notice: chromium missing; skipping");
+        return;
+    }
+    let model = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../assets/models/keenan-crane/spot/spot_quadrangulated.obj");
+    let work = fresh_dir("spot-ids");
+    let view = ["--yaw", "145", "--pitch", "-25"];
+    let run = |extra: &[&str]| {
+        let model = model.display().to_string();
+        let mut args = vec!["render", model.as_str()];
+        args.extend_from_slice(&view);
+        args.extend_from_slice(extra);
+        xtask(&args);
+    };
+    let path = |name: &str| work.join(name).display().to_string();
+    run(&["--svg", &path("spot.svg"), "--html", &path("spot.html"), "-o", &path("spot.png")]);
+    let (svg, html) = (
+        std::fs::metadata(work.join("spot.svg")).expect("svg").len(),
+        std::fs::metadata(work.join("spot.html")).expect("html").len(),
+    );
+    println!("spot, default options: SVG {svg} bytes, HTML {html} bytes");
+    assert!(svg <= 400_000, "SVG {svg} bytes");
+    assert!(html <= 1_500_000, "HTML {html} bytes");
+    run(&["--ids", "--svg", &path("ids.svg"), "--html", &path("ids.html"), "-o", &path("ids.png")]);
+
+    let (mesh, _) = obj_quads::load(&model, &obj_quads::LoadOptions::DEFAULT).expect("spot");
+    let polygons = face_sort::PolygonMesh::new(mesh.positions(), mesh.faces()).expect("mesh");
+    let geometry = face_sort::Geometry::new(&polygons).expect("geometry");
+    let base = face_sort::View::fit(&geometry.bounds(), 512, 512).with_yaw_pitch_roll(145.0, -25.0, 0.0);
+    for zoom in [1u32, 4] {
+        let view = base
+            .with_size(512 * zoom, 512 * zoom)
+            .with_scale(base.scale() * f64::from(zoom));
+        let truth = raster_sink::truth(&view, &geometry);
+        for file in ["ids.svg", "ids.html"] {
+            let shot = chromium_shot_scaled(&work.join(file), 512, zoom);
+            let (w, h, pixels) = rgba(&shot);
+            assert_eq!((w, h), (512 * zoom, 512 * zoom), "{file} at {zoom}x");
+            let ids = raster_sink::IdImage {
+                width: w,
+                height: h,
+                ids: pixels
+                    .chunks_exact(4)
+                    .map(|p| u32::from(p[0]) << 16 | u32::from(p[1]) << 8 | u32::from(p[2]))
+                    .collect(),
+            };
+            let error = raster_sink::pixel_error(&ids, &truth);
+            println!("{file} at {zoom}x: {} wrong of {} unambiguous pixels", error.wrong, error.pixels);
+            assert!(error.pixels > 10_000 * (zoom * zoom) as usize, "{file}: {}", error.pixels);
+            assert_eq!(error.wrong, 0, "{file} at {zoom}x");
+        }
+    }
+    let _ = std::fs::remove_dir_all(&work);
+}
+
+/// [`chromium_shot`] at a device scale factor (the page zoomed `zoom` times).
+fn chromium_shot_scaled(file: &Path, size: u32, zoom: u32) -> PathBuf {
+    let dir = file.parent().expect("folder");
+    let shot = dir.join(format!("shot-{zoom}x.png"));
+    let out = Command::new(CHROMIUM)
+        .args([
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--no-first-run",
+            "--disable-background-networking",
+            "--disable-component-update",
+            "--disable-sync",
+            &format!("--user-data-dir={}", dir.join("profile").display()),
+            "--hide-scrollbars",
+            &format!("--force-device-scale-factor={zoom}"),
+            "--disable-composited-antialiasing",
+            "--force-color-profile=srgb",
+            "--run-all-compositor-stages-before-draw",
+            &format!("--screenshot={}", shot.display()),
+            &format!("--window-size={size},{size}"),
+            &format!("file://{}", file.display()),
+        ])
+        .output()
+        .expect("run chromium");
+    assert!(shot.exists(), "no screenshot: {}", String::from_utf8_lossy(&out.stderr));
+    shot
+}
