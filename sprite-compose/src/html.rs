@@ -68,6 +68,10 @@ pub struct HtmlOptions {
     /// path relative to the page). Textured sprites whose texture has no entry, and every
     /// sprite in ID mode, use their fallback colour. Default: none.
     pub textures: Vec<String>,
+    /// Lines and points drawn over the faces, in their own colours: the same SVG markup the
+    /// SVG writer draws ([`DrawnOverlay::to_svg`](crate::DrawnOverlay::to_svg)), as an inline
+    /// `<svg>` over the scene. Default: none.
+    pub overlay: String,
 }
 
 impl HtmlOptions {
@@ -82,7 +86,15 @@ impl HtmlOptions {
         orthographic_distance: 1e8,
         pieces: HtmlPieces::Quads,
         textures: Vec::new(),
+        overlay: String::new(),
     };
+
+    /// Lines and points over the faces (SVG markup, e.g. `DrawnOverlay::to_svg`).
+    #[must_use]
+    pub fn with_overlay(mut self, overlay: String) -> Self {
+        self.overlay = overlay;
+        self
+    }
 
     /// Texture `src`s by texture index.
     #[must_use]
@@ -384,7 +396,15 @@ pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
     out.push_str(&classes.rules());
     out.push_str("</style></head><body><div id=\"scene\">\n");
     out.push_str(&page);
-    out.push_str("</div></body></html>\n");
+    out.push_str("</div>\n");
+    if !options.overlay.is_empty() {
+        let _ = write!(
+            out,
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\" style=\"position:absolute;left:0;top:0\">{}</svg>\n",
+            options.overlay
+        );
+    }
+    out.push_str("</body></html>\n");
     out
 }
 

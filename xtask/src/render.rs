@@ -107,7 +107,7 @@ pub struct RenderArgs {
     #[arg(long, value_name = "OUT.pdf")]
     pub(crate) pdf: Option<PathBuf>,
     /// Draw every mesh edge over the model (hidden parts hidden), black, 1 px, in the PNG,
-    /// --svg and --pdf (not in --html; ignored with --ids).
+    /// --svg, --pdf and --html (ignored with --ids).
     #[arg(long)]
     pub(crate) wire: bool,
     /// Draw every vertex (hidden ones hidden) as a 2 px dot, like --wire.
@@ -561,7 +561,7 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
         raster::face_style(&geometry, &mesh, texture.clone(), grid.as_ref())?
     };
     // --wire / --points: the visible parts of the mesh's edges and vertices, drawn after the
-    // faces by every writer but the HTML one (the ground grid's outline left out).
+    // faces by every writer (the ground grid's outline left out).
     let overlay = ((args.wire || args.points) && !args.ids).then(|| {
         let grid_face = grid.as_ref().map(|(face, _)| *face);
         let mut overlay = sprite_compose::Overlay::default();
@@ -692,7 +692,8 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
                 &sprite_compose::HtmlOptions::DEFAULT
                     .with_size(width, height)
                     .with_ids(args.ids)
-                    .with_textures(texture_uri(path)),
+                    .with_textures(texture_uri(path))
+                    .with_overlay(overlay.as_ref().map_or_else(String::new, |o| o.to_svg())),
             );
             std::fs::write(path, html).with_context(|| format!("writing {}", path.display()))?;
         }

@@ -220,20 +220,38 @@ fn spot_pages_are_small_and_exact_in_id_mode_at_one_and_four_times() {
         xtask(&args);
     };
     let path = |name: &str| work.join(name).display().to_string();
-    run(&["--svg", &path("spot.svg"), "--html", &path("spot.html"), "-o", &path("spot.png")]);
+    run(&[
+        "--svg",
+        &path("spot.svg"),
+        "--html",
+        &path("spot.html"),
+        "-o",
+        &path("spot.png"),
+    ]);
     let (svg, html) = (
         std::fs::metadata(work.join("spot.svg")).expect("svg").len(),
-        std::fs::metadata(work.join("spot.html")).expect("html").len(),
+        std::fs::metadata(work.join("spot.html"))
+            .expect("html")
+            .len(),
     );
     println!("spot, default options: SVG {svg} bytes, HTML {html} bytes");
     assert!(svg <= 400_000, "SVG {svg} bytes");
     assert!(html <= 1_500_000, "HTML {html} bytes");
-    run(&["--ids", "--svg", &path("ids.svg"), "--html", &path("ids.html"), "-o", &path("ids.png")]);
+    run(&[
+        "--ids",
+        "--svg",
+        &path("ids.svg"),
+        "--html",
+        &path("ids.html"),
+        "-o",
+        &path("ids.png"),
+    ]);
 
     let (mesh, _) = obj_quads::load(&model, &obj_quads::LoadOptions::DEFAULT).expect("spot");
     let polygons = face_sort::PolygonMesh::new(mesh.positions(), mesh.faces()).expect("mesh");
     let geometry = face_sort::Geometry::new(&polygons).expect("geometry");
-    let base = face_sort::View::fit(&geometry.bounds(), 512, 512).with_yaw_pitch_roll(145.0, -25.0, 0.0);
+    let base =
+        face_sort::View::fit(&geometry.bounds(), 512, 512).with_yaw_pitch_roll(145.0, -25.0, 0.0);
     for zoom in [1u32, 4] {
         let view = base
             .with_size(512 * zoom, 512 * zoom)
@@ -252,8 +270,15 @@ fn spot_pages_are_small_and_exact_in_id_mode_at_one_and_four_times() {
                     .collect(),
             };
             let error = raster_sink::pixel_error(&ids, &truth);
-            println!("{file} at {zoom}x: {} wrong of {} unambiguous pixels", error.wrong, error.pixels);
-            assert!(error.pixels > 10_000 * (zoom * zoom) as usize, "{file}: {}", error.pixels);
+            println!(
+                "{file} at {zoom}x: {} wrong of {} unambiguous pixels",
+                error.wrong, error.pixels
+            );
+            assert!(
+                error.pixels > 10_000 * (zoom * zoom) as usize,
+                "{file}: {}",
+                error.pixels
+            );
             assert_eq!(error.wrong, 0, "{file} at {zoom}x");
         }
     }
@@ -285,6 +310,10 @@ fn chromium_shot_scaled(file: &Path, size: u32, zoom: u32) -> PathBuf {
         ])
         .output()
         .expect("run chromium");
-    assert!(shot.exists(), "no screenshot: {}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        shot.exists(),
+        "no screenshot: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     shot
 }

@@ -10,8 +10,8 @@ use sprite_compose::face_sort::colours::id_colour;
 use sprite_compose::face_sort::glam::{DVec2, DVec3};
 use sprite_compose::face_sort::{CullMode, DrawList, Geometry, PolygonMesh, SorterKind, View};
 use sprite_compose::{
-    DrawnOverlay, Line, Overlay, PdfOptions, RecordingCompositor, SpritePainter, SvgOptions,
-    visible_overlay, write_pdf, write_svg,
+    DrawnOverlay, HtmlOptions, Line, Overlay, PdfOptions, RecordingCompositor, SpritePainter,
+    SvgOptions, visible_overlay, write_html, write_pdf, write_svg,
 };
 
 const SIZE: u32 = 200;
@@ -322,6 +322,30 @@ fn lines_and_points_are_exact_in_svg() {
             &mut pixmap.as_mut(),
         );
         pixmap.data().to_vec()
+    });
+}
+
+#[test]
+fn lines_and_points_are_exact_in_html() {
+    let Some(browser) = crate::browser::chromium() else {
+        return;
+    };
+    check_all("html", |geometry, view, drawn| {
+        let (_, scene) = painted(geometry, view);
+        // The SVG writer's overlay markup, with the same crisp edges as its test.
+        let overlay = drawn.map_or_else(String::new, |d| {
+            d.to_svg()
+                .replacen("<g ", "<g shape-rendering=\"crispEdges\" ", 1)
+        });
+        let html = write_html(
+            &scene,
+            &HtmlOptions::DEFAULT
+                .with_size(SIZE, SIZE)
+                .with_ids(true)
+                .with_background(BACKGROUND)
+                .with_overlay(overlay),
+        );
+        crate::browser::screenshot_at(browser, &html, "overlay", SIZE)
     });
 }
 
