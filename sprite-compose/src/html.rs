@@ -398,9 +398,9 @@ pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
     out.push_str(&page);
     out.push_str("</div>\n");
     if !options.overlay.is_empty() {
-        let _ = write!(
+        let _ = writeln!(
             out,
-            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\" style=\"position:absolute;left:0;top:0\">{}</svg>\n",
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\" style=\"position:absolute;left:0;top:0\">{}</svg>",
             options.overlay
         );
     }
