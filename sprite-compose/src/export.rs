@@ -99,7 +99,6 @@ impl Export {
             self.scenes().1,
             &SvgOptions::DEFAULT
                 .with_size(width, height)
-                .with_seam_stroke(1.0)
                 .with_hidden(self.hidden)
                 .with_textures(self.texture_uris.clone()),
         )
@@ -113,7 +112,6 @@ impl Export {
             self.scenes().1,
             &PdfOptions::DEFAULT
                 .with_size(width, height)
-                .with_seam_stroke(1.0)
                 .with_hidden(self.hidden)
                 .with_images(self.images.clone()),
         )

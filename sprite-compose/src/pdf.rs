@@ -27,8 +27,8 @@ pub struct PdfOptions {
     /// Background colour (`None`: none, the page stays transparent). Default: `None`.
     pub background: Option<[u8; 4]>,
     /// Width in pixels of a stroke in each opaque solid polygon's own colour (hides the
-    /// hairlines that anti-aliasing viewers leave along shared edges); never in ID mode.
-    /// Default: 0.
+    /// hairlines that anti-aliasing viewers leave along shared edges; textured polygons have
+    /// their clip grown by half of it instead); never in ID mode. Default: 1, as in SVG.
     pub seam_stroke: f64,
     /// Keep or remove hidden parts (as [`SvgOptions::hidden`](crate::SvgOptions::hidden)).
     /// Default: keep.
@@ -56,7 +56,7 @@ impl PdfOptions {
         points_per_pixel: 1.0,
         ids: false,
         background: None,
-        seam_stroke: 0.0,
+        seam_stroke: 1.0,
         hidden: HiddenParts::Keep,
         overlay: None,
         images: Vec::new(),

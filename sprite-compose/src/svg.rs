@@ -34,11 +34,10 @@ pub struct SvgOptions {
     /// Width in pixels of a stroke in each solid polygon's own colour, which hides the
     /// hairlines of background that anti-aliased neighbours leave along shared edges
     /// (conflation). It also moves every visible boundary outward by half of it (silhouettes,
-    /// intersection lines), so it is off by default: an export for people to look at wants
-    /// 1.0 (half a pixel still lets hairlines through in resvg), a measurement wants 0.
-    /// ID mode never strokes. A textured polygon (not cut by hidden-part removal) has its
-    /// clip grown instead, each corner moved half the width away from its centre.
-    /// Default: 0.
+    /// intersection lines): 1.0 is the width that hides the hairlines (half a pixel still lets
+    /// them through in resvg), and a measurement of colour boundaries wants 0. ID mode never
+    /// strokes. A textured polygon (not cut by hidden-part removal) has its clip grown
+    /// instead, each corner moved half the width away from its centre. Default: 1.
     pub seam_stroke: f64,
     /// Whether hidden parts are written ([`HiddenParts::Keep`], the painter's algorithm as
     /// is) or left out ([`HiddenParts::Remove`]: every polygon, or part of one, that opaque
@@ -59,7 +58,7 @@ impl SvgOptions {
         background: None,
         textures: Vec::new(),
         overlay: String::new(),
-        seam_stroke: 0.0,
+        seam_stroke: 1.0,
         hidden: HiddenParts::Keep,
         texture_tolerance: SVG_TEXTURE_PX,
     };

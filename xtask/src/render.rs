@@ -648,7 +648,6 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
                 &sprite_compose::SvgOptions::DEFAULT
                     .with_size(width, height)
                     .with_ids(args.ids)
-                    .with_seam_stroke(1.0)
                     .with_hidden(hidden)
                     .with_textures(texture_uri(path))
                     .with_overlay(overlay.as_ref().map_or_else(String::new, |o| o.to_svg())),
@@ -667,7 +666,6 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
                 .with_size(width, height)
                 .with_ids(args.ids)
                 .with_background(args.ids.then_some([0, 0, 0, 255]))
-                .with_seam_stroke(if args.ids { 0.0 } else { 1.0 })
                 .with_hidden(hidden)
                 .with_images(if args.ids {
                     Vec::new()

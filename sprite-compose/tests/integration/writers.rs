@@ -271,11 +271,50 @@ fn svg_seam_stroke_hides_conflation_hairlines() {
     p.set_brushes(|_| Brush::Solid(colour));
     p.frame();
     let t = truth(p.view(), &g);
-    let options = SvgOptions::DEFAULT.with_background(Some([255, 255, 255, 255]));
-    let stroked = options.clone().with_seam_stroke(1.0);
+    // The default strokes; without it, seams show.
+    let stroked = SvgOptions::DEFAULT.with_background(Some([255, 255, 255, 255]));
+    let options = stroked.clone().with_seam_stroke(0.0);
     let with = tinted_inside(&write_svg(p.compositor().scene(), &stroked), &t, colour);
     let without = tinted_inside(&write_svg(p.compositor().scene(), &options), &t, colour);
     println!("svg seams: {with} tinted pixels with the stroke, {without} without");
     assert_eq!(with, 0);
     assert!(without > 0, "the test must be able to see seams");
+}
+
+/// Hostile texture names reach SVG and HTML escaped: the SVG still parses as XML (usvg), and
+/// the HTML's one CSS rule keeps the name inside its string.
+#[test]
+fn hostile_texture_names_are_escaped() {
+    let (_, mut p) = spot_painter(SorterKind::Centroid, 0.0, false);
+    let texture = Brush::Texture {
+        texture: sprite_compose::TextureId(0),
+        uv: sprite_compose::glam::DAffine2::IDENTITY,
+        fallback: [10, 20, 30, 255],
+    };
+    p.set_brushes(|_| texture);
+    p.frame();
+    let hostile = "a&b\"c<d>'e\\f\n</style><script>x</script>.png".to_owned();
+    let svg = write_svg(
+        p.compositor().scene(),
+        &SvgOptions::DEFAULT.with_textures(vec![hostile.clone()]),
+    );
+    assert!(!svg.contains(&hostile));
+    assert!(svg.contains("a&amp;b&quot;c&lt;d&gt;&apos;e"));
+    resvg::usvg::Tree::from_str(&svg, &resvg::usvg::Options::default())
+        .expect("the SVG parses with a hostile texture name");
+    let html = sprite_compose::write_html(
+        p.compositor().scene(),
+        &sprite_compose::HtmlOptions::DEFAULT.with_textures(vec![hostile.clone()]),
+    );
+    assert!(!html.contains(&hostile));
+    assert!(
+        !html.contains("</style><script>"),
+        "the name cannot end the style sheet"
+    );
+    assert_eq!(html.matches("</style>").count(), 1);
+    let rule = html
+        .lines()
+        .find(|l| l.starts_with(".t0{"))
+        .expect("the texture's rule");
+    assert!(rule.ends_with("\")}"), "{rule}");
 }
