@@ -122,9 +122,13 @@ fn svg_colours_through_resvg_match_the_palette_image() {
         }
     });
     p.frame();
+    // A measurement of where colours lie: without the seam stroke, which moves every
+    // boundary outward by half a pixel.
     let svg = write_svg(
         p.compositor().scene(),
-        &SvgOptions::DEFAULT.with_background(Some([255, 255, 255, 255])),
+        &SvgOptions::DEFAULT
+            .with_background(Some([255, 255, 255, 255]))
+            .with_seam_stroke(0.0),
     );
     let pixmap = rasterise_svg(&svg);
     let ids = render_ids(p.view(), p.draw_list());
