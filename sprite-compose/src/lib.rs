@@ -64,7 +64,10 @@
 //! std::fs::write(out.join("spot.svg"), export.svg())?;
 //! std::fs::write(out.join("spot.pdf"), export.pdf())?;
 //! std::fs::write(out.join("spot.html"), export.html())?;
-//! # assert_eq!(export.svg().matches("data:image/png;base64,").count(), 1);
+//! # let svg = export.svg();
+//! # let uris: Vec<&str> = svg.split("xlink:href=\"data:").skip(1).map(|u| &u[..u.find('"').unwrap()]).collect();
+//! # let distinct: std::collections::HashSet<&&str> = uris.iter().collect();
+//! # assert!(!uris.is_empty() && distinct.len() == uris.len(), "each image once");
 //! # assert!(export.html().contains("data:image/png;base64,"));
 //! # std::fs::remove_dir_all(&out)?;
 //! # Ok(()) }

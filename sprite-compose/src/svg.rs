@@ -212,14 +212,22 @@ pub fn write_svg(scene: &Scene, options: &SvgOptions) -> String {
     }
     // Each texture once, in <defs>; textured cells <use> it.
     let shapes = vector_shapes(scene, options.ids, options.hidden);
-    let textured = !options.ids
-        && shapes
+    let used: std::collections::BTreeSet<u32> = if options.ids {
+        Default::default()
+    } else {
+        shapes
             .iter()
-            .any(|s| matches!(s.sprite.brush, Brush::Texture { .. }));
-    if textured && !options.textures.is_empty() {
+            .filter_map(|s| match s.sprite.brush {
+                Brush::Texture { texture, .. } => Some(texture.0),
+                _ => None,
+            })
+            .filter(|&id| (id as usize) < options.textures.len())
+            .collect()
+    };
+    if !used.is_empty() {
         svg.push_str("<defs>");
-        for (k, href) in options.textures.iter().enumerate() {
-            let href = escape_attribute(href);
+        for &k in &used {
+            let href = escape_attribute(&options.textures[k as usize]);
             let _ = write!(
                 svg,
                 "<image id=\"t{k}\" xlink:href=\"{href}\" width=\"1\" height=\"1\" preserveAspectRatio=\"none\"/>"

@@ -238,9 +238,6 @@ pub(super) enum TextureSource<'a> {
 pub(super) enum TextureKey {
     File(PathBuf),
     Embedded(usize, usize),
-    /// Image slot `.0` tiled under a wrap mode over tiles from `.2` (lowest corner) by `.3`
-    /// (counts), as bit patterns.
-    Tiled(usize, [obj_quads::WrapMode; 2], [u64; 2], [u64; 2]),
 }
 
 impl TextureSource<'_> {

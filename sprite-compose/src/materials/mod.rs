@@ -130,6 +130,9 @@ pub enum FacePaint {
     },
 }
 
+/// A face whose texture coordinates span several tiles: the face, its plain map, its tiles.
+type Spanning = (usize, UvMap, (DVec2, DVec2));
+
 /// A model's materials resolved per face ([`Materials::resolve`]): decoded (and tinted)
 /// images, each face's paint, and the material textures that could not be loaded (their
 /// faces fall back to the diffuse colour).
@@ -162,9 +165,15 @@ impl Materials {
     ) -> Result<Materials, TextureError> {
         let mut out = Materials::default();
         let mut decoded: HashMap<image::TextureKey, Option<Arc<Image>>> = HashMap::new();
-        let mut tinted: HashMap<(image::TextureKey, [u32; 4], image::AlphaKey), usize> =
+        // Decoded and tinted images, each once; only those a face ends up using are kept.
+        let mut sources: Vec<Arc<Image>> = Vec::new();
+        let mut source_of: HashMap<(image::TextureKey, [u32; 4], image::AlphaKey), usize> =
             HashMap::new();
-        let mut index_of: HashMap<*const Image, usize> = HashMap::new();
+        // Faces whose coordinates span several tiles, by (source, wrap): one tiled image
+        // each, over the union of their tiles.
+        let mut spanning: HashMap<(usize, [obj_quads::WrapMode; 2]), Vec<Spanning>> =
+            HashMap::new();
+        let mut textured: Vec<(usize, usize, UvMap)> = Vec::new(); // (face, source, map)
         let positions = faces.positions();
         let (mut corners, mut uv_points) = (Vec::new(), Vec::new());
         for face in 0..faces.face_count() {
@@ -213,55 +222,45 @@ impl Materials {
                         .map(|uv| DVec2::new(f64::from(uv.x), 1.0 - f64::from(uv.y))),
                 );
                 if let (Some(image), Some(map)) = (image, UvMap::fit(&corners, &uv_points)) {
-                    let wrap = faces.face_texture_wrap(face);
-                    let tiles = wrapping::tiles_of(&uv_points);
                     let factor = faces.face_texture_factor(face).unwrap_or([1.0; 4]);
                     let alpha = faces.face_alpha_mode(face);
-                    let slot = if factor != [1.0; 4] || alpha != obj_quads::AlphaMode::Blend {
-                        *tinted
-                            .entry((key, factor.map(f32::to_bits), image::alpha_key(alpha)))
-                            .or_insert_with(|| {
-                                out.images.push(Arc::new(image.tinted(factor, alpha)));
-                                out.images.len() - 1
-                            })
-                    } else {
-                        *index_of.entry(Arc::as_ptr(&image)).or_insert_with(|| {
-                            out.images.push(Arc::clone(&image));
-                            out.images.len() - 1
-                        })
-                    };
-                    // Coordinates outside [0, 1]: the face's tiles as one image (or, for one
-                    // tile that an affine remap reaches, no new image), so that every sink
-                    // samples inside [0, 1] and sees the wrap modes alike.
-                    let (slot, map) = match wrapping::single_tile(tiles, wrap) {
-                        Some((scale, offset)) => (slot, map.remapped(scale, offset)),
-                        None => match wrapping::tiles_fit(&out.images[slot], tiles) {
-                            true => {
-                                let bits = |v: DVec2| [v.x.to_bits(), v.y.to_bits()];
-                                let tiled_slot = *tinted
-                                    .entry((
-                                        image::TextureKey::Tiled(
-                                            slot,
-                                            wrap,
-                                            bits(tiles.0),
-                                            bits(tiles.1),
-                                        ),
-                                        [0; 4],
-                                        (0, 0),
-                                    ))
-                                    .or_insert_with(|| {
-                                        let tiled_image =
-                                            wrapping::tiled(&out.images[slot], wrap, tiles);
-                                        out.images.push(Arc::new(tiled_image));
-                                        out.images.len() - 1
-                                    });
-                                let (lo, n) = tiles;
-                                (tiled_slot, map.remapped(DVec2::ONE / n, -lo / n))
-                            }
-                            false => (slot, map),
+                    let plain = factor == [1.0; 4] && alpha == obj_quads::AlphaMode::Blend;
+                    let cache_key = (
+                        key,
+                        if plain {
+                            [0; 4]
+                        } else {
+                            factor.map(f32::to_bits)
                         },
-                    };
-                    paint = Some(FacePaint::Texture { image: slot, map });
+                        if plain {
+                            (9, 0)
+                        } else {
+                            image::alpha_key(alpha)
+                        },
+                    );
+                    let slot = *source_of.entry(cache_key).or_insert_with(|| {
+                        sources.push(if plain {
+                            Arc::clone(&image)
+                        } else {
+                            Arc::new(image.tinted(factor, alpha))
+                        });
+                        sources.len() - 1
+                    });
+                    // Coordinates outside [0, 1]: an affine remap for one tile, else an
+                    // image of the tiles (below), so that every sink samples inside [0, 1]
+                    // and sees the wrap modes alike.
+                    let wrap = faces.face_texture_wrap(face);
+                    let tiles = wrapping::tiles_of(&uv_points);
+                    match wrapping::single_tile(tiles, wrap) {
+                        Some((scale, offset)) => {
+                            textured.push((face, slot, map.remapped(scale, offset)));
+                        }
+                        None => spanning
+                            .entry((slot, wrap))
+                            .or_default()
+                            .push((face, map, tiles)),
+                    }
+                    paint = Some(FacePaint::Palette); // set below
                 }
             }
             let paint = paint.or_else(|| {
@@ -272,6 +271,43 @@ impl Materials {
                 })
             });
             out.faces.push(paint.unwrap_or(FacePaint::Palette));
+        }
+        // Images in the order faces first use them.
+        let mut kept: HashMap<usize, usize> = HashMap::new();
+        let mut keep = |out: &mut Materials, slot: usize| {
+            *kept.entry(slot).or_insert_with(|| {
+                out.images.push(Arc::clone(&sources[slot]));
+                out.images.len() - 1
+            })
+        };
+        let mut groups: Vec<_> = spanning.into_iter().collect();
+        groups.sort_by_key(|(_, members)| members[0].0);
+        for ((slot, wrap), members) in groups {
+            let (mut lo, mut hi) = (DVec2::INFINITY, DVec2::NEG_INFINITY);
+            for (_, _, (first, n)) in &members {
+                lo = lo.min(*first);
+                hi = hi.max(*first + *n);
+            }
+            let union = (lo, hi - lo);
+            if wrapping::tiles_fit(&sources[slot], union) {
+                out.images
+                    .push(Arc::new(wrapping::tiled(&sources[slot], wrap, union)));
+                let image = out.images.len() - 1;
+                for (face, map, _) in members {
+                    let map = map.remapped(DVec2::ONE / union.1, -lo / union.1);
+                    out.faces[face] = FacePaint::Texture { image, map };
+                }
+            } else {
+                // Too many tiles: the plain map (the texture's own tile only).
+                for (face, map, _) in members {
+                    textured.push((face, slot, map));
+                }
+            }
+        }
+        textured.sort_by_key(|t| t.0);
+        for (face, slot, map) in textured {
+            let image = keep(&mut out, slot);
+            out.faces[face] = FacePaint::Texture { image, map };
         }
         Ok(out)
     }
