@@ -252,9 +252,10 @@ pub fn write_pdf(scene: &Scene, options: &PdfOptions) -> Vec<u8> {
         }
     }
     page_writer.finish();
-    // The content stream deflated (as every PDF producer does): paths compress about 4×.
+    // The content stream deflated, as PDF producers do: paths compress several times.
     let deflated = miniz_oxide::deflate::compress_to_vec_zlib(&content.finish(), 6);
-    pdf.stream(content_id, &deflated).filter(Filter::FlateDecode);
+    pdf.stream(content_id, &deflated)
+        .filter(Filter::FlateDecode);
     for (image, slot) in options.images.iter().zip(&used) {
         if let Some(id) = slot {
             write_image(&mut pdf, *id, image);
