@@ -382,24 +382,24 @@ impl Camera {
 /// errors is kept bit for bit, so that setting a rotation read back from a view is no
 /// change.
 pub(crate) fn orthonormalised(m: DMat3) -> DMat3 {
-    let gram = m.transpose() * m - DMat3::IDENTITY;
-    let deviation = [gram.x_axis, gram.y_axis, gram.z_axis]
-        .iter()
-        .map(|c| c.abs().max_element())
-        .fold(0.0, f64::max);
-    if deviation <= ORTHONORMAL_ROUNDING && m.determinant() > 0.0 {
+    if deviation_from_orthonormal(m) <= ORTHONORMAL_ROUNDING && m.determinant() > 0.0 {
         return m;
     }
     DMat3::from_quat(DQuat::from_mat3(&m).normalize())
 }
 
-/// `m` orthonormalised, or the error saying how far it is from a rotation.
-fn checked_rotation(m: DMat3) -> Result<DMat3, CameraError> {
+/// The largest entry of `|mᵀm − I|`.
+fn deviation_from_orthonormal(m: DMat3) -> f64 {
     let gram = m.transpose() * m - DMat3::IDENTITY;
-    let deviation = [gram.x_axis, gram.y_axis, gram.z_axis]
+    [gram.x_axis, gram.y_axis, gram.z_axis]
         .iter()
         .map(|c| c.abs().max_element())
-        .fold(0.0, f64::max);
+        .fold(0.0, f64::max)
+}
+
+/// `m` orthonormalised, or the error saying how far it is from a rotation.
+fn checked_rotation(m: DMat3) -> Result<DMat3, CameraError> {
+    let deviation = deviation_from_orthonormal(m);
     if deviation > CAMERA_MATRIX {
         return Err(CameraError::NotARotation {
             deviation,

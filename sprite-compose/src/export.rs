@@ -86,9 +86,10 @@ impl Export {
     }
 
     /// The scene, with texture brushes where the materials have textures.
-    fn scenes(&self) -> (&Scene, &Scene) {
-        let flat = self.painter.compositor().scene();
-        (flat, self.textured.as_ref().unwrap_or(flat))
+    fn scene(&self) -> &Scene {
+        self.textured
+            .as_ref()
+            .unwrap_or_else(|| self.painter.compositor().scene())
     }
 
     /// The SVG file.
@@ -96,7 +97,7 @@ impl Export {
     pub fn svg(&self) -> String {
         let (width, height) = self.size();
         write_svg(
-            self.scenes().1,
+            self.scene(),
             &SvgOptions::DEFAULT
                 .with_size(width, height)
                 .with_hidden(self.hidden)
@@ -109,7 +110,7 @@ impl Export {
     pub fn pdf(&self) -> Vec<u8> {
         let (width, height) = self.size();
         write_pdf(
-            self.scenes().1,
+            self.scene(),
             &PdfOptions::DEFAULT
                 .with_size(width, height)
                 .with_hidden(self.hidden)
@@ -122,7 +123,7 @@ impl Export {
     pub fn html(&self) -> String {
         let (width, height) = self.size();
         write_html(
-            self.scenes().1,
+            self.scene(),
             &HtmlOptions::DEFAULT
                 .with_size(width, height)
                 .with_textures(self.texture_uris.clone()),
