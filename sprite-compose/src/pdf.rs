@@ -253,7 +253,7 @@ pub fn write_pdf(scene: &Scene, options: &PdfOptions) -> Vec<u8> {
     }
     page_writer.finish();
     // The content stream deflated, as PDF producers do: paths compress several times.
-    let deflated = miniz_oxide::deflate::compress_to_vec_zlib(&content.finish(), 6);
+    let deflated = deflate(&content.finish());
     pdf.stream(content_id, &deflated)
         .filter(Filter::FlateDecode);
     for (image, slot) in options.images.iter().zip(&used) {
@@ -278,33 +278,48 @@ fn write_image(pdf: &mut Pdf, id: Ref, image: &Image) {
         .flat_map(|p| [p[0], p[1], p[2]])
         .collect();
     let alpha: Vec<u8> = rgba.chunks_exact(4).map(|p| p[3]).collect();
-    let has_alpha = alpha.iter().any(|&a| a < 255);
-    let mask_id = Ref::new(id.get() + 1);
-    let deflate = |bytes: &[u8]| miniz_oxide::deflate::compress_to_vec_zlib(bytes, 6);
-    let samples = deflate(&rgb);
-    let mut xobject = pdf.image_xobject(id, &samples);
+    let mask = alpha
+        .iter()
+        .any(|&a| a < 255)
+        .then(|| Ref::new(id.get() + 1));
+    let size = (image.width(), image.height());
+    write_samples(pdf, id, &rgb, size, false, mask);
+    if let Some(mask) = mask {
+        write_samples(pdf, mask, &alpha, size, true, None);
+    }
+}
+
+/// One deflated 8-bit image XObject of RGB (or, `gray`, one-channel) samples, smoothed
+/// when scaled as raster-sink's bilinear texture sampling is, with an optional soft mask.
+fn write_samples(
+    pdf: &mut Pdf,
+    id: Ref,
+    samples: &[u8],
+    (width, height): (u32, u32),
+    gray: bool,
+    mask: Option<Ref>,
+) {
+    let deflated = deflate(samples);
+    let mut xobject = pdf.image_xobject(id, &deflated);
     xobject.filter(Filter::FlateDecode);
-    xobject.width(image.width() as i32);
-    xobject.height(image.height() as i32);
-    xobject.color_space().device_rgb();
+    xobject.width(width as i32);
+    xobject.height(height as i32);
+    if gray {
+        xobject.color_space().device_gray();
+    } else {
+        xobject.color_space().device_rgb();
+    }
     xobject.bits_per_component(8);
-    // Smooth when scaled, as raster-sink's bilinear texture sampling is.
     xobject.interpolate(true);
-    if has_alpha {
-        xobject.s_mask(mask_id);
+    if let Some(mask) = mask {
+        xobject.s_mask(mask);
     }
     xobject.finish();
-    if has_alpha {
-        let mask = deflate(&alpha);
-        let mut xobject = pdf.image_xobject(mask_id, &mask);
-        xobject.filter(Filter::FlateDecode);
-        xobject.width(image.width() as i32);
-        xobject.height(image.height() as i32);
-        xobject.color_space().device_gray();
-        xobject.bits_per_component(8);
-        xobject.interpolate(true);
-        xobject.finish();
-    }
+}
+
+/// zlib-deflated bytes, for FlateDecode streams.
+fn deflate(bytes: &[u8]) -> Vec<u8> {
+    miniz_oxide::deflate::compress_to_vec_zlib(bytes, 6)
 }
 
 /// Strokes (butt caps) then dots (four cubic Béziers each, within 3e-4 of the radius).
