@@ -25,6 +25,7 @@
 //! assert_eq!(models::planar_torus(1_000).face_count(), models::planar_torus(1_000).face_count());
 //! ```
 
+pub mod consumers;
 pub mod gltf_scene;
 pub mod loaders;
 pub mod models;

@@ -35,67 +35,22 @@ fn rgba(path: &Path) -> (u32, u32, Vec<u8>) {
     (t.width, t.height, t.rgba)
 }
 
-const CHROMIUM: &str = "/usr/bin/chromium";
+use test_support::consumers::{
+    Screen, chromium, chromium_screenshot, pdftoppm, pdftoppm_available,
+};
 
-/// Headless Chromium's screenshot of `file` at `size × size` (the flags of docs/CHROMIUM.md).
-fn chromium_shot(file: &Path, size: u32) -> PathBuf {
-    let dir = file.parent().expect("folder");
-    let shot = dir.join("chromium.png");
-    let out = Command::new(CHROMIUM)
-        .args([
-            "--headless",
-            "--no-sandbox",
-            "--disable-gpu",
-            "--no-first-run",
-            "--disable-background-networking",
-            "--disable-component-update",
-            "--disable-sync",
-            &format!("--user-data-dir={}", dir.join("profile").display()),
-            "--hide-scrollbars",
-            "--force-device-scale-factor=1",
-            "--force-color-profile=srgb",
-            "--run-all-compositor-stages-before-draw",
-            &format!("--screenshot={}", shot.display()),
-            &format!("--window-size={size},{size}"),
-            &format!("file://{}", file.display()),
-        ])
-        .output()
-        .expect("run chromium");
-    assert!(
-        shot.exists(),
-        "no screenshot: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
+/// Chromium's screenshot of `file`, beside it.
+fn chromium_shot(browser: &Path, file: &Path, screen: Screen) -> PathBuf {
+    let shot = file.with_file_name(format!("shot-{}x.png", screen.zoom));
+    chromium_screenshot(browser, file, &shot, screen);
     shot
-}
-
-/// poppler's rendering of a one-page PDF at 72 dpi (one point to one pixel).
-fn poppler_shot(file: &Path) -> PathBuf {
-    let prefix = file.with_extension("");
-    let out = Command::new("pdftoppm")
-        .args(["-r", "72", "-png", "-singlefile"])
-        .arg(file)
-        .arg(&prefix)
-        .output()
-        .expect("run pdftoppm");
-    assert!(
-        out.status.success(),
-        "pdftoppm: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    prefix.with_extension("png")
 }
 
 #[test]
 fn rendered_files_travel_alone_and_match_the_png() {
-    if !Path::new(CHROMIUM).exists() || Command::new("pdftoppm").arg("-v").output().is_err() {
-        assert!(
-            std::env::var_os("CI").is_none(),
-            "CI must have chromium and poppler-utils (.ci/run installs them)"
-        );
-        eprintln!("notice: chromium or pdftoppm missing; skipping");
+    let (Some(browser), true) = (chromium(), pdftoppm_available()) else {
         return;
-    }
+    };
     let assets = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/models");
     let spot_texture = assets.join("keenan-crane/spot/spot_texture.png");
     let size = 512u32;
@@ -169,9 +124,18 @@ fn rendered_files_travel_alone_and_match_the_png() {
                 !text.contains("/assets/") && !text.contains("file://"),
                 "{name}.{ext} names a file outside itself"
             );
+            // As a default viewer shows them: anti-aliased, one point or pixel to a pixel.
             let shot = match ext {
-                "pdf" => poppler_shot(&copy),
-                _ => chromium_shot(&copy, size),
+                "pdf" => pdftoppm(&copy, &copy.with_extension(""), 1, true),
+                _ => chromium_shot(
+                    browser,
+                    &copy,
+                    Screen {
+                        size,
+                        zoom: 1,
+                        composited_antialiasing: true,
+                    },
+                ),
             };
             let (sw, sh, pixels) = rgba(&shot);
             assert_eq!((sw, sh), (size, size), "{name}.{ext}: screenshot size");
@@ -203,11 +167,9 @@ fn rendered_files_travel_alone_and_match_the_png() {
 /// pixel shows another face.
 #[test]
 fn spot_pages_are_small_and_exact_in_id_mode_at_one_and_four_times() {
-    if !Path::new(CHROMIUM).exists() {
-        assert!(std::env::var_os("CI").is_none(), "CI must have chromium");
-        eprintln!("notice: chromium missing; skipping");
+    let Some(browser) = chromium() else {
         return;
-    }
+    };
     let model = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../assets/models/keenan-crane/spot/spot_quadrangulated.obj");
     let work = fresh_dir("spot-ids");
@@ -258,7 +220,15 @@ fn spot_pages_are_small_and_exact_in_id_mode_at_one_and_four_times() {
             .with_scale(base.scale() * f64::from(zoom));
         let truth = raster_sink::truth(&view, &geometry);
         for file in ["ids.svg", "ids.html"] {
-            let shot = chromium_shot_scaled(&work.join(file), 512, zoom);
+            let shot = chromium_shot(
+                browser,
+                &work.join(file),
+                Screen {
+                    size: 512,
+                    zoom,
+                    composited_antialiasing: false,
+                },
+            );
             let (w, h, pixels) = rgba(&shot);
             assert_eq!((w, h), (512 * zoom, 512 * zoom), "{file} at {zoom}x");
             let ids = raster_sink::IdImage {
@@ -283,37 +253,4 @@ fn spot_pages_are_small_and_exact_in_id_mode_at_one_and_four_times() {
         }
     }
     let _ = std::fs::remove_dir_all(&work);
-}
-
-/// [`chromium_shot`] at a device scale factor (the page zoomed `zoom` times).
-fn chromium_shot_scaled(file: &Path, size: u32, zoom: u32) -> PathBuf {
-    let dir = file.parent().expect("folder");
-    let shot = dir.join(format!("shot-{zoom}x.png"));
-    let out = Command::new(CHROMIUM)
-        .args([
-            "--headless",
-            "--no-sandbox",
-            "--disable-gpu",
-            "--no-first-run",
-            "--disable-background-networking",
-            "--disable-component-update",
-            "--disable-sync",
-            &format!("--user-data-dir={}", dir.join("profile").display()),
-            "--hide-scrollbars",
-            &format!("--force-device-scale-factor={zoom}"),
-            "--disable-composited-antialiasing",
-            "--force-color-profile=srgb",
-            "--run-all-compositor-stages-before-draw",
-            &format!("--screenshot={}", shot.display()),
-            &format!("--window-size={size},{size}"),
-            &format!("file://{}", file.display()),
-        ])
-        .output()
-        .expect("run chromium");
-    assert!(
-        shot.exists(),
-        "no screenshot: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    shot
 }

@@ -4,7 +4,6 @@
 //! and pass, unless the environment variable `CI` is set: then they fail.
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
 use std::time::Instant;
 
 use raster_sink::{IdImage, Truth, pixel_error, render_ids, truth};
@@ -18,24 +17,7 @@ use sprite_compose::{
 use crate::textures::{SPOT_SIZE, colour_error, textured_box, textured_html, textured_spot};
 use crate::writers::{SIZE, differing, ids_of_rgba, spot_painter};
 
-const CHROMIUM: &str = "/usr/bin/chromium";
-
-pub(crate) fn chromium() -> Option<&'static Path> {
-    let path = Path::new(CHROMIUM);
-    if path.exists() {
-        return Some(path);
-    }
-    if std::env::var_os("CI").is_some() {
-        panic!(
-            "{CHROMIUM} is missing and CI is set: install the Debian package `chromium` \
-             (apt-get install -y chromium) to run the HTML/CSS 3D tests"
-        );
-    }
-    eprintln!(
-        "notice: {CHROMIUM} not found; skipping the headless Chromium test (set CI to make this fail)"
-    );
-    None
-}
+pub(crate) use test_support::consumers::chromium;
 
 fn temp_dir(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("sprite-compose-{name}-{}", std::process::id()));
@@ -55,37 +37,17 @@ pub(crate) fn screenshot_at(browser: &Path, html: &str, name: &str, size: u32) -
     let page = dir.join("page.html");
     let shot = dir.join("shot.png");
     std::fs::write(&page, html).expect("write page");
-    let profile = dir.join("profile");
-    let output = Command::new(browser)
-        .args([
-            "--headless",
-            "--no-sandbox",
-            "--disable-gpu",
-            "--disable-quic",
-            "--no-first-run",
-            "--disable-background-networking",
-            "--disable-component-update",
-            "--disable-sync",
-            &format!("--user-data-dir={}", profile.display()),
-            "--hide-scrollbars",
-            "--force-device-scale-factor=1",
-            "--disable-composited-antialiasing",
-            "--force-color-profile=srgb",
-            // Every layer rastered before the capture: without it, a large page's
-            // screenshot sometimes misses an element (background where a piece is).
-            "--run-all-compositor-stages-before-draw",
-            &format!("--screenshot={}", shot.display()),
-            &format!("--window-size={size},{size}"),
-            &format!("file://{}", page.display()),
-        ])
-        .output()
-        .expect("run chromium");
-    let pixmap = resvg::tiny_skia::Pixmap::load_png(&shot).unwrap_or_else(|e| {
-        panic!(
-            "no screenshot ({e}); chromium said: {}",
-            String::from_utf8_lossy(&output.stderr)
-        )
-    });
+    test_support::consumers::chromium_screenshot(
+        browser,
+        &page,
+        &shot,
+        test_support::consumers::Screen {
+            size,
+            zoom: 1,
+            composited_antialiasing: false,
+        },
+    );
+    let pixmap = resvg::tiny_skia::Pixmap::load_png(&shot).expect("the screenshot");
     assert_eq!((pixmap.width(), pixmap.height()), (size, size));
     let _ = std::fs::remove_dir_all(&dir);
     pixmap.data().to_vec()

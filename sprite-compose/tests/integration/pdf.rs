@@ -14,9 +14,6 @@
 //! Needs `pdftoppm` (Debian package `poppler-utils`). Without it the tests print a notice and
 //! pass, unless the environment variable `CI` is set: then they fail (`.ci/run` installs it).
 
-use std::path::PathBuf;
-use std::process::Command;
-
 use raster_sink::{pixel_error, truth};
 use sprite_compose::face_sort::{CullMode, Geometry, SorterKind, View};
 use sprite_compose::{HiddenParts, PdfOptions, RecordingCompositor, SpritePainter, write_pdf};
@@ -24,22 +21,11 @@ use sprite_compose::{HiddenParts, PdfOptions, RecordingCompositor, SpritePainter
 use crate::support;
 use crate::writers::ids_of_rgba;
 
-const PDFTOPPM: &str = "pdftoppm";
 const SIZE: u32 = 200;
 /// Odd, so that one hi-res pixel is centred on each pixel centre.
 pub const ZOOM: u32 = 5;
 
-pub fn pdftoppm_available() -> bool {
-    let found = Command::new(PDFTOPPM).arg("-v").output().is_ok();
-    if !found {
-        assert!(
-            std::env::var_os("CI").is_none(),
-            "pdftoppm is missing and CI is set: install the Debian package `poppler-utils`"
-        );
-        eprintln!("notice: pdftoppm not found; skipping the PDF tests (set CI to make this fail)");
-    }
-    found
-}
+pub use test_support::consumers::pdftoppm_available;
 
 /// Rasterises a one-page PDF at `72 · zoom` dpi (one point to `zoom` pixels), anti-aliasing off.
 pub fn rasterise(pdf: &[u8], name: &str, zoom: u32) -> resvg::tiny_skia::Pixmap {
@@ -49,20 +35,8 @@ pub fn rasterise(pdf: &[u8], name: &str, zoom: u32) -> resvg::tiny_skia::Pixmap 
     std::fs::create_dir_all(&dir).expect("temp dir");
     let input = dir.join("page.pdf");
     std::fs::write(&input, pdf).expect("write pdf");
-    let stem: PathBuf = dir.join("page");
-    let output = Command::new(PDFTOPPM)
-        .args(["-r", &(72 * zoom).to_string()])
-        .args(["-aa", "no", "-aaVector", "no", "-png", "-singlefile"])
-        .arg(&input)
-        .arg(&stem)
-        .output()
-        .expect("run pdftoppm");
-    assert!(
-        output.status.success(),
-        "pdftoppm: {}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    resvg::tiny_skia::Pixmap::load_png(stem.with_extension("png")).expect("pdftoppm's PNG")
+    let png = test_support::consumers::pdftoppm(&input, &dir.join("page"), zoom, false);
+    resvg::tiny_skia::Pixmap::load_png(png).expect("pdftoppm's PNG")
 }
 
 /// Every model of the repository (assets/models/SOURCES.md).
