@@ -212,8 +212,8 @@ fn selection_outline_surrounds_the_visible_part() {
     let _ = id_colour(face);
 }
 
-#[test]
-fn textured_sprites_become_clipped_images() {
+/// Spot's painter (Centroid order) with every sprite under texture 0 by the identity map.
+fn textured_spot_painter() -> SpritePainter<RecordingCompositor> {
     let (_, mut p) = spot_painter(SorterKind::Centroid, 0.0, false);
     let texture = Brush::Texture {
         texture: sprite_compose::TextureId(0),
@@ -222,6 +222,12 @@ fn textured_sprites_become_clipped_images() {
     };
     p.set_brushes(|_| texture);
     p.frame();
+    p
+}
+
+#[test]
+fn textured_sprites_become_clipped_images() {
+    let p = textured_spot_painter();
     let png = "data:image/png;base64,iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR42mP8z8BQDwAEhQGAhKmMIQAAAABJRU5ErkJggg==";
     let svg = write_svg(
         p.compositor().scene(),
@@ -289,14 +295,7 @@ fn svg_seam_stroke_hides_conflation_hairlines() {
 /// the HTML's one CSS rule keeps the name inside its string.
 #[test]
 fn hostile_texture_names_are_escaped() {
-    let (_, mut p) = spot_painter(SorterKind::Centroid, 0.0, false);
-    let texture = Brush::Texture {
-        texture: sprite_compose::TextureId(0),
-        uv: sprite_compose::glam::DAffine2::IDENTITY,
-        fallback: [10, 20, 30, 255],
-    };
-    p.set_brushes(|_| texture);
-    p.frame();
+    let p = textured_spot_painter();
     let hostile = "a&b\"c<d>'e\\f\n</style><script>x</script>.png".to_owned();
     let svg = write_svg(
         p.compositor().scene(),
