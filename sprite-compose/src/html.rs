@@ -748,21 +748,14 @@ fn texture_rules(options: &HtmlOptions) -> String {
 /// `text` escaped for a double-quoted CSS string: quotes, backslashes and line breaks as
 /// CSS escapes, and `<` so that no `</style>` can end the style element.
 fn escape_css_string(text: &str) -> std::borrow::Cow<'_, str> {
-    if !text.contains(['"', '\\', '\n', '\r', '<']) {
-        return std::borrow::Cow::Borrowed(text);
-    }
-    let mut out = String::with_capacity(text.len() + 16);
-    for c in text.chars() {
-        match c {
-            '"' => out.push_str("\\22 "),
-            '\\' => out.push_str("\\5c "),
-            '\n' => out.push_str("\\a "),
-            '\r' => out.push_str("\\d "),
-            '<' => out.push_str("\\3c "),
-            c => out.push(c),
-        }
-    }
-    std::borrow::Cow::Owned(out)
+    crate::svg::escape(text, |c| match c {
+        '"' => Some("\\22 "),
+        '\\' => Some("\\5c "),
+        '\n' => Some("\\a "),
+        '\r' => Some("\\d "),
+        '<' => Some("\\3c "),
+        _ => None,
+    })
 }
 
 #[cfg(test)]

@@ -525,18 +525,29 @@ pub(crate) fn texture_cells(
 
 /// `text` escaped for an XML attribute value in double quotes.
 pub(crate) fn escape_attribute(text: &str) -> std::borrow::Cow<'_, str> {
-    if !text.contains(['&', '<', '>', '"', '\'']) {
+    escape(text, |c| match c {
+        '&' => Some("&amp;"),
+        '<' => Some("&lt;"),
+        '>' => Some("&gt;"),
+        '"' => Some("&quot;"),
+        '\'' => Some("&apos;"),
+        _ => None,
+    })
+}
+
+/// `text` with each character that `replace` maps replaced; borrowed when none is.
+pub(crate) fn escape(
+    text: &str,
+    replace: impl Fn(char) -> Option<&'static str>,
+) -> std::borrow::Cow<'_, str> {
+    if !text.chars().any(|c| replace(c).is_some()) {
         return std::borrow::Cow::Borrowed(text);
     }
     let mut out = String::with_capacity(text.len() + 16);
     for c in text.chars() {
-        match c {
-            '&' => out.push_str("&amp;"),
-            '<' => out.push_str("&lt;"),
-            '>' => out.push_str("&gt;"),
-            '"' => out.push_str("&quot;"),
-            '\'' => out.push_str("&apos;"),
-            c => out.push(c),
+        match replace(c) {
+            Some(with) => out.push_str(with),
+            None => out.push(c),
         }
     }
     std::borrow::Cow::Owned(out)
