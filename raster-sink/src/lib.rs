@@ -12,9 +12,10 @@
 //!   textured ([`UvMap`]) and palette brushes ([`face_sort::colours::golden_angle_colour`]),
 //!   flat Lambert shading ([`Light`]), supersampling, override brushes, a small list of
 //!   render [`Step`]s, and a procedural [`GroundGrid`].
-//! - **Materials** ([`FaceMaterials`], [`Style::from_materials`], [`Style::sprite_brushes`]):
-//!   the one path from a loaded model's materials to brushes, for this raster and, projected,
-//!   for sprite-compose's painter and its SVG and HTML writers.
+//! - **Materials** ([`Style::from_materials`], [`Style::from_resolved`],
+//!   [`Style::sprite_brushes`]): raster brushes from sprite-compose's material resolution
+//!   (`sprite_compose::Materials`, re-exported [`FaceMaterials`]), and a raster style
+//!   (with its ground grid and shading) projected back onto sprite brushes.
 //!
 //! # Seams
 //! Anti-aliased neighbours conflate: a pixel half covered by each of two adjacent polygons

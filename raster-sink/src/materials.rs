@@ -141,41 +141,6 @@ impl Style {
             })
             .collect()
     }
-
-    /// Gives every visible sprite of `scene` whose face has a [`Brush::Texture`] here its
-    /// exact texture brush (`sprite_compose::set_plane_textures` with this style's plane uv
-    /// maps), for the SVG and HTML writers; the other sprites keep theirs (e.g. the mean
-    /// colours of [`sprite_brushes`](Self::sprite_brushes)). `space` is the painter's
-    /// `SpriteSpace::of_view(view)`.
-    ///
-    /// Returns the distinct images in `TextureId` order: the writers take one URI per id
-    /// (`SvgOptions::with_textures`, `HtmlOptions::with_textures`), e.g. the texture files'
-    /// paths.
-    pub fn set_sprite_textures(
-        &self,
-        scene: &mut sprite_compose::Scene,
-        space: &sprite_compose::SpriteSpace,
-    ) -> Vec<Arc<Pixmap>> {
-        let mut images: Vec<Arc<Pixmap>> = Vec::new();
-        let mut ids: HashMap<*const Pixmap, u32> = HashMap::new();
-        // `face_slots()` itself has no brush of its own: it stands for the default brush.
-        for face in 0..=self.face_slots() {
-            if let Some(Brush::Texture(t)) = self.brush(face as u32) {
-                ids.entry(Arc::as_ptr(&t.image)).or_insert_with(|| {
-                    images.push(Arc::clone(&t.image));
-                    (images.len() - 1) as u32
-                });
-            }
-        }
-        sprite_compose::set_plane_textures(scene, space, |face, p| match self.brush(face) {
-            Some(Brush::Texture(t)) => Some((
-                sprite_compose::TextureId(*ids.get(&Arc::as_ptr(&t.image))?),
-                t.map.uv(p),
-            )),
-            _ => None,
-        });
-        images
-    }
 }
 
 /// The mean straight-alpha colour of an image, opaque.

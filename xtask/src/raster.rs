@@ -1,6 +1,7 @@
 //! xtask's use of `raster-sink`: pixel error for the bench and the fuzzer, and the render
-//! command's style. Material resolution, shading and the sprite brushes live in raster-sink
-//! (`Style::from_materials`, `Style::sprite_brushes`); this module only adds the command
+//! command's style. Materials are resolved by sprite-compose (`Materials::resolve`),
+//! raster brushes, shading and their sprite projection by raster-sink
+//! (`Style::from_resolved`, `Style::sprite_brushes`); this module only adds the command
 //! line's choices (a texture for the demo, the ground grid) and reports warnings.
 
 use std::path::PathBuf;

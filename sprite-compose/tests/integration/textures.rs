@@ -275,15 +275,17 @@ pub fn textured_spot() -> TexturedSpot {
     let grey = [128, 128, 128, 255];
     painter.set_brushes(|_| Brush::Solid(grey));
     painter.frame();
-    // raster-sink's material path: each face's plane map fitted from its uvs (v flipped).
-    let style = Style::from_materials(
+    // The material path: each face's plane map fitted from its uvs (v flipped), resolved
+    // once for the raster and the sprites.
+    let materials = sprite_compose::Materials::resolve(
         &model,
         geometry.bounds().centre(),
         &MaterialOptions::DEFAULT.with_texture(&texture_path),
     )
-    .expect("spot's texture")
-    .style
-    .with_default(Some(raster_sink::Brush::Solid(grey)));
+    .expect("spot's texture");
+    let style = Style::from_resolved(&materials)
+        .expect("pixmaps")
+        .with_default(Some(raster_sink::Brush::Solid(grey)));
     let reference = render_colour(
         painter.view(),
         painter.draw_list(),
@@ -296,8 +298,8 @@ pub fn textured_spot() -> TexturedSpot {
     .expect("raster");
     let truth = truth(painter.view(), &geometry);
     let mut scene = painter.compositor().scene().clone();
-    let images = style.set_sprite_textures(&mut scene, &SpriteSpace::of_view(painter.view()));
-    assert_eq!(images.len(), 1, "one texture");
+    materials.set_textures(&mut scene, &SpriteSpace::of_view(painter.view()));
+    assert_eq!(materials.images().len(), 1, "one texture");
     let textured = scene
         .visible()
         .filter(|(_, s)| matches!(s.brush, Brush::Texture { .. }))
