@@ -36,6 +36,14 @@ pub enum MeshError {
     /// The mesh has no face with positive area.
     #[error("the mesh has no face with positive area")]
     Empty,
+    /// A planar face is not convex, or its corners go round more than once (a corner
+    /// repeated out of turn, a star): the sorters order convex pieces. Triangulate it first
+    /// (obj-quads' loaders do).
+    #[error("face {face} is planar but not convex (triangulate it first)")]
+    NonConvex {
+        /// The face index.
+        face: usize,
+    },
     /// The mesh's bounding-box diagonal is outside the range f64 orders exactly
     /// ([`MIN_EXTENT_ABS`](crate::tolerance::MIN_EXTENT_ABS) to
     /// [`MAX_EXTENT_ABS`](crate::tolerance::MAX_EXTENT_ABS)).

@@ -6,7 +6,9 @@ use glam::DVec3;
 
 use crate::plane::{Plane, newell_normal};
 use crate::polygon_set::PolygonSet;
-use crate::tolerance::{DEGENERATE_AREA, MAX_EXTENT_ABS, MIN_EXTENT_ABS, ON_PLANE, PLANARITY};
+use crate::tolerance::{
+    CONVEXITY, DEGENERATE_AREA, MAX_EXTENT_ABS, MIN_EXTENT_ABS, ON_PLANE, PLANARITY,
+};
 use crate::{Bounds, MeshError, PolygonMesh};
 
 /// A mesh cut into **pieces**, the units every sorter, the oracle and the truth work on
@@ -39,15 +41,64 @@ impl Geometry {
         Self::new_in_frame(mesh, bounds)
     }
 
-    /// Whether `view` belongs to this geometry: its centre must be the geometry's centre,
-    /// the origin of the pieces' (centred) coordinates. Views from
-    /// [`Camera::view`](crate::Camera::view) and `View::fit(&geometry.bounds(), ..)` are.
+    /// Whether `view` belongs to this geometry and its numbers are usable. Its centre must be
+    /// the geometry's centre, the origin of the pieces' (centred) coordinates; views from
+    /// [`Camera::view`](crate::Camera::view) and `View::fit(&geometry.bounds(), ..)` are. The
+    /// `View` builders take any number; this is where a caller's view is checked before
+    /// sorting: every number finite, the image not empty, the scale, the perspective eye
+    /// distance and the cull margin in their ranges. A view that passes is sorted exactly.
+    ///
+    /// # Errors
+    /// [`CameraError::CentreMismatch`](crate::CameraError::CentreMismatch),
+    /// [`CameraError::NotFinite`](crate::CameraError::NotFinite),
+    /// [`CameraError::EmptyImage`](crate::CameraError::EmptyImage) and
+    /// [`CameraError::Lens`](crate::CameraError::Lens) naming the number out of range.
     pub fn check_view(&self, view: &crate::View) -> Result<(), crate::CameraError> {
+        use crate::CameraError;
+        let finite = |ok: bool, what: &'static str| {
+            if ok {
+                Ok(())
+            } else {
+                Err(CameraError::NotFinite { what })
+            }
+        };
+        finite(view.rotation().is_finite(), "view rotation")?;
+        finite(view.scale().is_finite(), "view scale")?;
+        finite(view.view_offset().is_finite(), "view offset")?;
+        finite(view.principal_point().is_finite(), "principal point")?;
+        finite(view.cull_margin().is_finite(), "cull margin")?;
+        if view.width() == 0 || view.height() == 0 {
+            return Err(CameraError::EmptyImage {
+                width: view.width(),
+                height: view.height(),
+            });
+        }
+        if view.scale() <= 0.0 {
+            return Err(CameraError::Lens {
+                what: "view scale",
+                value: view.scale(),
+            });
+        }
+        if !(0.0..90.0).contains(&view.cull_margin()) {
+            return Err(CameraError::Lens {
+                what: "cull margin in degrees",
+                value: view.cull_margin(),
+            });
+        }
+        if let crate::Projection::Perspective { distance } = view.projection() {
+            finite(distance.is_finite(), "perspective eye distance")?;
+            if distance <= 0.0 {
+                return Err(CameraError::Lens {
+                    what: "perspective eye distance",
+                    value: distance,
+                });
+            }
+        }
         let (view_centre, centre) = (view.centre(), self.bounds.centre());
         if view_centre == centre {
             Ok(())
         } else {
-            Err(crate::CameraError::CentreMismatch {
+            Err(CameraError::CentreMismatch {
                 view: view_centre,
                 geometry: centre,
             })
@@ -116,6 +167,9 @@ impl Geometry {
                         if plane.signed_distance(*c).abs() > on_plane {
                             *c = plane.project_point(*c);
                         }
+                    }
+                    if !is_convex(&corners, newell_normal(&corners).normalize(), size) {
+                        return Err(MeshError::NonConvex { face });
                     }
                     pieces.push(&corners, face as u32, plane);
                 }
@@ -243,4 +297,36 @@ fn largest_distance(corners: &[DVec3]) -> f64 {
         }
     }
     best.sqrt()
+}
+
+/// Whether a planar polygon with this unit normal is convex (straight corners and repeated
+/// neighbours allowed) and goes round exactly once ([`CONVEXITY`]). Edges shorter than
+/// `CONVEXITY · D` are left out: their direction is rounding.
+fn is_convex(corners: &[DVec3], normal: DVec3, size: f64) -> bool {
+    let short = CONVEXITY * size;
+    let mut ring: Vec<DVec3> = Vec::with_capacity(corners.len());
+    for &c in corners {
+        if ring.last().is_none_or(|&p| p.distance(c) > short) {
+            ring.push(c);
+        }
+    }
+    while ring.len() > 1 && ring[0].distance(ring[ring.len() - 1]) <= short {
+        ring.pop();
+    }
+    let n = ring.len();
+    if n < 4 {
+        return true;
+    }
+    let eps = CONVEXITY * size * size;
+    let mut turning = 0.0;
+    for i in 0..n {
+        let e1 = ring[i] - ring[(i + n - 1) % n];
+        let e2 = ring[(i + 1) % n] - ring[i];
+        let turn = e1.cross(e2).dot(normal);
+        if turn < -eps {
+            return false;
+        }
+        turning += turn.atan2(e1.dot(e2));
+    }
+    (turning - std::f64::consts::TAU).abs() < 0.5
 }

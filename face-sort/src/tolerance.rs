@@ -13,6 +13,12 @@ pub const PLANARITY: f64 = 1e-6;
 /// A piece whose Newell normal is shorter than `DEGENERATE_AREA · D²` has no area and is dropped.
 pub const DEGENERATE_AREA: f64 = 1e-12;
 
+/// A planar face is convex when no corner turns the wrong way by more than
+/// `CONVEXITY · D²` (the cross product of its two edges along the face's normal) and its
+/// corners go round once. Ten times obj-quads' loader tolerance of the same name, so that
+/// every face the loader keeps as convex passes here after snapping onto its plane.
+pub const CONVEXITY: f64 = 1e-8;
+
 /// Plane-side classification (BSP build, Newell tests, splits, the planner's convexity
 /// proof): a point within `PLANE_SIDE · L` of a plane is on it. Far above f64 round-off of
 /// centred coordinates (about `1e-16 · L`), and far below the oracle's depth tolerance

@@ -93,3 +93,36 @@ fn out_of_range_sizes_are_a_typed_error() {
         assert_eq!(geometry.pieces().len(), 128);
     }
 }
+
+/// A planar face that is not convex, or whose corners go round twice, is refused: the
+/// sorters order convex pieces (found by `cargo xtask fuzz --libfuzzer sorters`: a face
+/// `[c, d, c, e, d]` made Newell's order wrong). Straight corners and repeated neighbours
+/// stay allowed, and a non-planar face is still fanned.
+#[test]
+fn non_convex_planar_faces_are_refused() {
+    use face_sort::{MeshError, PolygonMesh};
+    let positions = [
+        [0.0, 0.0, 0.0],
+        [2.0, 0.0, 0.0],
+        [2.0, 1.0, 0.0],
+        [1.0, 1.0, 0.0],
+        [1.0, 2.0, 0.0],
+        [0.0, 2.0, 0.0],
+        [1.0, 0.0, 0.0],
+        [0.0, 0.0, 1.0],
+    ];
+    let geometry = |faces: &[&[u32]]| Geometry::new(&PolygonMesh::new(positions, faces).unwrap());
+    // An L-shaped hexagon, and a bow tie of repeated corners.
+    for face in [&[0u32, 1, 2, 3, 4, 5][..], &[1, 2, 1, 5, 2]] {
+        assert_eq!(
+            geometry(&[face]).unwrap_err(),
+            MeshError::NonConvex { face: 0 }
+        );
+    }
+    // A straight corner (6 on the edge 0–1), a repeated neighbour, a star-free triangle.
+    for face in [&[0u32, 6, 1, 2, 5][..], &[0, 1, 1, 2, 5], &[0, 1, 5]] {
+        assert!(geometry(&[face]).is_ok(), "{face:?}");
+    }
+    // A non-planar concave quad: fanned, not refused.
+    assert!(geometry(&[&[0, 1, 7, 3]]).is_ok());
+}

@@ -85,8 +85,12 @@ impl Export {
         (self.painter.view().width(), self.painter.view().height())
     }
 
-    /// The scene, with texture brushes where the materials have textures.
-    fn scene(&self) -> &Scene {
+    /// The scene the files are written from: the sprites in paint order, with texture
+    /// brushes where the materials have textures. For writer options that `Export` does not
+    /// set (textures linked by path, backgrounds, ID colours), pass it to
+    /// [`write_svg`], [`write_pdf`] or [`write_html`] directly.
+    #[must_use]
+    pub fn scene(&self) -> &Scene {
         self.textured
             .as_ref()
             .unwrap_or_else(|| self.painter.compositor().scene())

@@ -745,17 +745,34 @@ fn texture_rules(options: &HtmlOptions) -> String {
     rules
 }
 
-/// `text` escaped for a double-quoted CSS string: quotes, backslashes and line breaks as
-/// CSS escapes, and `<` so that no `</style>` can end the style element.
+/// `text` escaped for a double-quoted CSS string: quotes, backslashes, `<` (so that no
+/// `</style>` can end the style element) and every character the HTML parser reports in a
+/// style element (controls, NUL, noncharacters) as CSS hex escapes. NUL, which CSS reads as
+/// U+FFFD, is written as U+FFFD.
 fn escape_css_string(text: &str) -> std::borrow::Cow<'_, str> {
-    crate::svg::escape(text, |c| match c {
-        '"' => Some("\\22 "),
-        '\\' => Some("\\5c "),
-        '\n' => Some("\\a "),
-        '\r' => Some("\\d "),
-        '<' => Some("\\3c "),
-        _ => None,
-    })
+    let needs = |c: char| {
+        matches!(c, '"' | '\\' | '<' | '\u{0}'..='\u{1f}' | '\u{7f}'..='\u{9f}')
+            || is_noncharacter(c)
+    };
+    if !text.chars().any(needs) {
+        return std::borrow::Cow::Borrowed(text);
+    }
+    let mut out = String::with_capacity(text.len() + 16);
+    for c in text.chars() {
+        if needs(c) {
+            let code = if c == '\u{0}' { 0xfffd } else { u32::from(c) };
+            let _ = write!(out, "\\{code:x} ");
+        } else {
+            out.push(c);
+        }
+    }
+    std::borrow::Cow::Owned(out)
+}
+
+/// A Unicode noncharacter (U+FDD0 to U+FDEF, and the last two code points of every plane).
+fn is_noncharacter(c: char) -> bool {
+    let code = u32::from(c);
+    (0xfdd0..=0xfdef).contains(&code) || code & 0xfffe == 0xfffe
 }
 
 #[cfg(test)]

@@ -523,7 +523,10 @@ pub(crate) fn texture_cells(
     }
 }
 
-/// `text` escaped for an XML attribute value in double quotes.
+/// `text` escaped for an XML attribute value in double quotes. Tabs and line breaks become
+/// character references, so that a parser's attribute-value normalisation gives them back
+/// as they were; a character that XML 1.0 does not allow at all (most C0 controls, U+FFFE,
+/// U+FFFF) becomes U+FFFD, as no reference can carry it.
 pub(crate) fn escape_attribute(text: &str) -> std::borrow::Cow<'_, str> {
     escape(text, |c| match c {
         '&' => Some("&amp;"),
@@ -531,6 +534,10 @@ pub(crate) fn escape_attribute(text: &str) -> std::borrow::Cow<'_, str> {
         '>' => Some("&gt;"),
         '"' => Some("&quot;"),
         '\'' => Some("&apos;"),
+        '\t' => Some("&#9;"),
+        '\n' => Some("&#10;"),
+        '\r' => Some("&#13;"),
+        '\u{0}'..='\u{1f}' | '\u{fffe}' | '\u{ffff}' => Some("\u{fffd}"),
         _ => None,
     })
 }

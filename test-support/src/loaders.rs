@@ -15,7 +15,9 @@ use obj_quads::{FacePolicy, LoadOptions, LoadReport, Mesh, NonPlanarPolicy};
 /// What kind of file a loader input is, by extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum LoaderFormat {
-    /// Wavefront OBJ (`.obj`), loaded from memory (no MTL).
+    /// Wavefront OBJ (`.obj`), loaded from memory (no MTL). Bytes with a NUL are an OBJ, the
+    /// NUL, and an MTL library: both are written as files (`case.obj`, `case.mtl`) and the
+    /// OBJ is loaded from its file too, so that its `mtllib case.mtl` resolves.
     Obj,
     /// MTL library (`.mtl`), loaded through a fixed OBJ that names it.
     Mtl,
@@ -322,12 +324,17 @@ fn prepare(format: LoaderFormat, bytes: &[u8], scratch: &Path) -> Result<Option<
             .map_err(|e| format!("writing {}: {e}", scratch.display()))
     };
     match format {
-        LoaderFormat::Obj | LoaderFormat::Png | LoaderFormat::Jpeg => Ok(None),
-        LoaderFormat::Mtl => {
-            // The texture spot.mtl names, so that accepted texture paths occur too.
-            if !scratch.join("spot_texture.png").is_file() {
-                write("spot_texture.png", b"not decoded here")?;
+        LoaderFormat::Png | LoaderFormat::Jpeg => Ok(None),
+        LoaderFormat::Obj => match split_obj_mtl(bytes) {
+            (_, None) => Ok(None),
+            (obj, Some(mtl)) => {
+                texture_beside(scratch)?;
+                write("case.mtl", mtl)?;
+                write("case.obj", obj).map(Some)
             }
+        },
+        LoaderFormat::Mtl => {
+            texture_beside(scratch)?;
             write("case.mtl", bytes)?;
             write("case.obj", MTL_HOST_OBJ.as_bytes()).map(Some)
         }
@@ -341,6 +348,24 @@ fn prepare(format: LoaderFormat, bytes: &[u8], scratch: &Path) -> Result<Option<
             write(&format!("case.{}", format.extension()), bytes).map(Some)
         }
     }
+}
+
+/// An OBJ input's two parts: the OBJ before the first NUL, and the MTL library after it.
+fn split_obj_mtl(bytes: &[u8]) -> (&[u8], Option<&[u8]>) {
+    match bytes.iter().position(|&b| b == 0) {
+        Some(k) => (&bytes[..k], Some(&bytes[k + 1..])),
+        None => (bytes, None),
+    }
+}
+
+/// The texture spot.mtl names, beside the case, so that accepted texture paths occur too.
+fn texture_beside(scratch: &Path) -> Result<(), String> {
+    let path = scratch.join("spot_texture.png");
+    if path.is_file() {
+        return Ok(());
+    }
+    std::fs::write(&path, b"not decoded here")
+        .map_err(|e| format!("writing {}: {e}", path.display()))
 }
 
 /// Every way `format` is loaded (from `file`, written by [`prepare`]), each guarded
@@ -359,7 +384,7 @@ fn load_all(
     let mut out = Vec::new();
     match format {
         LoaderFormat::Obj => out.push(guard("OBJ from memory", &|| {
-            obj_quads::load_obj_reader(bytes, None, options)
+            obj_quads::load_obj_reader(split_obj_mtl(bytes).0, None, options)
         })?),
         LoaderFormat::Gltf | LoaderFormat::Glb => out.push(guard("glTF from memory", &|| {
             obj_quads::load_gltf_slice(bytes, options)

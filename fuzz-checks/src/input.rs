@@ -1,0 +1,81 @@
+//! Numbers and small meshes drawn from fuzzer bytes.
+//!
+//! Most numbers are small multiples of 1/8 (so that faces meet, touch and lie in common
+//! planes, where order decisions are hardest); some are nudged by a few ulps (near-singular
+//! cases), and some are any bit pattern or a special value (NaN, infinities, huge, tiny).
+
+use arbitrary::{Result, Unstructured};
+use glam::DVec3;
+
+/// Values worth hitting on purpose.
+const SPECIAL: [f64; 10] = [
+    f64::NAN,
+    f64::INFINITY,
+    f64::NEG_INFINITY,
+    0.0,
+    -0.0,
+    1e300,
+    -1e300,
+    1e-300,
+    f64::MIN_POSITIVE,
+    f64::EPSILON,
+];
+
+/// A number: a grid value mostly, sometimes nudged, special or any bits.
+pub(crate) fn number(u: &mut Unstructured) -> Result<f64> {
+    Ok(match u.int_in_range(0u8..=31)? {
+        0 => f64::from_bits(u.arbitrary()?),
+        1 => *u.choose(&SPECIAL)?,
+        2..=4 => {
+            let grid = grid(u)?;
+            let ulps = i64::from(u.int_in_range(-4i8..=4)?);
+            nudge(grid, ulps)
+        }
+        _ => grid(u)?,
+    })
+}
+
+/// A finite number in `[lo, hi]`, on a grid of `1/8` mostly.
+pub(crate) fn tame(u: &mut Unstructured, lo: f64, hi: f64) -> Result<f64> {
+    let t = f64::from(u.int_in_range(0u16..=1024)?) / 1024.0;
+    Ok(lo + (hi - lo) * t)
+}
+
+fn grid(u: &mut Unstructured) -> Result<f64> {
+    Ok(f64::from(u.int_in_range(-32i8..=32)?) / 8.0)
+}
+
+/// `x` moved by `ulps` units in the last place.
+fn nudge(x: f64, ulps: i64) -> f64 {
+    if x == 0.0 || ulps == 0 {
+        return x;
+    }
+    let bits = x.to_bits() as i64;
+    f64::from_bits((bits + ulps) as u64)
+}
+
+/// A point of three [`number`]s.
+pub(crate) fn point(u: &mut Unstructured) -> Result<DVec3> {
+    Ok(DVec3::new(number(u)?, number(u)?, number(u)?))
+}
+
+/// A small polygon soup: 3 to `max_positions` positions and 1 to `max_faces` faces of 3 to
+/// 5 indices, some possibly out of range or repeated (the mesh constructors must refuse
+/// those with a typed error).
+pub(crate) fn soup(
+    u: &mut Unstructured,
+    max_positions: usize,
+    max_faces: usize,
+) -> Result<(Vec<DVec3>, Vec<Vec<u32>>)> {
+    let n = u.int_in_range(3..=max_positions)?;
+    let positions = (0..n).map(|_| point(u)).collect::<Result<Vec<_>>>()?;
+    let faces = (0..u.int_in_range(1..=max_faces)?)
+        .map(|_| {
+            let corners = u.int_in_range(3..=5)?;
+            (0..corners)
+                .map(|_| Ok(u32::from(u.int_in_range(0u8..=(n as u8))?)))
+                .collect::<Result<Vec<u32>>>()
+        })
+        .collect::<Result<Vec<_>>>()?;
+    Ok((positions, faces))
+}

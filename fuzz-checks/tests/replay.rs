@@ -1,0 +1,47 @@
+//! Replays every committed fuzz input through its target's check: the minimised corpora
+//! (`fuzz/corpus/TARGET/`) and the regressions, each a crash or hang that libFuzzer found
+//! and that is fixed (`fuzz/regressions/TARGET/`).
+
+use std::path::Path;
+
+fn inputs(dir: &Path) -> Vec<std::path::PathBuf> {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return Vec::new();
+    };
+    let mut files: Vec<_> = entries
+        .filter_map(Result::ok)
+        .map(|e| e.path())
+        .filter(|p| p.is_file())
+        .collect();
+    files.sort();
+    files
+}
+
+fn replay(folder: &str, at_least: usize) {
+    let mut total = 0;
+    for target in fuzz_checks::TARGETS {
+        let dir = fuzz_checks::fuzz_dir().join(folder).join(target.name);
+        let files = inputs(&dir);
+        for file in &files {
+            let data = std::fs::read(file).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
+            let result = std::panic::catch_unwind(|| (target.check)(&data));
+            assert!(result.is_ok(), "{} fails its check", file.display());
+        }
+        println!("{}: {} {folder} inputs pass", target.name, files.len());
+        total += files.len();
+    }
+    assert!(
+        total >= at_least,
+        "{total} {folder} inputs, expected at least {at_least}"
+    );
+}
+
+#[test]
+fn the_regressions_stay_fixed() {
+    replay("regressions", 1);
+}
+
+#[test]
+fn the_corpora_pass() {
+    replay("corpus", fuzz_checks::TARGETS.len());
+}
