@@ -7,7 +7,8 @@ use glam::DVec3;
 use crate::plane::{Plane, newell_normal};
 use crate::polygon_set::PolygonSet;
 use crate::tolerance::{
-    CONVEXITY, DEGENERATE_AREA, MAX_EXTENT_ABS, MIN_EXTENT_ABS, ON_PLANE, PLANARITY,
+    CONVEXITY, DEGENERATE_AREA, MAX_EXTENT_ABS, MAX_IMAGE_EXTENT_PX, MIN_EXTENT_ABS,
+    MIN_IMAGE_EXTENT_PX, ON_PLANE, PLANARITY,
 };
 use crate::{Bounds, MeshError, PolygonMesh};
 
@@ -45,8 +46,9 @@ impl Geometry {
     /// the geometry's centre, the origin of the pieces' (centred) coordinates; views from
     /// [`Camera::view`](crate::Camera::view) and `View::fit(&geometry.bounds(), ..)` are. The
     /// `View` builders take any number; this is where a caller's view is checked before
-    /// sorting: every number finite, the image not empty, the scale, the perspective eye
-    /// distance and the cull margin in their ranges. A view that passes is sorted exactly.
+    /// sorting: every number finite, the image not empty, the scale (the model's image
+    /// between [`MIN_IMAGE_EXTENT_PX`] and [`MAX_IMAGE_EXTENT_PX`] across), the perspective
+    /// eye distance and the cull margin in their ranges. A view that passes is sorted exactly.
     ///
     /// # Errors
     /// [`CameraError::CentreMismatch`](crate::CameraError::CentreMismatch),
@@ -77,6 +79,13 @@ impl Geometry {
             return Err(CameraError::Lens {
                 what: "view scale",
                 value: view.scale(),
+            });
+        }
+        let extent = view.scale() * view.diagonal();
+        if !(MIN_IMAGE_EXTENT_PX..=MAX_IMAGE_EXTENT_PX).contains(&extent) {
+            return Err(CameraError::Lens {
+                what: "model's image size in pixels (view scale times diagonal)",
+                value: extent,
             });
         }
         if !(0.0..90.0).contains(&view.cull_margin()) {

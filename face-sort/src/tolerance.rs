@@ -62,6 +62,16 @@ pub const CAMERA_MATRIX: f64 = 1e-4;
 /// is orthonormalised ([`View::with_rotation`](crate::View::with_rotation)).
 pub const ORTHONORMAL_ROUNDING: f64 = 16.0 * f64::EPSILON;
 
+/// The smallest and largest image a view may give the model, in pixels across its diagonal
+/// (`scale · L`), checked by [`Geometry::check_view`](crate::Geometry::check_view). Below a
+/// millionth of a pixel the sorters' pixel-space tests lose the overlaps that the oracle
+/// still sees (Newell orders wrongly at `1e-10` px, found by fuzzing); above `1e12` px a
+/// view is a close-up a pixel grid cannot hold.
+pub const MIN_IMAGE_EXTENT_PX: f64 = 1e-6;
+
+/// See [`MIN_IMAGE_EXTENT_PX`].
+pub const MAX_IMAGE_EXTENT_PX: f64 = 1e12;
+
 /// Perspective near plane: geometry is clipped to `w ≥ NEAR_W` (CONVENTIONS.md).
 pub const NEAR_W: f64 = 1e-3;
 

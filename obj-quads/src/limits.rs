@@ -11,8 +11,13 @@
 /// Default cap on the number of corners of one face.
 pub const DEFAULT_MAX_FACE_CORNERS: usize = 1024;
 
-/// Default cap on the number of faces in one model.
-pub const DEFAULT_MAX_FACES: usize = 1 << 24;
+/// Default cap on the number of faces in one model: 2²² (4,194,304). A loaded face costs
+/// about 40 bytes of mesh and as much again while loading, so a model at the cap stays near
+/// half a GiB; a larger file (a 10-million-face OBJ) is a
+/// [`LoadError::TooLarge`](crate::LoadError::TooLarge) from the first pass over its text,
+/// before any face is built. Raise it with
+/// [`LoadOptions::with_max_faces`](crate::LoadOptions::with_max_faces).
+pub const DEFAULT_MAX_FACES: usize = 1 << 22;
 
 /// Default cap on the number of vertices (positions) in one model.
 pub const DEFAULT_MAX_VERTICES: usize = 1 << 26;

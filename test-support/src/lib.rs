@@ -28,6 +28,7 @@
 pub mod consumers;
 pub mod gltf_scene;
 pub mod loaders;
+pub mod memory;
 pub mod models;
 mod obj_text;
 mod paths;

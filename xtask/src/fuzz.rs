@@ -36,6 +36,21 @@ pub struct FuzzArgs {
     /// seed files, each failure shrunk and saved under tests/data/loaders/ (or --out).
     #[arg(long)]
     loaders: bool,
+    /// Run a coverage-guided libFuzzer target of fuzz/ (or `all`, one after another) instead:
+    /// cargo-fuzz on the nightly toolchain, each for --time seconds. Skips with a notice
+    /// when nightly or cargo-fuzz is missing.
+    #[arg(long, value_name = "TARGET")]
+    libfuzzer: Option<String>,
+    /// Seconds per libFuzzer target.
+    #[arg(long, default_value_t = 60, requires = "libfuzzer")]
+    time: u64,
+    /// libFuzzer processes per target (`-fork`).
+    #[arg(long, default_value_t = 1, requires = "libfuzzer")]
+    jobs: u32,
+    /// Build the libFuzzer targets unoptimised: quicker to build, slower to run (CI's
+    /// few-second smoke run).
+    #[arg(long, requires = "libfuzzer")]
+    dev: bool,
 }
 
 #[derive(Default)]
@@ -47,6 +62,9 @@ struct Tally {
 
 /// Runs the fuzzer. Fails when an exact sorter (Newell, BSP) has a violation.
 pub fn run(args: &FuzzArgs) -> Result<ExitCode> {
+    if let Some(target) = &args.libfuzzer {
+        return crate::fuzz_libfuzzer::run(target, args.time, args.jobs, args.dev);
+    }
     if args.loaders {
         return crate::fuzz_loaders::run(args.cases, args.seed, args.out.clone());
     }

@@ -6,7 +6,9 @@
 //!   report and a chart under `target/bench/`.
 //! - `fuzz` runs every sorter against the order-violation oracle on generated scenes and
 //!   saves failing cases for replay with `render`: an exact sorter's under `tests/data/sorters/`,
-//!   where `cargo test` replays them, the others' under `target/fuzz/`.
+//!   where `cargo test` replays them, the others' under `target/fuzz/`. `fuzz --loaders`
+//!   mutates model and texture files; `fuzz --libfuzzer TARGET --time S` runs the
+//!   coverage-guided targets of `fuzz/` (cargo-fuzz, nightly).
 //! - `stress` runs the exact sorters on moved, scaled, coplanar, degenerate and edge-on cases
 //!   and reports violations, pixel error, fragments and NaN counts (docs/ROBUSTNESS.md).
 //! - `ci` runs what CI runs (`.ci/run`): fmt, clippy, tests, packaging.
@@ -18,6 +20,7 @@ mod bake;
 mod bench;
 mod ci;
 mod fuzz;
+mod fuzz_libfuzzer;
 mod fuzz_loaders;
 mod oneshot;
 mod peer;

@@ -198,3 +198,46 @@ fn cube_yaw_picture_is_one_cell_that_the_sink_culls() {
     assert_eq!(cells[0]["draw_list"].as_array().unwrap().len(), pieces);
     assert!(breakpoints(&v).is_empty());
 }
+
+/// The finding that a full-spot `bake --json` was killed by the operating system for lack of
+/// memory: the picture bake writes spot's JSON well under 5 MB, and a BSP-signature bake
+/// over its byte budget stops with a clear error instead of growing.
+#[test]
+fn full_spot_bakes_to_json_within_its_budgets() {
+    let model = test_support::model_path("keenan-crane/spot/spot_triangulated.obj");
+    let dir = std::env::temp_dir().join(format!("xtask-bake-{}-spot", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let json = dir.join("spot.json");
+    let (model, json_arg) = (model.to_str().unwrap(), json.to_str().unwrap());
+    let out = xtask(&[
+        "bake", model, "--axis", "yaw", "--pitch", "20", "--json", json_arg,
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let bytes = std::fs::metadata(&json).unwrap().len();
+    println!("spot picture bake: {bytes} B of JSON");
+    assert!(bytes < 5 << 20, "{bytes} B");
+    let value: Value = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(value["culling"], "sink");
+
+    let out = xtask(&[
+        "bake",
+        model,
+        "--axis",
+        "yaw",
+        "--pitch",
+        "20",
+        "--sorter",
+        "bsp",
+        "--budget-mib",
+        "16",
+        "--json",
+        json_arg,
+    ]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert!(stderr.contains("budget"), "{stderr}");
+}
