@@ -171,9 +171,9 @@ pub enum BakeError {
         budget: usize,
     },
     /// More candidate pairs than allowed.
-    #[error("{pairs} candidate pairs of pieces, over the budget of {budget}")]
+    #[error("at least {pairs} candidate pairs of pieces, over the budget of {budget}")]
     PairBudget {
-        /// Pairs found.
+        /// Pairs (or pair-and-bin keys) found when the search stopped.
         pairs: usize,
         /// The budget.
         budget: usize,

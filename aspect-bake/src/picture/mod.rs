@@ -71,7 +71,9 @@ pub struct PictureOptions {
     /// At most this many pieces after cutting the ones that cross ([`BakeError::Pieces`];
     /// never more than 2²⁴ − 1).
     pub max_pieces: usize,
-    /// At most this many candidate pairs ([`BakeError::PairBudget`]).
+    /// At most this many candidate pairs ([`BakeError::PairBudget`]). A pair and its
+    /// constraint cost about 400 bytes while the bake runs, so the pairs bound its memory:
+    /// the default stops a bake near 2 GB, checked before the pairs are built.
     pub max_pairs: usize,
     /// The cells' orders stop at this many bytes ([`BakeError::SizeBudget`]).
     pub budget_bytes: usize,
@@ -81,11 +83,11 @@ pub struct PictureOptions {
 }
 
 impl PictureOptions {
-    /// 16 bins, 4 million pieces, 20 million pairs, 1 GiB, 64 cycle cuts.
+    /// 16 bins, 4 million pieces, 5 million pairs, 1 GiB, 64 cycle cuts.
     pub const DEFAULT: PictureOptions = PictureOptions {
         bins: 16,
         max_pieces: 4_000_000,
-        max_pairs: 20_000_000,
+        max_pairs: 5_000_000,
         budget_bytes: 1 << 30,
         max_cycle_cuts: 64,
     };

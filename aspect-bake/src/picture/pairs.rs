@@ -4,6 +4,8 @@
 //! projections overlap with positive area. Both conditions are unions and intersections of
 //! sign conditions `a·cos θ + b·sin θ + c`, solved in closed form ([`ArcSet`]).
 
+use std::sync::atomic::{AtomicUsize, Ordering};
+
 use face_sort::glam::{DVec2, DVec3};
 use face_sort::{
     PixelRays, PolygonSet, ProjectionScratch, Side, View, clip_convex_2d, signed_area_2d,
@@ -321,6 +323,9 @@ pub(crate) const MAX_PIECES: usize = (1 << PIECE_BITS) - 1;
 /// The most angular bins.
 pub(crate) const MAX_BINS: usize = (1 << BIN_BITS) - 1;
 
+/// Keys a bin's search counts at once toward the budget.
+const KEY_BLOCK: usize = 4096;
+
 /// A candidate pair and the arcs (whole bins) where their boxes met.
 pub(crate) struct Candidate {
     i: u32,
@@ -333,6 +338,10 @@ pub(crate) struct Candidate {
 /// where that happens.
 fn candidates(pieces: &Pieces, bins: usize, max_pairs: usize) -> Result<Vec<Candidate>, BakeError> {
     let width = std::f64::consts::TAU / bins as f64;
+    // (pair, bin) keys found so far over all bins, counted in blocks as they come, so that a
+    // search over the budget stops before its keys cost more than the budget states.
+    let limit = max_pairs.saturating_mul(4);
+    let found = AtomicUsize::new(0);
     let per_bin: Vec<Vec<u64>> = (0..bins)
         .into_par_iter()
         .map(|bin| {
@@ -356,7 +365,7 @@ fn candidates(pieces: &Pieces, bins: usize, max_pairs: usize) -> Result<Vec<Cand
             }
             boxes.sort_unstable_by(|a, b| a.0.x.total_cmp(&b.0.x));
             let mut keys = Vec::new();
-            for (k, &(min_a, max_a, a)) in boxes.iter().enumerate() {
+            'search: for (k, &(min_a, max_a, a)) in boxes.iter().enumerate() {
                 for &(min_b, max_b, b) in &boxes[k + 1..] {
                     if min_b.x > max_a.x {
                         break;
@@ -371,14 +380,20 @@ fn candidates(pieces: &Pieces, bins: usize, max_pairs: usize) -> Result<Vec<Cand
                                 | (u64::from(j) << BIN_BITS)
                                 | bin as u64,
                         );
+                        if keys.len() % KEY_BLOCK == 0
+                            && found.fetch_add(KEY_BLOCK, Ordering::Relaxed) + KEY_BLOCK > limit
+                        {
+                            break 'search;
+                        }
                     }
                 }
             }
+            found.fetch_add(keys.len() % KEY_BLOCK, Ordering::Relaxed);
             keys
         })
         .collect();
-    let total: usize = per_bin.iter().map(Vec::len).sum();
-    if total > max_pairs.saturating_mul(4) {
+    let total = found.load(Ordering::Relaxed);
+    if total > limit {
         return Err(BakeError::PairBudget {
             pairs: total,
             budget: max_pairs,
