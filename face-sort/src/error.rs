@@ -36,10 +36,11 @@ pub enum MeshError {
     /// The mesh has no face with positive area.
     #[error("the mesh has no face with positive area")]
     Empty,
-    /// A planar face is not convex, or its corners go round more than once (a corner
-    /// repeated out of turn, a star): the sorters order convex pieces. Triangulate it first
-    /// (obj-quads' loaders do).
-    #[error("face {face} is planar but not convex (triangulate it first)")]
+    /// A face is not convex as seen along its normal, or its corners go round more than
+    /// once (a corner repeated out of turn, a star, a twisted quad): the sorters order convex
+    /// pieces, and a non-planar face is fanned into triangles, which must not cover each
+    /// other. Triangulate it first (obj-quads' loaders do).
+    #[error("face {face} is not convex (triangulate it first)")]
     NonConvex {
         /// The face index.
         face: usize,

@@ -183,6 +183,24 @@ impl Geometry {
                     pieces.push(&corners, face as u32, plane);
                 }
                 _ => {
+                    // A fan covers the face only when the face is convex as seen along its
+                    // normal; a face that twists or repeats a corner out of turn would fan
+                    // into triangles that cover each other.
+                    // A face without net area whose fan has area (a triangle and its
+                    // reverse, `[a, b, c, b]`) folds onto itself: not convex either.
+                    let normal = newell_normal(&corners);
+                    let least = DEGENERATE_AREA * size * size;
+                    let convex = if normal.length() > least {
+                        is_convex(&corners, normal.normalize(), size)
+                    } else {
+                        (1..corners.len() - 1).all(|k| {
+                            newell_normal(&[corners[0], corners[k], corners[k + 1]]).length()
+                                <= least
+                        })
+                    };
+                    if !convex {
+                        return Err(MeshError::NonConvex { face });
+                    }
                     non_planar_faces += 1;
                     for k in 1..corners.len() - 1 {
                         let tri = [corners[0], corners[k], corners[k + 1]];

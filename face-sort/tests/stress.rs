@@ -110,6 +110,7 @@ fn non_convex_planar_faces_are_refused() {
         [0.0, 2.0, 0.0],
         [1.0, 0.0, 0.0],
         [0.0, 0.0, 1.0],
+        [2.0, 2.0, 0.5],
     ];
     let geometry = |faces: &[&[u32]]| Geometry::new(&PolygonMesh::new(positions, faces).unwrap());
     // An L-shaped hexagon, and a bow tie of repeated corners.
@@ -123,6 +124,16 @@ fn non_convex_planar_faces_are_refused() {
     for face in [&[0u32, 6, 1, 2, 5][..], &[0, 1, 1, 2, 5], &[0, 1, 5]] {
         assert!(geometry(&[face]).is_ok(), "{face:?}");
     }
-    // A non-planar concave quad: fanned, not refused.
-    assert!(geometry(&[&[0, 1, 7, 3]]).is_ok());
+    // A non-planar quad convex along its normal is fanned; a non-planar face that repeats a
+    // corner out of turn is refused (its fan would cover itself: found by the bake target).
+    assert!(geometry(&[&[0, 1, 8, 5]]).is_ok());
+    // A face folded onto itself (a triangle and its reverse, no net area) is refused too,
+    // and a face of collinear corners is dropped as before.
+    for face in [&[0u32, 1, 8, 1, 5][..], &[0, 1, 5, 1]] {
+        assert_eq!(
+            geometry(&[face]).unwrap_err(),
+            MeshError::NonConvex { face: 0 }
+        );
+    }
+    assert!(geometry(&[&[0, 6, 1, 6], &[0, 1, 5]]).is_ok());
 }

@@ -41,6 +41,18 @@ pub(crate) fn tame(u: &mut Unstructured, lo: f64, hi: f64) -> Result<f64> {
     Ok(lo + (hi - lo) * t)
 }
 
+/// A number of modest dynamic range: a grid value, sometimes nudged by a few ulps. For
+/// checks whose guarantee holds only for features above the error metric's ambiguity
+/// (`1e-6 · L`): any bits would make slivers a billionth of the model wide.
+pub(crate) fn modest(u: &mut Unstructured) -> Result<f64> {
+    let grid = grid(u)?;
+    Ok(if u.ratio(1u8, 8)? {
+        nudge(grid, i64::from(u.int_in_range(-4i8..=4)?))
+    } else {
+        grid
+    })
+}
+
 fn grid(u: &mut Unstructured) -> Result<f64> {
     Ok(f64::from(u.int_in_range(-32i8..=32)?) / 8.0)
 }
@@ -59,16 +71,22 @@ pub(crate) fn point(u: &mut Unstructured) -> Result<DVec3> {
     Ok(DVec3::new(number(u)?, number(u)?, number(u)?))
 }
 
-/// A small polygon soup: 3 to `max_positions` positions and 1 to `max_faces` faces of 3 to
+/// How a soup's coordinates are drawn: [`number`] or [`modest`].
+pub(crate) type Draw = fn(&mut Unstructured) -> Result<f64>;
+
+/// A small polygon soup: 3 to `max_positions` positions (coordinates by `draw`) and 1 to `max_faces` faces of 3 to
 /// 5 indices, some possibly out of range or repeated (the mesh constructors must refuse
 /// those with a typed error).
 pub(crate) fn soup(
     u: &mut Unstructured,
+    draw: Draw,
     max_positions: usize,
     max_faces: usize,
 ) -> Result<(Vec<DVec3>, Vec<Vec<u32>>)> {
     let n = u.int_in_range(3..=max_positions)?;
-    let positions = (0..n).map(|_| point(u)).collect::<Result<Vec<_>>>()?;
+    let positions = (0..n)
+        .map(|_| Ok(DVec3::new(draw(u)?, draw(u)?, draw(u)?)))
+        .collect::<Result<Vec<_>>>()?;
     let faces = (0..u.int_in_range(1..=max_faces)?)
         .map(|_| {
             let corners = u.int_in_range(3..=5)?;

@@ -21,6 +21,11 @@
 //! states what it bounds, and libFuzzer runs with `-rss_limit_mb` and `-timeout`
 //! (`cargo xtask fuzz --libfuzzer`).
 
+/// The crate's README: its example is compiled and run as a doctest.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;
+
 pub mod bake;
 mod input;
 pub mod loaders;

@@ -58,7 +58,7 @@ fn view(u: &mut Unstructured, geometry: &Geometry) -> Result<Option<View>> {
 /// The check. Panics when an exact sorter's list has a violation.
 pub fn sorters(data: &[u8]) {
     let mut u = Unstructured::new(data);
-    let Ok((positions, faces)) = soup(&mut u, 10, 6) else {
+    let Ok((positions, faces)) = soup(&mut u, number, 10, 6) else {
         return;
     };
     let Ok(mesh) = PolygonMesh::new(positions, faces) else {

@@ -73,7 +73,7 @@ fn material(u: &mut Unstructured) -> Result<Material> {
 
 /// The model: a mesh with materials and perhaps uvs, its geometry and a view.
 fn model(u: &mut Unstructured) -> Result<Option<(Mesh, Geometry, View)>> {
-    let (positions, faces) = soup(u, 8, 4)?;
+    let (positions, faces) = soup(u, number, 8, 4)?;
     let Ok(mesh) = Mesh::from_faces(positions, faces) else {
         return Ok(None);
     };
