@@ -36,10 +36,10 @@ pub enum MeshError {
     /// The mesh has no face with positive area.
     #[error("the mesh has no face with positive area")]
     Empty,
-    /// A face is not convex as seen along its normal, or its corners go round more than
-    /// once (a corner repeated out of turn, a star, a twisted quad): the sorters order convex
-    /// pieces, and a non-planar face is fanned into triangles, which must not cover each
-    /// other. Triangulate it first (obj-quads' loaders do).
+    /// A planar face that is not convex, or whose corners go round more than once (a star, a
+    /// corner repeated out of turn): the sorters order convex pieces. Or a non-planar face
+    /// whose fan of triangles would cover itself (a corner repeated out of turn, a fold with
+    /// no net area). Triangulate it first (obj-quads' loaders do).
     #[error("face {face} is not convex (triangulate it first)")]
     NonConvex {
         /// The face index.

@@ -156,6 +156,17 @@ impl Geometry {
         for (face, list) in mesh.faces().enumerate() {
             corners.clear();
             corners.extend(list.iter().map(|&i| mesh.positions()[i as usize] - centre));
+            // A corner repeated next to itself adds an edge of no length, which every test on
+            // edges (separating lines, clipping) would have to treat apart: the piece keeps
+            // one of them.
+            corners.dedup();
+            while corners.len() > 1 && corners.first() == corners.last() {
+                corners.pop();
+            }
+            if corners.len() < 3 {
+                dropped_pieces += 1;
+                continue;
+            }
             let size = largest_distance(&corners);
             let plane = Plane::try_from_polygon(&corners);
             let planar = plane.is_some_and(|p| {
@@ -183,22 +194,19 @@ impl Geometry {
                     pieces.push(&corners, face as u32, plane);
                 }
                 _ => {
-                    // A fan covers the face only when the face is convex as seen along its
-                    // normal; a face that twists or repeats a corner out of turn would fan
-                    // into triangles that cover each other.
-                    // A face without net area whose fan has area (a triangle and its
-                    // reverse, `[a, b, c, b]`) folds onto itself: not convex either.
-                    let normal = newell_normal(&corners);
+                    // The fan is the surface of a non-planar face; it must not cover itself.
+                    // It does when the face repeats a corner out of turn (`[a, b, c, b, d]`
+                    // fans into a triangle and its reverse), or folds onto itself with no
+                    // net area while its fan has area.
                     let least = DEGENERATE_AREA * size * size;
-                    let convex = if normal.length() > least {
-                        is_convex(&corners, normal.normalize(), size)
-                    } else {
-                        (1..corners.len() - 1).all(|k| {
-                            newell_normal(&[corners[0], corners[k], corners[k + 1]]).length()
-                                <= least
-                        })
-                    };
-                    if !convex {
+                    let fan_has_area = (1..corners.len() - 1).any(|k| {
+                        newell_normal(&[corners[0], corners[k], corners[k + 1]]).length() > least
+                    });
+                    let repeats = corners
+                        .iter()
+                        .enumerate()
+                        .any(|(k, c)| corners[k + 1..].contains(c));
+                    if fan_has_area && (repeats || newell_normal(&corners).length() <= least) {
                         return Err(MeshError::NonConvex { face });
                     }
                     non_planar_faces += 1;

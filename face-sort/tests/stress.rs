@@ -124,8 +124,8 @@ fn non_convex_planar_faces_are_refused() {
     for face in [&[0u32, 6, 1, 2, 5][..], &[0, 1, 1, 2, 5], &[0, 1, 5]] {
         assert!(geometry(&[face]).is_ok(), "{face:?}");
     }
-    // A non-planar quad convex along its normal is fanned; a non-planar face that repeats a
-    // corner out of turn is refused (its fan would cover itself: found by the bake target).
+    // A non-planar quad is fanned; a non-planar face that repeats a corner out of turn is
+    // refused (its fan would hold a triangle and its reverse: found by the bake target).
     assert!(geometry(&[&[0, 1, 8, 5]]).is_ok());
     // A face folded onto itself (a triangle and its reverse, no net area) is refused too,
     // and a face of collinear corners is dropped as before.

@@ -24,6 +24,16 @@ use anyhow::{Context, Result, bail};
 
 use crate::{target_dir, workspace_root};
 
+/// The target triple to build for: the host's (cargo-fuzz's default), on Linux and macOS.
+fn host_triple() -> String {
+    let vendor_os = if cfg!(target_os = "macos") {
+        "apple-darwin"
+    } else {
+        "unknown-linux-gnu"
+    };
+    format!("{}-{vendor_os}", std::env::consts::ARCH)
+}
+
 /// Memory limit of one libFuzzer process, MB.
 const RSS_LIMIT_MB: u32 = 2048;
 /// Time limit of one execution, s.
@@ -118,18 +128,45 @@ pub fn run(target: &str, seconds: u64, jobs: u32, dev: bool) -> Result<ExitCode>
         let start = Instant::now();
         let artifacts = fuzz.join("artifacts").join(name);
         let before = findings(&artifacts);
-        let mut command = Command::new("cargo");
+        // Build with cargo-fuzz, then run the binary itself: `cargo fuzz run` replays every
+        // saved finding through `cargo run` afterwards, which fork mode makes slow.
+        let mut build = Command::new("cargo");
+        build
+            .current_dir(&fuzz)
+            .args([
+                "+nightly",
+                "fuzz",
+                "build",
+                "--sanitizer",
+                "none",
+                "--target",
+            ])
+            .arg(host_triple())
+            .args(dev.then_some("--dev"))
+            .arg(name);
+        if !build
+            .status()
+            .context("running cargo fuzz build")?
+            .success()
+        {
+            bail!("cargo fuzz build {name} failed");
+        }
+        let profile = if dev { "debug" } else { "release" };
+        let binary = fuzz
+            .join("target")
+            .join(host_triple())
+            .join(profile)
+            .join(name);
+        std::fs::create_dir_all(&artifacts)?;
+        let mut command = Command::new(&binary);
         // Fork mode: a crash, timeout or memory breach is saved and the run goes on, so
         // one run finds every finding it can in its time.
         command
             .current_dir(&fuzz)
             .env("RAYON_NUM_THREADS", "1")
-            .args(["+nightly", "fuzz", "run", "--sanitizer", "none"])
-            .args(dev.then_some("--dev"))
-            .arg(name)
             .arg(&work)
             .arg(fuzz.join("corpus").join(name))
-            .arg("--")
+            .arg(format!("-artifact_prefix={}/", artifacts.display()))
             .arg(format!("-max_total_time={seconds}"))
             .arg(format!("-rss_limit_mb={RSS_LIMIT_MB}"))
             .arg(format!("-timeout={TIMEOUT_S}"))
@@ -140,7 +177,7 @@ pub fn run(target: &str, seconds: u64, jobs: u32, dev: bool) -> Result<ExitCode>
             .stdout(log.try_clone()?)
             .stderr(log)
             .status()
-            .context("running cargo fuzz")?;
+            .with_context(|| format!("running {}", binary.display()))?;
         let new: Vec<String> = findings(&artifacts)
             .into_iter()
             .filter(|f| !before.contains(f))
@@ -166,9 +203,9 @@ pub fn run(target: &str, seconds: u64, jobs: u32, dev: bool) -> Result<ExitCode>
                 format!("libFuzzer failed (log {})", log_path.display())
             } else {
                 format!(
-                    "{} finding(s) under fuzz/artifacts/{name}/: {} (log {})",
+                    "{} finding(s) under fuzz/artifacts/{name}/, the first {} (log {})",
                     new.len(),
-                    new.join(", "),
+                    new[0],
                     log_path.display()
                 )
             }
