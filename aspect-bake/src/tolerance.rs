@@ -77,5 +77,8 @@ pub const BOX_SLACK: f64 = 1e-9;
 /// end with the event that starts the cell (their computed ends and the new constraint's
 /// start are one event, rounded and widened apart), so they leave the cell. A cell is thus
 /// exact except within this of its start (about `2e-10°`); four times [`ARC_MARGIN_RAD`],
-/// far below the `1e-6°` at which `verify_picture` probes cell ends.
+/// far below the `1e-6°` at which `verify_picture` probes cell ends. A cell no longer than
+/// this is dropped and the next starts in its place (exact except within twice this of its
+/// start): a zero-length cell's list held only at its one angle, and there it was wrong
+/// (found by fuzzing).
 pub const EVENT_GAP_RAD: f64 = 4.0 * ARC_MARGIN_RAD;

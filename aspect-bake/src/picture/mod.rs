@@ -56,7 +56,7 @@ use crate::BakeError;
 use crate::axis::Spin;
 use crate::build::refuse_cull_margin;
 use crate::cells::{AngleRange, Bake, BakeCell, Breakpoint, Method, cell_bytes};
-use crate::tolerance::{NEAR_EYE, PICTURE_BOUNDARY_DEG};
+use crate::tolerance::{EVENT_GAP_RAD, NEAR_EYE, PICTURE_BOUNDARY_DEG};
 use crate::verify::{INTERIOR_MARGIN, VerifyError, VerifyReport, cell_state, inside};
 
 use pairs::{Constraint, Pieces};
@@ -240,6 +240,20 @@ fn cells_from(
     let guess = |theta: f64| depth_order(pieces.spin, pieces.set, theta);
     let mut cells = sweep::sweep(constraints, origin, pieces.set.len(), &refine, &guess)
         .map_err(|c| Interrupt::Cycle(origin + c.at, c.edges))?;
+    // A cell no longer than EVENT_GAP_RAD (two events a rounding apart) is exact nowhere for
+    // sure: the next cell starts where it started instead.
+    let mut k = 0;
+    while k < cells.len() && cells.len() > 1 {
+        if cells[k].hi - cells[k].lo > EVENT_GAP_RAD {
+            k += 1;
+            continue;
+        }
+        let short = cells.remove(k);
+        match cells.get_mut(k) {
+            Some(next) => next.lo = short.lo,
+            None => cells[k - 1].hi = short.hi,
+        }
+    }
     if cells.len() > 1 {
         let (first, last) = (&cells[0], &cells[cells.len() - 1]);
         let both = first.edges.iter().chain(&last.edges).copied();
