@@ -47,6 +47,10 @@ pub struct FuzzArgs {
     /// libFuzzer processes per target (`-fork`).
     #[arg(long, default_value_t = 1, requires = "libfuzzer")]
     jobs: u32,
+    /// Instead of --time: exactly this many executions per target from seed 1, in one process
+    /// (deterministic: CI's smoke run).
+    #[arg(long, value_name = "N", requires = "libfuzzer")]
+    runs: Option<u64>,
     /// Build the libFuzzer targets unoptimised: quicker to build, slower to run (CI's
     /// few-second smoke run).
     #[arg(long, requires = "libfuzzer")]
@@ -63,7 +67,7 @@ struct Tally {
 /// Runs the fuzzer. Fails when an exact sorter (Newell, BSP) has a violation.
 pub fn run(args: &FuzzArgs) -> Result<ExitCode> {
     if let Some(target) = &args.libfuzzer {
-        return crate::fuzz_libfuzzer::run(target, args.time, args.jobs, args.dev);
+        return crate::fuzz_libfuzzer::run(target, args.time, args.runs, args.jobs, args.dev);
     }
     if args.loaders {
         return crate::fuzz_loaders::run(args.cases, args.seed, args.out.clone());

@@ -6,7 +6,8 @@
 //! `target/fuzz-logs/`. Resource bounds are part of the contract: every execution runs under
 //! `-rss_limit_mb=2048` and `-timeout=10`; a breach is a finding like a crash. libFuzzer runs
 //! in fork mode (`-fork=JOBS`), so a run saves every finding under `fuzz/artifacts/TARGET/`
-//! and goes on; the command fails when a run saved any. Fix a finding, then move its input to
+//! and goes on; the command fails when a run saved any. With `--runs N` a target runs exactly
+//! N executions from seed 1 in one process instead, the same every time (CI). Fix a finding, then move its input to
 //! `fuzz/regressions/TARGET/`, where `cargo test -p fuzz-checks` replays it.
 //!
 //! The targets are built without a sanitizer: the workspace denies unsafe code, so what
@@ -89,9 +90,15 @@ fn findings(dir: &Path) -> Vec<String> {
     names
 }
 
-/// Runs `target` (or `all`) for `seconds` each with `jobs` processes; `dev` builds the
-/// targets unoptimised.
-pub fn run(target: &str, seconds: u64, jobs: u32, dev: bool) -> Result<ExitCode> {
+/// Runs `target` (or `all`) for `seconds` each with `jobs` processes, or for exactly `runs`
+/// executions from seed 1 in one process; `dev` builds the targets unoptimised.
+pub fn run(
+    target: &str,
+    seconds: u64,
+    runs: Option<u64>,
+    jobs: u32,
+    dev: bool,
+) -> Result<ExitCode> {
     if !succeeds(Command::new("cargo").args(["+nightly", "--version"])) {
         println!(
             "fuzz --libfuzzer: skipped, the nightly toolchain is not installed \
@@ -125,7 +132,6 @@ pub fn run(target: &str, seconds: u64, jobs: u32, dev: bool) -> Result<ExitCode>
         std::fs::create_dir_all(&work)?;
         let log_path = logs.join(format!("{name}.log"));
         let log = std::fs::File::create(&log_path)?;
-        let start = Instant::now();
         let artifacts = fuzz.join("artifacts").join(name);
         let before = findings(&artifacts);
         // Build with cargo-fuzz, then run the binary itself: `cargo fuzz run` replays every
@@ -167,12 +173,17 @@ pub fn run(target: &str, seconds: u64, jobs: u32, dev: bool) -> Result<ExitCode>
             .arg(&work)
             .arg(fuzz.join("corpus").join(name))
             .arg(format!("-artifact_prefix={}/", artifacts.display()))
-            .arg(format!("-max_total_time={seconds}"))
             .arg(format!("-rss_limit_mb={RSS_LIMIT_MB}"))
             .arg(format!("-timeout={TIMEOUT_S}"))
-            .arg(format!("-fork={jobs}"))
-            .args(["-ignore_crashes=1", "-ignore_timeouts=1", "-ignore_ooms=1"])
             .arg("-print_final_stats=1");
+        match runs {
+            Some(runs) => command.args(["-seed=1".to_owned(), format!("-runs={runs}")]),
+            None => command
+                .arg(format!("-max_total_time={seconds}"))
+                .arg(format!("-fork={jobs}"))
+                .args(["-ignore_crashes=1", "-ignore_timeouts=1", "-ignore_ooms=1"]),
+        };
+        let start = Instant::now();
         let status = command
             .stdout(log.try_clone()?)
             .stderr(log)
@@ -186,10 +197,11 @@ pub fn run(target: &str, seconds: u64, jobs: u32, dev: bool) -> Result<ExitCode>
         let text = String::from_utf8_lossy(&std::fs::read(&log_path)?).into_owned();
         let stats = parse(&text);
         println!(
-            "{name:<8} {:>12} executions in {elapsed:>7.0} s ({:>7.0}/s, {jobs} job(s)), \
+            "{name:<8} {:>12} executions in {elapsed:>7.0} s ({:>7.0}/s, {} process(es)), \
              coverage {} edges, {} features, peak RSS {}: {}",
             stats.executions,
             stats.executions as f64 / elapsed.max(1e-9),
+            if runs.is_some() { 1 } else { jobs },
             stats.coverage,
             stats.features,
             if stats.peak_rss_mb > 0 {
