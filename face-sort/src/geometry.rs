@@ -188,7 +188,9 @@ impl Geometry {
                             *c = plane.project_point(*c);
                         }
                     }
-                    if !is_convex(&corners, newell_normal(&corners).normalize(), size) {
+                    if repeats_a_corner(&corners)
+                        || !is_convex(&corners, newell_normal(&corners).normalize(), size)
+                    {
                         return Err(MeshError::NonConvex { face });
                     }
                     pieces.push(&corners, face as u32, plane);
@@ -202,11 +204,9 @@ impl Geometry {
                     let fan_has_area = (1..corners.len() - 1).any(|k| {
                         newell_normal(&[corners[0], corners[k], corners[k + 1]]).length() > least
                     });
-                    let repeats = corners
-                        .iter()
-                        .enumerate()
-                        .any(|(k, c)| corners[k + 1..].contains(c));
-                    if fan_has_area && (repeats || newell_normal(&corners).length() <= least) {
+                    if fan_has_area
+                        && (repeats_a_corner(&corners) || newell_normal(&corners).length() <= least)
+                    {
                         return Err(MeshError::NonConvex { face });
                     }
                     non_planar_faces += 1;
@@ -334,6 +334,15 @@ fn largest_distance(corners: &[DVec3]) -> f64 {
     best.sqrt()
 }
 
+/// Whether a corner occurs twice (neighbouring repeats are already removed): the polygon then
+/// crosses or retraces itself.
+fn repeats_a_corner(corners: &[DVec3]) -> bool {
+    corners
+        .iter()
+        .enumerate()
+        .any(|(k, c)| corners[k + 1..].contains(c))
+}
+
 /// Whether a planar polygon with this unit normal is convex (straight corners and repeated
 /// neighbours allowed) and goes round exactly once ([`CONVEXITY`]). Edges shorter than
 /// `CONVEXITY · D` are left out: their direction is rounding.
@@ -358,7 +367,9 @@ fn is_convex(corners: &[DVec3], normal: DVec3, size: f64) -> bool {
         let e1 = ring[i] - ring[(i + n - 1) % n];
         let e2 = ring[(i + 1) % n] - ring[i];
         let turn = e1.cross(e2).dot(normal);
-        if turn < -eps {
+        // A turn back along the edge (a spike of no width) is not convex either, though its
+        // cross product is zero.
+        if turn < -eps || (turn <= eps && e1.dot(e2) < 0.0) {
             return false;
         }
         turning += turn.atan2(e1.dot(e2));

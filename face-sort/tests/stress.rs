@@ -113,8 +113,13 @@ fn non_convex_planar_faces_are_refused() {
         [2.0, 2.0, 0.5],
     ];
     let geometry = |faces: &[&[u32]]| Geometry::new(&PolygonMesh::new(positions, faces).unwrap());
-    // An L-shaped hexagon, and a bow tie of repeated corners.
-    for face in [&[0u32, 1, 2, 3, 4, 5][..], &[1, 2, 1, 5, 2]] {
+    // An L-shaped hexagon, a bow tie of repeated corners, and a triangle with a spike back
+    // along one edge (its turns add up to one full turn: found by the sorters target).
+    for face in [
+        &[0u32, 1, 2, 3, 4, 5][..],
+        &[1, 2, 1, 5, 2],
+        &[0, 1, 5, 0, 1],
+    ] {
         assert_eq!(
             geometry(&[face]).unwrap_err(),
             MeshError::NonConvex { face: 0 }
