@@ -337,10 +337,14 @@ fn largest_distance(corners: &[DVec3]) -> f64 {
 /// Whether a corner occurs twice (neighbouring repeats are already removed): the polygon then
 /// crosses or retraces itself.
 fn repeats_a_corner(corners: &[DVec3]) -> bool {
-    corners
+    // Faces may have up to 65,536 corners: compare sorted bit patterns, not every pair. Corners
+    // are finite, and `+ 0.0` makes `-0.0` equal to `0.0` as `==` has it.
+    let mut bits: Vec<[u64; 3]> = corners
         .iter()
-        .enumerate()
-        .any(|(k, c)| corners[k + 1..].contains(c))
+        .map(|c| (*c + DVec3::ZERO).to_array().map(f64::to_bits))
+        .collect();
+    bits.sort_unstable();
+    bits.windows(2).any(|w| w[0] == w[1])
 }
 
 /// Whether a planar polygon with this unit normal is convex (straight corners and repeated

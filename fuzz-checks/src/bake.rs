@@ -12,11 +12,11 @@
 //! events and 1 MiB of lists; a bake over them is a typed error.
 
 use aspect_bake::{Axis, BakeOptions, BspSource, PictureOptions, Spin};
-use face_sort::{Geometry, PolygonMesh, View};
+use face_sort::{Geometry, View};
 
 use arbitrary::{Result, Unstructured};
 
-use crate::input::{modest, number, soup, tame};
+use crate::input::{modest, number, soup_geometry, tame};
 
 /// The budgets of one execution.
 const PICTURE: PictureOptions = PictureOptions {
@@ -55,13 +55,7 @@ fn spin(u: &mut Unstructured, geometry: &Geometry) -> Result<Option<Spin>> {
 /// The check. Panics when a bake fails its verification.
 pub fn bake(data: &[u8]) {
     let mut u = Unstructured::new(data);
-    let Ok((positions, faces)) = soup(&mut u, modest, 8, 4) else {
-        return;
-    };
-    let Ok(mesh) = PolygonMesh::new(positions, faces) else {
-        return;
-    };
-    let Ok(geometry) = Geometry::new(&mesh) else {
+    let Some((mesh, geometry)) = soup_geometry(&mut u, modest, 8, 4) else {
         return;
     };
     let Ok(Some(spin)) = spin(&mut u, &geometry) else {

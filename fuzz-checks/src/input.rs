@@ -5,6 +5,7 @@
 //! cases), and some are any bit pattern or a special value (NaN, infinities, huge, tiny).
 
 use arbitrary::{Result, Unstructured};
+use face_sort::{Geometry, PolygonMesh};
 use glam::DVec3;
 
 /// Values worth hitting on purpose.
@@ -96,4 +97,18 @@ pub(crate) fn soup(
         })
         .collect::<Result<Vec<_>>>()?;
     Ok((positions, faces))
+}
+
+/// A [`soup`] built into a mesh and its geometry; `None` when the bytes run out or the soup
+/// is refused with a typed error (`MeshError`), which is what the checks accept of it.
+pub(crate) fn soup_geometry(
+    u: &mut Unstructured,
+    draw: Draw,
+    max_positions: usize,
+    max_faces: usize,
+) -> Option<(PolygonMesh, Geometry)> {
+    let (positions, faces) = soup(u, draw, max_positions, max_faces).ok()?;
+    let mesh = PolygonMesh::new(positions, faces).ok()?;
+    let geometry = Geometry::new(&mesh).ok()?;
+    Some((mesh, geometry))
 }

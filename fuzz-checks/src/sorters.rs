@@ -7,11 +7,9 @@
 //! `View` builders.
 
 use arbitrary::{Result, Unstructured};
-use face_sort::{
-    Camera, CullMode, DrawList, FrontFace, Geometry, Lens, PolygonMesh, SorterKind, View, oracle,
-};
+use face_sort::{Camera, CullMode, DrawList, FrontFace, Geometry, Lens, SorterKind, View, oracle};
 
-use crate::input::{number, point, soup, tame};
+use crate::input::{number, point, soup_geometry, tame};
 
 /// How the view is made.
 fn view(u: &mut Unstructured, geometry: &Geometry) -> Result<Option<View>> {
@@ -58,13 +56,7 @@ fn view(u: &mut Unstructured, geometry: &Geometry) -> Result<Option<View>> {
 /// The check. Panics when an exact sorter's list has a violation.
 pub fn sorters(data: &[u8]) {
     let mut u = Unstructured::new(data);
-    let Ok((positions, faces)) = soup(&mut u, number, 10, 6) else {
-        return;
-    };
-    let Ok(mesh) = PolygonMesh::new(positions, faces) else {
-        return;
-    };
-    let Ok(geometry) = Geometry::new(&mesh) else {
+    let Some((mesh, geometry)) = soup_geometry(&mut u, number, 10, 6) else {
         return;
     };
     let Ok(Some(view)) = view(&mut u, &geometry) else {

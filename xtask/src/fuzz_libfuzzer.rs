@@ -12,7 +12,8 @@
 //!
 //! The targets are built without a sanitizer: the workspace denies unsafe code, so what
 //! libFuzzer looks for is panics, broken checks, hangs and memory growth, and without
-//! AddressSanitizer a target runs about twice as many executions a second.
+//! AddressSanitizer a target runs several times as many executions a second
+//! (docs/ROBUSTNESS.md).
 //!
 //! Without the nightly toolchain or cargo-fuzz the command prints a notice and succeeds, so
 //! that CI runs the targets where it can.
