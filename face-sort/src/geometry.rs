@@ -239,6 +239,21 @@ impl Geometry {
         })
     }
 
+    /// A geometry of ready pieces (planar, convex, centred on `bounds`' centre), for a part
+    /// of another geometry that a sorter orders apart (a [`Presorted`](crate::Presorted) cycle).
+    pub(crate) fn from_pieces(pieces: PolygonSet, bounds: Bounds) -> Self {
+        let n = pieces.len();
+        Geometry {
+            face_count: n,
+            pieces: Arc::new(pieces),
+            bounds,
+            non_planar_faces: 0,
+            dropped_pieces: 0,
+            piece_part: vec![0; n].into(),
+            part_count: 1,
+        }
+    }
+
     /// The pieces (centred model space).
     #[must_use]
     pub fn pieces(&self) -> &Arc<PolygonSet> {

@@ -51,6 +51,7 @@ mod plan;
 mod plane;
 mod polygon;
 mod polygon_set;
+mod presorted;
 mod scene;
 mod screen_grid;
 mod small;
@@ -76,6 +77,7 @@ pub use plan::{Auto, ConvexParts, CostModel, CullOnly, Plan, PlanHint, Strategy}
 pub use plane::{Plane, Side, newell_normal};
 pub use polygon::{Box2, clip_convex_2d, signed_area_2d, split_polygon};
 pub use polygon_set::PolygonSet;
+pub use presorted::{PresortError, PresortOptions, Presorted};
 pub use scene::{Instance, Layer, MAX_LODS, SceneError, SceneSorter, SceneStats};
 pub use small::SmallPieceFilter;
 pub use sorter::{FaceSorter, SorterStats};
@@ -100,20 +102,28 @@ pub enum SorterKind {
     /// [`Bsp`] drawing split pieces whole where nothing between their fragments overlaps
     /// them ([`Bsp::with_fragment_merge`]).
     BspMerged,
+    /// [`Presorted`]: orders certified over regions of views, looked up per frame.
+    Presorted,
 }
 
 impl SorterKind {
     /// All sorters, baseline first.
-    pub const ALL: [SorterKind; 5] = [
+    pub const ALL: [SorterKind; 6] = [
         SorterKind::Centroid,
         SorterKind::Topological,
         SorterKind::Newell,
         SorterKind::Bsp,
         SorterKind::BspMerged,
+        SorterKind::Presorted,
     ];
 
     /// The exact ones.
-    pub const EXACT: [SorterKind; 3] = [SorterKind::Newell, SorterKind::Bsp, SorterKind::BspMerged];
+    pub const EXACT: [SorterKind; 4] = [
+        SorterKind::Newell,
+        SorterKind::Bsp,
+        SorterKind::BspMerged,
+        SorterKind::Presorted,
+    ];
 
     /// Lower-case name.
     #[must_use]
@@ -124,6 +134,7 @@ impl SorterKind {
             SorterKind::Newell => "newell",
             SorterKind::Bsp => "bsp",
             SorterKind::BspMerged => "bsp-merged",
+            SorterKind::Presorted => "presorted",
         }
     }
 
@@ -142,6 +153,7 @@ impl SorterKind {
             SorterKind::Newell => Box::new(Newell::new(geometry)),
             SorterKind::Bsp => Box::new(Bsp::new(geometry)),
             SorterKind::BspMerged => Box::new(Bsp::new(geometry).with_fragment_merge(true)),
+            SorterKind::Presorted => Box::new(Presorted::new(geometry)),
         }
     }
 }

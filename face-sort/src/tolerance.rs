@@ -104,3 +104,23 @@ pub const UNDERFLOW_ABS: f64 = 1e-300;
 /// point, each rounding by `2⁻⁵³`; generous, since the bound only matters where a plane is
 /// nearly parallel to the rays and it then multiplies a huge `1 / |n·ray|`.
 pub const DEPTH_ROUNDING: f64 = 64.0 * f64::EPSILON;
+
+/// Relative (angle, radians): [`Presorted`](crate::Presorted) grows every region of views
+/// by this before certifying it (corners pushed away from its centre, eye distances widened),
+/// so that a viewer that rounding places just outside a region's boundary is still covered.
+/// Far above the rounding of a unit direction (about `1e-16`).
+pub const PRESORT_GROWTH: f64 = 1e-9;
+
+/// Relative (angle, radians): when certifying a region, the half-spaces "the viewer is in
+/// front of this plane" are grown by this, so that a direction on a plane's edge is never
+/// lost to rounding (a kept pair more is safe; a lost one is not).
+pub const PRESORT_CLIP: f64 = 1e-12;
+
+/// Relative (angle, radians): two cones of directions whose rays fall on either side of a
+/// plane through the origin to within this are taken as apart. They may then share a wedge
+/// of directions this narrow, where two pieces overlap in a sliver about `PRESORT_SEPARATION
+/// · L` wide next to where they touch, at depths that differ by no more than that: far inside
+/// [`ORACLE_DEPTH`]. Exact zero would keep the pairs of neighbours that touch along a line
+/// (their cones touch along a plane) as hiding each other, and their cycles would never
+/// resolve.
+pub const PRESORT_SEPARATION: f64 = 1e-12;

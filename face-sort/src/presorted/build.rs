@@ -1,0 +1,473 @@
+//! Building the region tree: certify a region's order, or split the region.
+
+use std::sync::Arc;
+use std::time::Instant;
+
+use super::occlusion::{OcclusionTest, PieceBounds, may_ever_hide, may_face};
+use super::region::Region;
+use super::{CORE, Leaf, Node, NodeKind, PresortError, PresortOptions};
+use crate::tolerance::PLANE_SIDE;
+use crate::{BspOptions, BspTree, Geometry, PolygonSet};
+
+/// What the build hands to the sorter.
+pub(super) struct Built {
+    pub nodes: Vec<Node>,
+    pub leaves: Vec<Leaf>,
+    /// The pieces, then every core's fragments.
+    pub shared: Arc<PolygonSet>,
+    pub cores: Vec<Core>,
+    pub near: f64,
+    pub pair_tests: usize,
+    pub candidate_pairs: usize,
+}
+
+/// A set of pieces a leaf cannot order once for all its viewers (a cycle among them, left at
+/// the deepest split): ordered per frame by a BSP tree of their own.
+pub(super) struct Core {
+    pub tree: Arc<BspTree>,
+    /// Index in the shared set of the tree's first fragment.
+    pub offset: u32,
+    /// Face of each of the tree's pieces (the tree numbers them by position in the core).
+    pub faces: Vec<u32>,
+    pub pieces: usize,
+}
+
+struct Builder<'a> {
+    geometry: &'a Geometry,
+    pieces: &'a PolygonSet,
+    bounds: Vec<PieceBounds>,
+    options: &'a PresortOptions,
+    tolerance: f64,
+    nodes: Vec<Node>,
+    leaves: Vec<Leaf>,
+    cores: Vec<Core>,
+    core_sets: Vec<Vec<u32>>,
+    pair_tests: usize,
+    started: Instant,
+}
+
+pub(super) fn build(geometry: &Geometry, options: &PresortOptions) -> Result<Built, PresortError> {
+    let pieces = &**geometry.pieces();
+    let n = pieces.len();
+    let radius = geometry.bounds().diagonal() * 0.5;
+    let near = options.min_eye_distance * radius;
+    let tolerance = PLANE_SIDE * geometry.bounds().diagonal();
+    // Every pair that can ever need an order, as adjacency lists: `a` before `b`.
+    let mut start = Vec::with_capacity(n + 1);
+    let mut targets: Vec<u32> = Vec::new();
+    start.push(0u32);
+    for a in 0..n {
+        for b in 0..n {
+            if a != b && may_ever_hide(pieces, a, b, tolerance) {
+                if targets.len() >= options.max_pairs {
+                    return Err(PresortError::PairBudget {
+                        limit: options.max_pairs,
+                    });
+                }
+                targets.push(b as u32);
+            }
+        }
+        start.push(targets.len() as u32);
+    }
+    let mut builder = Builder {
+        geometry,
+        pieces,
+        bounds: PieceBounds::of(pieces),
+        options,
+        tolerance,
+        nodes: Vec::new(),
+        leaves: Vec::new(),
+        cores: Vec::new(),
+        core_sets: Vec::new(),
+        pair_tests: 0,
+        started: Instant::now(),
+    };
+    let octants = Region::octants(near);
+    // The roots first, so that the octant of a direction is its root's index.
+    for region in octants {
+        builder.nodes.push(Node {
+            region,
+            kind: NodeKind::Leaf(u32::MAX),
+        });
+    }
+    for (k, region) in octants.iter().enumerate() {
+        let mut candidates = Vec::new();
+        let grown = region.grown();
+        let test = OcclusionTest::new(pieces, &builder.bounds, grown);
+        let facing = builder.facing(&grown, &test);
+        for a in 0..n {
+            if !facing[a] {
+                continue;
+            }
+            for &b in &targets[start[a] as usize..start[a + 1] as usize] {
+                if facing[b as usize] {
+                    candidates.push((a as u32, b));
+                }
+            }
+        }
+        let order = (0..n as u32).filter(|&i| facing[i as usize]).collect();
+        let kind = builder.certify(*region, &Partial::open(order), &candidates, 0)?;
+        builder.nodes[k].kind = kind;
+    }
+    let candidate_pairs = targets.len();
+    drop(targets);
+    // The shared set: the pieces, then each core's fragments.
+    let mut shared = pieces.clone();
+    for core in &mut builder.cores {
+        core.offset = shared.len() as u32;
+        let fragments = core.tree.fragments();
+        for f in 0..fragments.len() {
+            let face = core.faces[fragments.face(f) as usize];
+            shared.push(fragments.corners(f), face, *fragments.plane(f));
+        }
+    }
+    Ok(Built {
+        nodes: builder.nodes,
+        leaves: builder.leaves,
+        shared: Arc::new(shared),
+        cores: builder.cores,
+        near,
+        pair_tests: builder.pair_tests,
+        candidate_pairs,
+    })
+}
+
+impl Builder<'_> {
+    fn facing(&self, grown: &Region, test: &OcclusionTest<'_>) -> Vec<bool> {
+        (0..self.pieces.len())
+            .map(|i| may_face(self.pieces, i, grown, test.hull(), self.tolerance))
+            .collect()
+    }
+
+    /// Certifies an order for `region`, or splits it. `parent` is the parent's partial
+    /// order, `candidates` the pairs it kept inside its open blocks: only those can still
+    /// form a cycle here (a cycle among this region's pairs is one among the parent's, whose
+    /// pairs include these), and every other pair the region keeps the parent kept too, so
+    /// the parent's order already respects it.
+    fn certify(
+        &mut self,
+        region: Region,
+        parent: &Partial,
+        candidates: &[(u32, u32)],
+        depth: usize,
+    ) -> Result<NodeKind, PresortError> {
+        if self.started.elapsed() > self.options.max_build_time {
+            return Err(PresortError::TimeBudget {
+                limit: self.options.max_build_time,
+            });
+        }
+        let grown = region.grown();
+        let mut test = OcclusionTest::new(self.pieces, &self.bounds, grown);
+        let facing = self.facing(&grown, &test);
+        let mut edges = Vec::new();
+        for &(a, b) in candidates {
+            let (ai, bi) = (a as usize, b as usize);
+            if facing[ai] && facing[bi] {
+                self.pair_tests += 1;
+                if test.may_hide(ai, bi) {
+                    edges.push((a, b));
+                }
+            }
+        }
+        let (partial, open_edges) = parent.refined(&facing, &edges);
+        if partial.blocks.is_empty() {
+            return Ok(NodeKind::Leaf(self.leaf(region, &partial)?));
+        }
+        if depth < self.options.max_depth && self.nodes.len() + 4 <= self.options.max_nodes {
+            let split_distance = !region.orthographic_only()
+                && region.angular_radius() < parallax(&region, self.geometry);
+            let children: Vec<Region> = if split_distance {
+                region.split_distance().to_vec()
+            } else {
+                region.split_directions().to_vec()
+            };
+            let first = self.nodes.len() as u32;
+            for child in &children {
+                self.nodes.push(Node {
+                    region: *child,
+                    kind: NodeKind::Leaf(u32::MAX),
+                });
+            }
+            for (k, child) in children.iter().enumerate() {
+                let kind = self.certify(*child, &partial, &open_edges, depth + 1)?;
+                self.nodes[first as usize + k].kind = kind;
+            }
+            return Ok(if split_distance {
+                NodeKind::Distance {
+                    mid: region.distance_split(),
+                    first,
+                }
+            } else {
+                NodeKind::Directions { first }
+            });
+        }
+        // The deepest split: the open blocks are ordered per frame.
+        Ok(NodeKind::Leaf(self.leaf(region, &partial)?))
+    }
+
+    /// Stores a leaf: the pieces of `partial` in order, each open block as one core.
+    fn leaf(&mut self, region: Region, partial: &Partial) -> Result<u32, PresortError> {
+        let n = partial.order.len();
+        let mut leaf = Leaf {
+            region,
+            pieces: Vec::with_capacity(n),
+            faces: Vec::with_capacity(n),
+            rows: Vec::with_capacity(n),
+        };
+        let mut blocks = partial.blocks.iter().peekable();
+        let mut i = 0;
+        while i < n {
+            if let Some(block) = blocks.next_if(|b| b.start as usize == i) {
+                let set: Vec<u32> = partial.order[block.start as usize..block.end as usize].to_vec();
+                let core = self.core(&set)?;
+                leaf.pieces.push(CORE | core);
+                leaf.faces.push(0);
+                leaf.rows.push([0.0; 4]);
+                i = block.end as usize;
+                continue;
+            }
+            let piece = partial.order[i];
+            let plane = self.pieces.plane(piece as usize);
+            let normal = plane.normal();
+            leaf.pieces.push(piece);
+            leaf.faces.push(self.pieces.face(piece as usize));
+            leaf.rows.push([normal.x, normal.y, normal.z, plane.offset()]);
+            i += 1;
+        }
+        self.leaves.push(leaf);
+        Ok(self.leaves.len() as u32 - 1)
+    }
+
+    /// A core's BSP tree (shared by leaves holding the same set).
+    fn core(&mut self, set: &[u32]) -> Result<u32, PresortError> {
+        let mut set = set.to_vec();
+        set.sort_unstable();
+        let set = &set[..];
+        if let Some(k) = self.core_sets.iter().position(|s| s == set) {
+            return Ok(k as u32);
+        }
+        let mut pieces = PolygonSet::new();
+        for (k, &p) in set.iter().enumerate() {
+            let p = p as usize;
+            pieces.push(self.pieces.corners(p), k as u32, *self.pieces.plane(p));
+        }
+        let geometry = Geometry::from_pieces(pieces, self.geometry.bounds());
+        let tree = BspTree::try_build(&geometry, &BspOptions::default())
+            .map_err(PresortError::Core)?;
+        self.cores.push(Core {
+            tree: Arc::new(tree),
+            offset: 0,
+            faces: set.iter().map(|&p| self.pieces.face(p as usize)).collect(),
+            pieces: set.len(),
+        });
+        self.core_sets.push(set.to_vec());
+        Ok(self.cores.len() as u32 - 1)
+    }
+}
+
+/// How far the direction toward a piece turns as the eye moves across the region's
+/// distances: `asin(r / near) − asin(r / far)` for the geometry's radius `r`.
+fn parallax(region: &Region, geometry: &Geometry) -> f64 {
+    let r = geometry.bounds().diagonal() * 0.5;
+    let angle = |t: f64| if t.is_finite() { (r / t).min(1.0).asin() } else { 0.0 };
+    angle(region.near) - angle(region.far)
+}
+
+/// A partial certificate: pieces in an order that every kept pair respects, except inside
+/// `blocks` (ranges of `order`, ascending), sets of pieces whose order is still open.
+#[derive(Clone, Debug, Default)]
+pub(super) struct Partial {
+    pub order: Vec<u32>,
+    pub blocks: Vec<std::ops::Range<u32>>,
+}
+
+impl Partial {
+    /// Everything in one open block.
+    pub fn open(pieces: Vec<u32>) -> Partial {
+        let n = pieces.len() as u32;
+        Partial {
+            order: pieces,
+            blocks: if n > 1 {
+                std::iter::once(0..n).collect()
+            } else {
+                Vec::new()
+            },
+        }
+    }
+
+    /// This order for a sub-region: pieces that do not face it are dropped, and each open
+    /// block is replaced by the strongly connected components of `edges` (pairs inside
+    /// blocks) in topological order. Returns the refined order and the pairs inside its
+    /// open blocks.
+    pub fn refined(&self, facing: &[bool], edges: &[(u32, u32)]) -> (Partial, Vec<(u32, u32)>) {
+        let n = facing.len();
+        let mut in_block = vec![false; n];
+        for block in &self.blocks {
+            for &p in &self.order[block.start as usize..block.end as usize] {
+                in_block[p as usize] = facing[p as usize];
+            }
+        }
+        let graph = Graph::new(n, edges);
+        let components = graph.components(&in_block);
+        // Components of a block, in topological order, by the block's first... each
+        // component lies in one block (pairs never cross blocks): group them by block.
+        let mut block_of = vec![u32::MAX; n];
+        for (k, block) in self.blocks.iter().enumerate() {
+            for &p in &self.order[block.start as usize..block.end as usize] {
+                block_of[p as usize] = k as u32;
+            }
+        }
+        let mut by_block: Vec<Vec<usize>> = vec![Vec::new(); self.blocks.len()];
+        for (c, component) in components.iter().enumerate() {
+            by_block[block_of[component[0] as usize] as usize].push(c);
+        }
+        let mut out = Partial::default();
+        let mut component_of = vec![u32::MAX; n];
+        let mut blocks = self.blocks.iter().enumerate().peekable();
+        let mut i = 0;
+        while i < self.order.len() {
+            if let Some((k, block)) = blocks.next_if(|(_, b)| b.start as usize == i) {
+                for &c in &by_block[k] {
+                    let component = &components[c];
+                    let start = out.order.len() as u32;
+                    out.order.extend_from_slice(component);
+                    if component.len() > 1 {
+                        out.blocks.push(start..out.order.len() as u32);
+                        for &p in component {
+                            component_of[p as usize] = c as u32;
+                        }
+                    }
+                }
+                i = block.end as usize;
+                continue;
+            }
+            let piece = self.order[i];
+            if facing[piece as usize] {
+                out.order.push(piece);
+            }
+            i += 1;
+        }
+        let open = edges
+            .iter()
+            .copied()
+            .filter(|&(a, b)| {
+                let c = component_of[a as usize];
+                c != u32::MAX && c == component_of[b as usize]
+            })
+            .collect();
+        (out, open)
+    }
+}
+
+/// Pairs "`a` before `b`" as adjacency lists.
+struct Graph {
+    start: Vec<u32>,
+    targets: Vec<u32>,
+}
+
+impl Graph {
+    fn new(n: usize, edges: &[(u32, u32)]) -> Self {
+        let mut start = vec![0u32; n + 1];
+        for &(a, _) in edges {
+            start[a as usize + 1] += 1;
+        }
+        for i in 0..n {
+            start[i + 1] += start[i];
+        }
+        let mut fill = start.clone();
+        let mut targets = vec![0u32; edges.len()];
+        for &(a, b) in edges {
+            targets[fill[a as usize] as usize] = b;
+            fill[a as usize] += 1;
+        }
+        Graph { start, targets }
+    }
+
+    fn next(&self, v: usize) -> &[u32] {
+        &self.targets[self.start[v] as usize..self.start[v + 1] as usize]
+    }
+
+    /// The strongly connected components of the `kept` pieces (Tarjan, iterative), in
+    /// topological order (each component's pieces ascending).
+    fn components(&self, kept: &[bool]) -> Vec<Vec<u32>> {
+        let n = kept.len();
+        let mut index = vec![u32::MAX; n];
+        let mut low = vec![0u32; n];
+        let mut on_stack = vec![false; n];
+        let mut stack = Vec::new();
+        let mut next_index = 0u32;
+        // Tarjan completes a component after every component it reaches: reverse
+        // topological order.
+        let mut components: Vec<Vec<u32>> = Vec::new();
+        for root in (0..n).filter(|&v| kept[v]) {
+            if index[root] != u32::MAX {
+                continue;
+            }
+            let mut calls: Vec<(usize, usize)> = vec![(root, 0)];
+            index[root] = next_index;
+            low[root] = next_index;
+            next_index += 1;
+            stack.push(root as u32);
+            on_stack[root] = true;
+            while let Some(&mut (v, ref mut i)) = calls.last_mut() {
+                let next = self.next(v);
+                if *i < next.len() {
+                    let w = next[*i] as usize;
+                    *i += 1;
+                    if !kept[w] {
+                        continue;
+                    }
+                    if index[w] == u32::MAX {
+                        index[w] = next_index;
+                        low[w] = next_index;
+                        next_index += 1;
+                        stack.push(w as u32);
+                        on_stack[w] = true;
+                        calls.push((w, 0));
+                    } else if on_stack[w] {
+                        low[v] = low[v].min(index[w]);
+                    }
+                } else {
+                    calls.pop();
+                    if let Some(&(u, _)) = calls.last() {
+                        low[u] = low[u].min(low[v]);
+                    }
+                    if low[v] == index[v] {
+                        let mut component = Vec::new();
+                        loop {
+                            let w = stack.pop().expect("v is on the stack");
+                            on_stack[w as usize] = false;
+                            component.push(w);
+                            if w as usize == v {
+                                break;
+                            }
+                        }
+                        component.sort_unstable();
+                        components.push(component);
+                    }
+                }
+            }
+        }
+        components.reverse();
+        components
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn refining_orders_components_and_keeps_cycles_open() {
+        // 0 → 1 → 2 → 1, 2 → 3: one block of all four.
+        let edges = [(0, 1), (1, 2), (2, 1), (2, 3)];
+        let (partial, open) = Partial::open(vec![3, 2, 1, 0]).refined(&[true; 4], &edges);
+        assert_eq!(partial.order, [0, 1, 2, 3]);
+        assert_eq!(partial.blocks, std::iter::once(1..3).collect::<Vec<_>>());
+        assert_eq!(open, [(1, 2), (2, 1)]);
+        // Without piece 2 (facing away) the block orders itself.
+        let (partial, open) = partial.refined(&[true, true, false, true], &[]);
+        assert_eq!(partial.order, [0, 1, 3]);
+        assert!(partial.blocks.is_empty() && open.is_empty());
+    }
+}

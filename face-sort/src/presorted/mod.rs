@@ -1,0 +1,361 @@
+//! [`Presorted`]: orders certified over regions of views, looked up per frame.
+//!
+//! # What is certified
+//! The sphere of directions toward the viewer is cut into spherical triangles (the eight
+//! octants, each split into four by its edge midpoints as often as needed), and the eye
+//! distances from the geometry's centre into ranges from
+//! [`PresortOptions::min_eye_distance`] outward (the farthest range reaching ∞ also holds
+//! the orthographic views of its directions). For each region, a pair of pieces
+//! "`A` before `B`" is kept when `B` may hide part of `A` from some viewer of the region
+//! while both face that viewer (the test and its proof are in `occlusion.rs`: three convex
+//! cones of directions with a common interior point). When the kept pairs have no cycle, any
+//! topological order of the pieces that may face the region's viewers is exact for every
+//! viewer in it, once back faces are culled: two drawn pieces that overlap on screen with
+//! positive area are a kept pair, so the one behind comes first. Otherwise the region is
+//! split, and at the deepest split each cycle (a strongly connected set of kept pairs) is
+//! drawn in its slot by a BSP tree of its own pieces, which orders any view exactly: the
+//! condensation of the kept pairs is a DAG, and nothing outside a set can need to go between
+//! two of its pieces (it would belong to the set).
+//!
+//! No view is sampled: a region's certificate holds at every viewer in it. Regions are grown
+//! by [`PRESORT_GROWTH`](crate::tolerance::PRESORT_GROWTH) before they are certified, so that
+//! a viewer rounding places on the wrong side of a boundary is still covered.
+//!
+//! # Per frame
+//! Find the region of the viewer (the last frame's first), then one pass over its order,
+//! keeping the pieces that face the viewer. Views the certificate does not cover are ordered by
+//! a BSP tree of the whole geometry (built once), and [`Presorted::fallback_frames`] counts them:
+//! - an eye nearer the centre than [`PresortOptions::min_eye_distance`];
+//! - a cull mode other than back faces with no margin (the certificate assumes exactly the
+//!   pieces facing the viewer are drawn).
+//!
+//! # Cost
+//! The build tests every pair that can ever need an order (the plane-side test of
+//! `occlusion.rs`) against the regions it reaches: quadratic in the pieces, stopped by
+//! [`PresortOptions::max_pairs`] and [`PresortOptions::max_build_time`].
+
+mod build;
+mod cones;
+mod occlusion;
+mod region;
+
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use glam::DVec3;
+
+use crate::{Bsp, BspError, DrawList, FaceSorter, Geometry, PolygonSet, SorterStats, View, Viewer};
+use region::Region;
+
+/// Tag of a leaf step that draws a core (a cycle ordered per frame) instead of a piece.
+const CORE: u32 = 1 << 31;
+
+/// Limits and choices of a [`Presorted`] build.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PresortOptions {
+    /// Perspective eyes at least this far from the geometry's centre, in bounding-sphere
+    /// radii (half the bounding-box diagonal), are certified; nearer ones fall back to the
+    /// BSP. Must be above 1. Orthographic views are always certified.
+    pub min_eye_distance: f64,
+    /// Splits of a region below its octant before its cycles are left to per-frame BSP trees.
+    pub max_depth: usize,
+    /// Most regions in the tree.
+    pub max_nodes: usize,
+    /// Most pairs that can ever need an order ([`PresortError::PairBudget`] beyond).
+    pub max_pairs: usize,
+    /// Longest build ([`PresortError::TimeBudget`] beyond).
+    pub max_build_time: Duration,
+}
+
+impl Default for PresortOptions {
+    fn default() -> Self {
+        PresortOptions {
+            min_eye_distance: 1.5,
+            max_depth: 6,
+            max_nodes: 20_000,
+            max_pairs: 50_000_000,
+            max_build_time: Duration::from_secs(120),
+        }
+    }
+}
+
+/// Why a [`Presorted`] build stopped.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum PresortError {
+    /// More pairs can need an order than the budget allows.
+    #[error("more than {limit} pairs of pieces can need an order (PresortOptions::max_pairs)")]
+    PairBudget {
+        /// The budget.
+        limit: usize,
+    },
+    /// The build ran longer than its budget.
+    #[error("the presort build ran longer than {limit:?} (PresortOptions::max_build_time)")]
+    TimeBudget {
+        /// The budget.
+        limit: Duration,
+    },
+    /// A cycle's BSP tree could not be built.
+    #[error("the BSP tree of a cycle: {0}")]
+    Core(BspError),
+    /// `min_eye_distance` is not above 1.
+    #[error("min_eye_distance must be a number above 1, not {0}")]
+    EyeDistance(f64),
+}
+
+/// A node of the region tree.
+#[derive(Clone, Copy, Debug)]
+struct Node {
+    region: Region,
+    kind: NodeKind,
+}
+
+#[derive(Clone, Copy, Debug)]
+enum NodeKind {
+    /// Index into the leaves.
+    Leaf(u32),
+    /// Four children from `first`, as [`Region::split_directions`] orders them.
+    Directions { first: u32 },
+    /// Two children from `first`: eyes nearer than `mid`, then the rest.
+    Distance { mid: f64, first: u32 },
+}
+
+/// One certified order: piece indices (or `CORE | k`), their faces and plane rows
+/// `(normal, offset)`, side by side for the per-frame pass.
+#[derive(Clone, Debug)]
+struct Leaf {
+    region: Region,
+    pieces: Vec<u32>,
+    faces: Vec<u32>,
+    rows: Vec<[f64; 4]>,
+}
+
+/// Exact per frame by looking up an order certified for a region of views (module docs).
+///
+/// Build it from [`Geometry::with_exact_corners`] where planar faces have corners off their
+/// plane: pieces that share corners bit for bit meet without slivers of overlap, which would
+/// otherwise form cycles that only per-frame BSP trees can order.
+pub struct Presorted {
+    shared: Arc<PolygonSet>,
+    nodes: Vec<Node>,
+    leaves: Vec<Leaf>,
+    cores: Vec<build::Core>,
+    core_sorters: Vec<Bsp>,
+    core_list: DrawList,
+    near: f64,
+    fallback: Bsp,
+    last_leaf: Option<u32>,
+    last_fallback: bool,
+    fallback_frames: usize,
+    build_ms: f64,
+    pair_tests: usize,
+    candidate_pairs: usize,
+}
+
+impl std::fmt::Debug for Presorted {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Presorted")
+            .field("regions", &self.nodes.len())
+            .field("orders", &self.leaves.len())
+            .field("cores", &self.cores.len())
+            .finish_non_exhaustive()
+    }
+}
+
+impl Presorted {
+    /// Builds with [`PresortOptions::default`]; on a budget error, every view falls back to
+    /// the BSP ([`fallback_frames`](Self::fallback_frames) counts them).
+    #[must_use]
+    pub fn new(geometry: &Geometry) -> Self {
+        Self::try_new(geometry, &PresortOptions::default()).unwrap_or_else(|_| {
+            let start = Instant::now();
+            let fallback = Bsp::new(geometry);
+            Presorted {
+                shared: Arc::clone(geometry.pieces()),
+                nodes: Vec::new(),
+                leaves: Vec::new(),
+                cores: Vec::new(),
+                core_sorters: Vec::new(),
+                core_list: DrawList::new(),
+                near: f64::INFINITY,
+                fallback,
+                last_leaf: None,
+                last_fallback: false,
+                fallback_frames: 0,
+                build_ms: start.elapsed().as_secs_f64() * 1e3,
+                pair_tests: 0,
+                candidate_pairs: 0,
+            }
+        })
+    }
+
+    /// Builds the region tree and the orders.
+    ///
+    /// # Errors
+    /// A budget of `options` exceeded, or a cycle's BSP tree failing to build.
+    pub fn try_new(geometry: &Geometry, options: &PresortOptions) -> Result<Self, PresortError> {
+        if !(options.min_eye_distance > 1.0 && options.min_eye_distance.is_finite()) {
+            return Err(PresortError::EyeDistance(options.min_eye_distance));
+        }
+        let start = Instant::now();
+        let built = build::build(geometry, options)?;
+        let fallback = Bsp::new(geometry);
+        let core_sorters = built
+            .cores
+            .iter()
+            .map(|c| Bsp::from_tree(Arc::clone(&c.tree)))
+            .collect();
+        Ok(Presorted {
+            shared: built.shared,
+            nodes: built.nodes,
+            leaves: built.leaves,
+            cores: built.cores,
+            core_sorters,
+            core_list: DrawList::new(),
+            near: built.near,
+            fallback,
+            last_leaf: None,
+            last_fallback: false,
+            fallback_frames: 0,
+            build_ms: start.elapsed().as_secs_f64() * 1e3,
+            pair_tests: built.pair_tests,
+            candidate_pairs: built.candidate_pairs,
+        })
+    }
+
+    /// Regions in the tree (inner ones included).
+    #[must_use]
+    pub fn regions(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// Certified orders (leaf regions).
+    #[must_use]
+    pub fn orders(&self) -> usize {
+        self.leaves.len()
+    }
+
+    /// Cycles left to per-frame BSP trees, and the pieces in them (over all orders).
+    #[must_use]
+    pub fn cores(&self) -> (usize, usize) {
+        (self.cores.len(), self.cores.iter().map(|c| c.pieces).sum())
+    }
+
+    /// Pairs that can ever need an order, and pair-region tests the build made.
+    #[must_use]
+    pub fn pairs(&self) -> (usize, usize) {
+        (self.candidate_pairs, self.pair_tests)
+    }
+
+    /// Frames so far that the certificate did not cover (ordered by the whole BSP).
+    #[must_use]
+    pub fn fallback_frames(&self) -> usize {
+        self.fallback_frames
+    }
+
+    /// Whether the last frame fell back to the whole BSP.
+    #[must_use]
+    pub fn last_frame_fell_back(&self) -> bool {
+        self.last_fallback
+    }
+
+    /// The leaf whose region holds the viewer, when the certificate covers it.
+    fn locate(&mut self, view: &View) -> Option<u32> {
+        let cull = view.cull_test();
+        if cull.facing_rule() != Some((true, false)) || self.nodes.is_empty() {
+            return None;
+        }
+        let (u, t) = match cull.viewer {
+            Viewer::Direction(d) => (d, f64::INFINITY),
+            Viewer::Eye(e) => {
+                let t = e.length();
+                (e / t, t)
+            }
+        };
+        if t.is_nan() || t < self.near || !u.is_finite() {
+            return None;
+        }
+        if let Some(leaf) = self.last_leaf
+            && self.leaf_holds(leaf, u, t)
+        {
+            return Some(leaf);
+        }
+        let mut node = Region::octant_of(u);
+        loop {
+            match self.nodes[node].kind {
+                NodeKind::Leaf(leaf) => {
+                    self.last_leaf = Some(leaf);
+                    return Some(leaf);
+                }
+                NodeKind::Directions { first } => {
+                    node = first as usize + self.nodes[node].region.child_holding(u);
+                }
+                NodeKind::Distance { mid, first } => {
+                    node = first as usize + usize::from(t >= mid);
+                }
+            }
+        }
+    }
+
+    /// Whether the last leaf's region holds the viewer (a quick test before the descent).
+    fn leaf_holds(&self, leaf: u32, u: DVec3, t: f64) -> bool {
+        let region = &self.leaves[leaf as usize].region;
+        let [a, b, c] = region.corners;
+        region.holds_distance(t)
+            && a.cross(b).dot(u) >= 0.0
+            && b.cross(c).dot(u) >= 0.0
+            && c.cross(a).dot(u) >= 0.0
+    }
+}
+
+impl FaceSorter for Presorted {
+    fn name(&self) -> &'static str {
+        "presorted"
+    }
+
+    fn sort(&mut self, view: &View, out: &mut DrawList) {
+        let Some(leaf) = self.locate(view) else {
+            self.fallback_frames += 1;
+            self.last_fallback = true;
+            self.fallback.sort(view, out);
+            return;
+        };
+        self.last_fallback = false;
+        let cull = view.cull_test();
+        let (point, w) = cull.viewer_point();
+        out.begin(&self.shared);
+        let leaf = &self.leaves[leaf as usize];
+        for ((&piece, &face), row) in leaf.pieces.iter().zip(&leaf.faces).zip(&leaf.rows) {
+            if piece & CORE != 0 {
+                let k = (piece & !CORE) as usize;
+                self.core_sorters[k].sort_culled(&cull, &mut self.core_list);
+                let core = &self.cores[k];
+                for item in self.core_list.items() {
+                    out.push(core.offset + item.polygon, core.faces[item.face as usize]);
+                }
+            } else if row[0] * point.x + row[1] * point.y + row[2] * point.z - w * row[3] > 0.0 {
+                out.push(piece, face);
+            }
+        }
+    }
+
+    fn stats(&self) -> SorterStats {
+        let leaf_bytes: usize = self
+            .leaves
+            .iter()
+            .map(|l| l.pieces.capacity() * 4 + l.faces.capacity() * 4 + l.rows.capacity() * 32)
+            .sum();
+        SorterStats {
+            build_ms: self.build_ms,
+            polygons: self.shared.len(),
+            cached_bytes: leaf_bytes
+                + self.nodes.capacity() * std::mem::size_of::<Node>()
+                + self.shared.heap_bytes()
+                + self.fallback.stats().cached_bytes,
+            depth: 0,
+            fallbacks: 0,
+            cycles: 0,
+            drawn_alone: 0,
+        }
+    }
+}
