@@ -19,6 +19,8 @@ pub(super) struct Built {
     pub near: f64,
     pub pair_tests: usize,
     pub candidate_pairs: usize,
+    /// Cuts made by [`crate::split_crossing`].
+    pub cuts: usize,
 }
 
 /// A set of pieces a leaf cannot order once for all its viewers (a cycle among them, left at
@@ -47,11 +49,18 @@ struct Builder<'a> {
 }
 
 pub(super) fn build(geometry: &Geometry, options: &PresortOptions) -> Result<Built, PresortError> {
-    let pieces = &**geometry.pieces();
-    let n = pieces.len();
     let radius = geometry.bounds().diagonal() * 0.5;
     let near = options.min_eye_distance * radius;
     let tolerance = PLANE_SIDE * geometry.bounds().diagonal();
+    // Pieces that pass through each other hide each other from every side: cut them once.
+    let (pieces, cuts) = crate::split_crossing(
+        geometry.pieces(),
+        tolerance,
+        options.max_pieces.max(geometry.pieces().len()),
+    )
+    .map_err(PresortError::Pieces)?;
+    let pieces = &pieces;
+    let n = pieces.len();
     // Every pair that can ever need an order, as adjacency lists: `a` before `b`.
     let mut start = Vec::with_capacity(n + 1);
     let mut targets: Vec<u32> = Vec::new();
@@ -129,6 +138,7 @@ pub(super) fn build(geometry: &Geometry, options: &PresortOptions) -> Result<Bui
         near,
         pair_tests: builder.pair_tests,
         candidate_pairs,
+        cuts,
     })
 }
 
@@ -218,7 +228,8 @@ impl Builder<'_> {
         let mut i = 0;
         while i < n {
             if let Some(block) = blocks.next_if(|b| b.start as usize == i) {
-                let set: Vec<u32> = partial.order[block.start as usize..block.end as usize].to_vec();
+                let set: Vec<u32> =
+                    partial.order[block.start as usize..block.end as usize].to_vec();
                 let core = self.core(&set)?;
                 leaf.pieces.push(CORE | core);
                 leaf.faces.push(0);
@@ -231,7 +242,8 @@ impl Builder<'_> {
             let normal = plane.normal();
             leaf.pieces.push(piece);
             leaf.faces.push(self.pieces.face(piece as usize));
-            leaf.rows.push([normal.x, normal.y, normal.z, plane.offset()]);
+            leaf.rows
+                .push([normal.x, normal.y, normal.z, plane.offset()]);
             i += 1;
         }
         self.leaves.push(leaf);
@@ -252,8 +264,8 @@ impl Builder<'_> {
             pieces.push(self.pieces.corners(p), k as u32, *self.pieces.plane(p));
         }
         let geometry = Geometry::from_pieces(pieces, self.geometry.bounds());
-        let tree = BspTree::try_build(&geometry, &BspOptions::default())
-            .map_err(PresortError::Core)?;
+        let tree =
+            BspTree::try_build(&geometry, &BspOptions::default()).map_err(PresortError::Core)?;
         self.cores.push(Core {
             tree: Arc::new(tree),
             offset: 0,
@@ -269,7 +281,13 @@ impl Builder<'_> {
 /// distances: `asin(r / near) − asin(r / far)` for the geometry's radius `r`.
 fn parallax(region: &Region, geometry: &Geometry) -> f64 {
     let r = geometry.bounds().diagonal() * 0.5;
-    let angle = |t: f64| if t.is_finite() { (r / t).min(1.0).asin() } else { 0.0 };
+    let angle = |t: f64| {
+        if t.is_finite() {
+            (r / t).min(1.0).asin()
+        } else {
+            0.0
+        }
+    };
     angle(region.near) - angle(region.far)
 }
 

@@ -109,10 +109,11 @@ pub(crate) fn separated(k: &[DVec3], g: &[DVec3], g_facets: &[DVec3]) -> bool {
 
 /// The least and greatest `w · r` over rays `r`.
 fn extent(rays: &[DVec3], w: DVec3) -> (f64, f64) {
-    rays.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), r| {
-        let d = w.dot(*r);
-        (lo.min(d), hi.max(d))
-    })
+    rays.iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), r| {
+            let d = w.dot(*r);
+            (lo.min(d), hi.max(d))
+        })
 }
 
 #[cfg(test)]

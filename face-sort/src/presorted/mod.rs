@@ -65,6 +65,9 @@ pub struct PresortOptions {
     pub max_pairs: usize,
     /// Longest build ([`PresortError::TimeBudget`] beyond).
     pub max_build_time: Duration,
+    /// Most pieces after cutting those that pass through each other (at least the
+    /// geometry's pieces; [`PresortError::Pieces`] beyond).
+    pub max_pieces: usize,
 }
 
 impl Default for PresortOptions {
@@ -75,6 +78,7 @@ impl Default for PresortOptions {
             max_nodes: 20_000,
             max_pairs: 50_000_000,
             max_build_time: Duration::from_secs(120),
+            max_pieces: 1 << 22,
         }
     }
 }
@@ -95,6 +99,9 @@ pub enum PresortError {
         /// The budget.
         limit: Duration,
     },
+    /// Cutting pieces that pass through each other made too many.
+    #[error(transparent)]
+    Pieces(crate::TooManyPieces),
     /// A cycle's BSP tree could not be built.
     #[error("the BSP tree of a cycle: {0}")]
     Core(BspError),
@@ -150,6 +157,7 @@ pub struct Presorted {
     build_ms: f64,
     pair_tests: usize,
     candidate_pairs: usize,
+    cuts: usize,
 }
 
 impl std::fmt::Debug for Presorted {
@@ -185,6 +193,7 @@ impl Presorted {
                 build_ms: start.elapsed().as_secs_f64() * 1e3,
                 pair_tests: 0,
                 candidate_pairs: 0,
+                cuts: 0,
             }
         })
     }
@@ -220,6 +229,7 @@ impl Presorted {
             build_ms: start.elapsed().as_secs_f64() * 1e3,
             pair_tests: built.pair_tests,
             candidate_pairs: built.candidate_pairs,
+            cuts: built.cuts,
         })
     }
 
@@ -247,10 +257,28 @@ impl Presorted {
         (self.candidate_pairs, self.pair_tests)
     }
 
+    /// Cuts made once, before certifying, in pieces that pass through each other.
+    #[must_use]
+    pub fn cuts(&self) -> usize {
+        self.cuts
+    }
+
     /// Frames so far that the certificate did not cover (ordered by the whole BSP).
     #[must_use]
     pub fn fallback_frames(&self) -> usize {
         self.fallback_frames
+    }
+
+    #[doc(hidden)]
+    pub fn debug_region(&mut self, view: &View) -> Option<(Vec<DVec3>, f64, f64, usize)> {
+        let leaf = self.locate(view)?;
+        let r = &self.leaves[leaf as usize];
+        Some((
+            r.region.corners.to_vec(),
+            r.region.near,
+            r.region.far,
+            r.pieces.len(),
+        ))
     }
 
     /// Whether the last frame fell back to the whole BSP.

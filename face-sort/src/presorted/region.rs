@@ -69,18 +69,24 @@ impl Region {
     /// [`child_holding`](Self::child_holding) numbers them: corner 0's, 1's, 2's, the middle.
     pub fn split_directions(&self) -> [Region; 4] {
         let [a, b, c] = self.corners;
-        let (ab, bc, ca) = ((a + b).normalize(), (b + c).normalize(), (c + a).normalize());
-        [[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]].map(|corners| Region {
-            corners,
-            ..*self
-        })
+        let (ab, bc, ca) = (
+            (a + b).normalize(),
+            (b + c).normalize(),
+            (c + a).normalize(),
+        );
+        [[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]
+            .map(|corners| Region { corners, ..*self })
     }
 
     /// Which of [`split_directions`](Self::split_directions) holds `u` (one of them when `u`
     /// lies on a shared edge).
     pub fn child_holding(&self, u: DVec3) -> usize {
         let [a, b, c] = self.corners;
-        let (ab, bc, ca) = ((a + b).normalize(), (b + c).normalize(), (c + a).normalize());
+        let (ab, bc, ca) = (
+            (a + b).normalize(),
+            (b + c).normalize(),
+            (c + a).normalize(),
+        );
         if ca.cross(ab).dot(u) < 0.0 {
             0
         } else if ab.cross(bc).dot(u) < 0.0 {
@@ -104,10 +110,7 @@ impl Region {
     /// The nearer and the farther half of the eye distances.
     pub fn split_distance(&self) -> [Region; 2] {
         let mid = self.distance_split();
-        [
-            Region { far: mid, ..*self },
-            Region { near: mid, ..*self },
-        ]
+        [Region { far: mid, ..*self }, Region { near: mid, ..*self }]
     }
 
     /// The region grown by [`PRESORT_GROWTH`] (corners pushed away from the centre, distances
