@@ -146,6 +146,19 @@ impl SorterKind {
         Self::ALL.into_iter().find(|k| k.name() == name)
     }
 
+    /// The geometry this sorter is best built from: [`Geometry::with_exact_corners`] for
+    /// [`Presorted`] (its certificates need neighbours that share corners bit for bit),
+    /// [`Geometry::new`] for the others.
+    ///
+    /// # Errors
+    /// As [`Geometry::new`].
+    pub fn geometry_for(self, mesh: &PolygonMesh) -> Result<Geometry, MeshError> {
+        match self {
+            SorterKind::Presorted => Geometry::with_exact_corners(mesh),
+            _ => Geometry::new(mesh),
+        }
+    }
+
     /// Builds this sorter for a geometry.
     #[must_use]
     pub fn build(self, geometry: &Geometry) -> Box<dyn FaceSorter> {

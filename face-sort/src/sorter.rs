@@ -21,6 +21,12 @@ pub struct SorterStats {
     /// Pieces drawn in the last frame without entering the sort, because a coverage test
     /// proved that no other drawn piece overlaps them on screen (Newell).
     pub drawn_alone: usize,
+    /// Orders certified over regions of views ([`Presorted`](crate::Presorted); 0 for the
+    /// others).
+    pub orders: usize,
+    /// Frames so far whose view no certificate covered, ordered by a fallback instead
+    /// ([`Presorted`](crate::Presorted): eyes too near, other cull modes; exactness kept).
+    pub fallback_frames: usize,
 }
 
 /// Culls and orders a mesh's pieces for a view, back to front.

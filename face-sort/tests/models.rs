@@ -36,8 +36,9 @@ fn views(geometry: &Geometry) -> Vec<View> {
 fn exact_sorters_leave_no_violation_on_real_models() {
     let mut list = DrawList::new();
     for model in MODELS {
-        let geometry = Geometry::new(&read_obj(&asset(model))).unwrap();
+        let mesh = read_obj(&asset(model));
         for kind in SorterKind::EXACT {
+            let geometry = kind.geometry_for(&mesh).unwrap();
             let mut sorter = kind.build(&geometry);
             for view in views(&geometry) {
                 sorter.sort(&view, &mut list);

@@ -170,6 +170,9 @@ pub enum SorterChoice {
     /// BSP, split pieces drawn whole where nothing between their fragments overlaps them
     /// (exact, fewer items).
     BspMerged,
+    /// Orders certified over regions of views, looked up per frame (exact; the build is the
+    /// cost).
+    Presorted,
 }
 
 /// `--cull`.
@@ -311,20 +314,34 @@ fn gltf_scene(
 }
 
 /// Builds the sorter; for `auto`, the planner's choice for one picture, and why.
-fn plan(choice: SorterChoice, geometry: &Geometry) -> (Box<dyn FaceSorter>, String) {
-    let asked = |kind: SorterKind| (kind.build(geometry), format!("{} (asked for)", kind.name()));
+fn plan(
+    choice: SorterChoice,
+    mesh: &PolygonMesh,
+    geometry: &Geometry,
+) -> Result<(Box<dyn FaceSorter>, String)> {
+    let asked = |kind: SorterKind| -> Result<(Box<dyn FaceSorter>, String)> {
+        let own;
+        let geometry = if kind == SorterKind::Presorted {
+            own = kind.geometry_for(mesh)?;
+            &own
+        } else {
+            geometry
+        };
+        Ok((kind.build(geometry), format!("{} (asked for)", kind.name())))
+    };
     match choice {
         SorterChoice::Auto => {
             // `render` draws one frame: the planner must not pay for a tree that only an
             // animation would amortise.
             let plan = Plan::analyse(geometry, PlanHint::ONE_FRAME);
-            (plan.build(geometry), format!("auto: {}", plan.reason))
+            Ok((plan.build(geometry), format!("auto: {}", plan.reason)))
         }
         SorterChoice::Centroid => asked(SorterKind::Centroid),
         SorterChoice::Topological => asked(SorterKind::Topological),
         SorterChoice::Newell => asked(SorterKind::Newell),
         SorterChoice::Bsp => asked(SorterKind::Bsp),
         SorterChoice::BspMerged => asked(SorterKind::BspMerged),
+        SorterChoice::Presorted => asked(SorterKind::Presorted),
     }
 }
 
@@ -527,7 +544,7 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
         .flatten();
     let (mut sorter, plan) = match scene {
         Some(scene) => scene,
-        None => plan(args.sorter, &geometry),
+        None => plan(args.sorter, &polygons, &geometry)?,
     };
     let build_ms = ms(start);
     let sorter_name = sorter.name();

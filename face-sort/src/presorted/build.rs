@@ -180,7 +180,13 @@ impl Builder<'_> {
             }
         }
         let (partial, open_edges) = parent.refined(&facing, &edges);
-        if partial.blocks.is_empty() {
+        let small = partial
+            .blocks
+            .iter()
+            .all(|b| b.len() <= self.options.small_cycle_pieces);
+        if small {
+            // Acyclic, or only small cycles left (pieces that touch along a cut often stay
+            // cyclic from every side): they cost a tiny BSP tree per frame, not more regions.
             return Ok(NodeKind::Leaf(self.leaf(region, &partial)?));
         }
         if depth < self.options.max_depth && self.nodes.len() + 4 <= self.options.max_nodes {

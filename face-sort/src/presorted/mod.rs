@@ -61,6 +61,9 @@ pub struct PresortOptions {
     pub max_depth: usize,
     /// Most regions in the tree.
     pub max_nodes: usize,
+    /// A region whose open cycles all have at most this many pieces is not split further:
+    /// the cycles are ordered per frame by BSP trees of their own.
+    pub small_cycle_pieces: usize,
     /// Most pairs that can ever need an order ([`PresortError::PairBudget`] beyond).
     pub max_pairs: usize,
     /// Longest build ([`PresortError::TimeBudget`] beyond).
@@ -76,6 +79,7 @@ impl Default for PresortOptions {
             min_eye_distance: 1.5,
             max_depth: 6,
             max_nodes: 20_000,
+            small_cycle_pieces: 8,
             max_pairs: 50_000_000,
             max_build_time: Duration::from_secs(120),
             max_pieces: 1 << 22,
@@ -380,10 +384,10 @@ impl FaceSorter for Presorted {
                 + self.nodes.capacity() * std::mem::size_of::<Node>()
                 + self.shared.heap_bytes()
                 + self.fallback.stats().cached_bytes,
-            depth: 0,
-            fallbacks: 0,
-            cycles: 0,
-            drawn_alone: 0,
+            cycles: self.cores.len(),
+            orders: self.leaves.len(),
+            fallback_frames: self.fallback_frames,
+            ..SorterStats::default()
         }
     }
 }

@@ -145,11 +145,12 @@ pub(super) fn bench_scene(scene: &Scene, budget: &Budget, resolution: u32) -> Re
         .into_iter()
         .map(|kind| {
             let start = Instant::now();
-            let sorter = kind.build(&geometry);
+            let own = kind.geometry_for(&scene.mesh)?;
+            let sorter = kind.build(&own);
             let measured = start.elapsed().as_secs_f64() * 1e3;
-            (sorter, measured)
+            Ok((sorter, measured))
         })
-        .collect();
+        .collect::<Result<_>>()?;
     let pieces = geometry.pieces().len();
     let run_peer = pieces <= budget.peer_pieces;
     let mut peer = PlaneSplitPeer::new(&geometry);
@@ -190,7 +191,15 @@ pub(super) fn bench_scene(scene: &Scene, budget: &Budget, resolution: u32) -> Re
                     b if b > 0.0 => b,
                     _ => *measured,
                 };
-                acc.row(sorter.name(), scene, &geometry, projection, build_ms)
+                let mut row = acc.row(sorter.name(), scene, &geometry, projection, build_ms);
+                let stats = sorter.stats();
+                if stats.orders > 0 {
+                    row.note = format!(
+                        "{} orders, {} small cycles; {} fallback frames",
+                        stats.orders, stats.cycles, stats.fallback_frames
+                    );
+                }
+                row
             })
             .collect();
         if run_peer {
