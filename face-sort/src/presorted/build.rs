@@ -184,9 +184,16 @@ impl Builder<'_> {
             .blocks
             .iter()
             .all(|b| b.len() <= self.options.small_cycle_pieces);
-        if small {
-            // Acyclic, or only small cycles left (pieces that touch along a cut often stay
-            // cyclic from every side): they cost a tiny BSP tree per frame, not more regions.
+        // Splitting helps while it opens cycles: when the pieces left in cycles are as many as
+        // in the parent's, the cycles hold from every side of the region (pieces that touch
+        // along a cut, cyclic overlaps of crossing soups) and more regions only cost memory.
+        let open = partial.open_pieces();
+        let stalled = depth > 0 && open >= parent.open_pieces();
+        if depth >= 2 && !small && 4 * open > partial.order.len() {
+            return Ok(NodeKind::Uncertified);
+        }
+        if small || stalled {
+            // Acyclic, or the cycles left are ordered per frame by BSP trees of their own.
             return Ok(NodeKind::Leaf(self.leaf(region, &partial)?));
         }
         if depth < self.options.max_depth && self.nodes.len() + 4 <= self.options.max_nodes {
@@ -317,6 +324,11 @@ impl Partial {
                 Vec::new()
             },
         }
+    }
+
+    /// Pieces in open blocks.
+    pub fn open_pieces(&self) -> usize {
+        self.blocks.iter().map(|b| b.len()).sum()
     }
 
     /// This order for a sub-region: pieces that do not face it are dropped, and each open

@@ -27,7 +27,10 @@
 //! a BSP tree of the whole geometry (built once), and [`Presorted::fallback_frames`] counts them:
 //! - an eye nearer the centre than [`PresortOptions::min_eye_distance`];
 //! - a cull mode other than back faces with no margin (the certificate assumes exactly the
-//!   pieces facing the viewer are drawn).
+//!   pieces facing the viewer are drawn);
+//! - a region whose cycles still hold more than a quarter of its pieces two splits below its
+//!   octant (soups of crossing polygons): per-frame BSP trees of such cycles would cost as
+//!   much as the whole one.
 //!
 //! # Cost
 //! The build tests every pair that can ever need an order (the plane-side test of
@@ -129,6 +132,8 @@ enum NodeKind {
     Directions { first: u32 },
     /// Two children from `first`: eyes nearer than `mid`, then the rest.
     Distance { mid: f64, first: u32 },
+    /// A region whose cycles hold too many of its pieces: ordered by the whole BSP.
+    Uncertified,
 }
 
 /// One certified order: piece indices (or `CORE | k`), their faces and plane rows
@@ -249,6 +254,16 @@ impl Presorted {
         self.leaves.len()
     }
 
+    /// Regions left uncertified (their cycles hold too many pieces): views in them are
+    /// ordered by the whole BSP.
+    #[must_use]
+    pub fn uncertified_regions(&self) -> usize {
+        self.nodes
+            .iter()
+            .filter(|n| matches!(n.kind, NodeKind::Uncertified))
+            .count()
+    }
+
     /// Cycles left to per-frame BSP trees, and the pieces in them (over all orders).
     #[must_use]
     pub fn cores(&self) -> (usize, usize) {
@@ -324,6 +339,10 @@ impl Presorted {
                 }
                 NodeKind::Distance { mid, first } => {
                     node = first as usize + usize::from(t >= mid);
+                }
+                NodeKind::Uncertified => {
+                    self.last_leaf = None;
+                    return None;
                 }
             }
         }
