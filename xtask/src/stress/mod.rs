@@ -237,7 +237,14 @@ impl CaseReport {
 
 /// The sorters run on every case (and the report's columns): the exact ones, then the
 /// inexact reference.
-const SORTERS: [&str; 5] = ["bsp", "bsp-merged", "newell", "auto", REFERENCE];
+const SORTERS: [&str; 6] = [
+    "bsp",
+    "bsp-merged",
+    "newell",
+    "presorted",
+    "auto",
+    REFERENCE,
+];
 
 /// The inexact reference among [`SORTERS`]: its violations are reported, not failures.
 const REFERENCE: &str = "centroid";
