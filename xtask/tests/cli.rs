@@ -217,6 +217,36 @@ fn auto_takes_newell_for_one_picture_of_a_curved_model() {
 }
 
 #[test]
+fn presorted_renders_exactly_at_any_rotation() {
+    // Models outside the bench, at views of every kind: the pixels against the z-buffer
+    // truth, and the oracle. (A sweep of more models and views is in docs/bench.md.)
+    for model in [
+        "keenan-crane/spot/spot_control_mesh.obj",
+        "opensubdiv-torus/catmark_torus_creases0.obj",
+        "compas/tubemesh.obj",
+    ] {
+        let path = test_support::model_path(model);
+        for (i, extra) in [
+            &["--yaw", "137", "--pitch", "-32", "--roll", "71"][..],
+            &["--yaw", "274", "--pitch", "21", "--roll", "142", "--persp", "180"][..],
+            &["--yaw", "51", "--pitch", "74", "--roll", "213", "--persp", "300"][..],
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            let value = render_summary(
+                path.to_str().unwrap(),
+                &[extra, &["--sorter", "presorted"][..]].concat(),
+                &format!("presorted-{i}"),
+            );
+            assert_eq!(value["sorter"], "presorted", "{value}");
+            assert_eq!(value["violations"], 0, "{model}: {value}");
+            assert_eq!(value["pixel_error"], 0.0, "{model}: {value}");
+        }
+    }
+}
+
+#[test]
 fn bench_docs_check_accepts_the_committed_report() {
     let result = xtask(&["bench", "--docs", "--check"]);
     assert!(result.status.success(), "{}", text(&result.stderr));
