@@ -5,8 +5,7 @@ mod common;
 use common::{asset, read_obj};
 use face_sort::glam::DQuat;
 use face_sort::{
-    CullMode, DrawList, FaceSorter, Geometry, PresortError, PresortOptions, Presorted, View,
-    oracle,
+    CullMode, DrawList, FaceSorter, Geometry, PresortError, PresortOptions, Presorted, View, oracle,
 };
 
 /// Views at seeded random rotations (any yaw, pitch and roll), orthographic and perspective
@@ -52,10 +51,9 @@ fn certified_orders_leave_no_violation_at_random_views() {
 
 #[test]
 fn uncovered_views_fall_back_to_the_bsp_and_stay_exact() {
-    let geometry = Geometry::with_exact_corners(&read_obj(&asset(
-        "keenan-crane/spot/spot_control_mesh.obj",
-    )))
-    .unwrap();
+    let geometry =
+        Geometry::with_exact_corners(&read_obj(&asset("keenan-crane/spot/spot_control_mesh.obj")))
+            .unwrap();
     let mut sorter = Presorted::new(&geometry);
     let base = View::fit(&geometry.bounds(), 256, 256).with_yaw_pitch_roll(40.0, 25.0, 0.0);
     let radius = 0.5 * geometry.bounds().diagonal();

@@ -110,16 +110,21 @@ pub(super) fn chart_svg(rows: &[Row]) -> Result<String> {
             chart
                 .draw_series(
                     mine.iter()
-                        .filter(|r| r.projection == "ortho")
+                        .filter(|r| r.projection.starts_with("ortho"))
                         .map(|r| Circle::new(at(r), 4, c.mix(0.75).filled())),
                 )
                 .map_err(|e| err(&e))?
                 .label(name)
                 .legend(move |(x, y)| Circle::new((x, y), 5, c.filled()));
             chart
-                .draw_series(mine.iter().filter(|r| r.projection != "ortho").map(|r| {
-                    EmptyElement::at(at(r)) + Rectangle::new([(-4, -4), (4, 4)], c.stroke_width(2))
-                }))
+                .draw_series(
+                    mine.iter()
+                        .filter(|r| !r.projection.starts_with("ortho"))
+                        .map(|r| {
+                            EmptyElement::at(at(r))
+                                + Rectangle::new([(-4, -4), (4, 4)], c.stroke_width(2))
+                        }),
+                )
                 .map_err(|e| err(&e))?;
         }
         chart

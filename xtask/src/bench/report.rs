@@ -7,7 +7,7 @@ use anyhow::{Result, bail};
 use face_sort::SorterKind;
 use serde::Serialize;
 
-use super::timing::TURN_PER_FRAME_DEG;
+use super::timing::{TURN_PER_FRAME_DEG, WANDER_PER_FRAME_DEG};
 
 /// One row of the report: a sorter on a scene under one projection, over every view.
 #[derive(Clone, Debug, Serialize)]
@@ -99,12 +99,21 @@ pub(super) fn markdown(
 ) -> String {
     let mut s = String::new();
     let _ = writeln!(s, "# Bench: time against error\n");
+    // Reports from before the wandering camera have no such rows, and say nothing of it.
+    let wander = if rows.iter().any(|r| r.projection.ends_with("wander")) {
+        format!(
+            "; rows *ortho wander* and *persp wander* turn it by {WANDER_PER_FRAME_DEG}° about a \
+             random axis instead, and check their last view too"
+        )
+    } else {
+        String::new()
+    };
     let _ = writeln!(
         s,
         "Command: `{command}` (release build). Per scene and projection, every view of the set \
          (yaws × pitches) is measured; **frame** is the median cull+order time over all timed \
          frames, each of which turns the view by a further {TURN_PER_FRAME_DEG}° of yaw (a new view every \
-         frame, as in an animation), **× centroid** its ratio to the centroid baseline in the \
+         frame, as in an animation{wander}), **× centroid** its ratio to the centroid baseline in the \
          same run, **same view** and its **× centroid** the same with every timed frame \
          repeating its view (which favours sorts: the CPU learns their branches), **build** \
          the one-time cost, **items** the mean polygons drawn per view (fragments included), \

@@ -19,14 +19,30 @@ use crate::scenes::Scene;
 /// docs/bench.md).
 pub(super) const TURN_PER_FRAME_DEG: f64 = 0.02;
 
+/// Turn of the wandering camera between two timed frames, degrees: each frame turns the
+/// view by this about an axis drawn at random (seeded), so that the views drift over the
+/// sphere instead of following one turn. A sorter that only handles turns about one axis
+/// meets new views every frame there.
+pub(super) const WANDER_PER_FRAME_DEG: f64 = 2.0;
+
+/// How the timed frames of a view set move the camera.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Motion {
+    /// [`TURN_PER_FRAME_DEG`] of yaw per frame.
+    Turn,
+    /// [`WANDER_PER_FRAME_DEG`] about a random axis per frame.
+    Wander,
+}
+
 /// The bench's views of a scene: `yaws` yaws (offset from the axes) × pitches, each with the
-/// views its timed frames turn through (the first is the view itself).
+/// views its timed frames move through (the first is the view itself).
 fn views(
     geometry: &Geometry,
     scene: &Scene,
     budget: &Budget,
     size: u32,
     persp: bool,
+    motion: Motion,
 ) -> Vec<Vec<View>> {
     let view = |yaw: f64, pitch: f64| {
         let view = View::fit(&geometry.bounds(), size, size)
@@ -39,14 +55,29 @@ fn views(
         }
     };
     let mut out = Vec::new();
+    let mut rng = test_support::Rng::new(0x57a9_de12);
     for k in 0..budget.yaws {
         let yaw = 15.0 + 360.0 * k as f64 / budget.yaws as f64;
         for &pitch in budget.pitches {
-            out.push(
-                (0..=budget.frames)
+            out.push(match motion {
+                Motion::Turn => (0..=budget.frames)
                     .map(|i| view(yaw + TURN_PER_FRAME_DEG * i as f64, pitch))
                     .collect(),
-            );
+                Motion::Wander => {
+                    let mut current = view(yaw, pitch);
+                    let mut set = vec![current];
+                    for _ in 0..budget.frames {
+                        let turn = glam::DQuat::from_axis_angle(
+                            rng.direction(),
+                            WANDER_PER_FRAME_DEG.to_radians(),
+                        );
+                        current = current
+                            .with_rotation(glam::DMat3::from_quat(turn) * current.rotation());
+                        set.push(current);
+                    }
+                    set
+                }
+            });
         }
     }
     out
@@ -156,8 +187,13 @@ pub(super) fn bench_scene(scene: &Scene, budget: &Budget, resolution: u32) -> Re
     let mut peer = PlaneSplitPeer::new(&geometry);
     let mut list = DrawList::new();
     let mut rows = Vec::new();
-    for (projection, persp) in [("ortho", false), ("persp", true)] {
-        let views = views(&geometry, scene, budget, resolution, persp);
+    for (projection, persp, motion) in [
+        ("ortho", false, Motion::Turn),
+        ("persp", true, Motion::Turn),
+        ("ortho wander", false, Motion::Wander),
+        ("persp wander", true, Motion::Wander),
+    ] {
+        let views = views(&geometry, scene, budget, resolution, persp, motion);
         let mut accs: Vec<Acc> = sorters.iter().map(|_| Acc::default()).collect();
         let mut peer_acc = Acc::default();
         for turning in &views {
@@ -171,6 +207,14 @@ pub(super) fn bench_scene(scene: &Scene, budget: &Budget, resolution: u32) -> Re
                     sorter.sort(view, &mut list);
                 });
                 acc.check(view, &list, truth.as_ref());
+            }
+            if motion == Motion::Wander {
+                let last = turning.last().expect("a view set has views");
+                let truth = raster::truth(last, &geometry);
+                for ((sorter, _), acc) in sorters.iter_mut().zip(accs.iter_mut()) {
+                    sorter.sort(last, &mut list);
+                    acc.check(last, &list, truth.as_ref());
+                }
             }
             if run_peer {
                 time_frames(budget, &mut peer_acc.times, |i| {
