@@ -228,8 +228,12 @@ fn presorted_renders_exactly_at_any_rotation() {
         let path = test_support::model_path(model);
         for (i, extra) in [
             &["--yaw", "137", "--pitch", "-32", "--roll", "71"][..],
-            &["--yaw", "274", "--pitch", "21", "--roll", "142", "--persp", "180"][..],
-            &["--yaw", "51", "--pitch", "74", "--roll", "213", "--persp", "300"][..],
+            &[
+                "--yaw", "274", "--pitch", "21", "--roll", "142", "--persp", "180",
+            ][..],
+            &[
+                "--yaw", "51", "--pitch", "74", "--roll", "213", "--persp", "300",
+            ][..],
         ]
         .into_iter()
         .enumerate()
