@@ -25,7 +25,11 @@
 //!   the choice to the next rule.
 //! - **Otherwise the cheaper exact sorter for the frames the caller will draw.** [`Newell`]
 //!   needs no tree (for a few frames, no build at all: `NEWELL_COVERAGE_FRAMES`) and draws
-//!   almost no extra items; [`Bsp`] pays a build once and then traverses cheaply.
+//!   almost no extra items; [`Bsp`] pays a build once and then traverses cheaply;
+//!   [`Presorted`](crate::Presorted) pays a quadratic build and then only looks up and culls
+//!   (about half the BSP's frame, no extra items), so it wins only for callers that announce
+//!   very many frames (on spot, about 60 frames per piece). The model counts the sorter's
+//!   time only, not the sink's per item.
 //!   [`PlanHint::frames`] says how many frames the build is spread over: one picture (an
 //!   export) is [`PlanHint::ONE_FRAME`]. The cost model and its measured
 //!   constants are [`CostModel`].
@@ -73,6 +77,9 @@ pub enum Strategy {
     Newell,
     /// [`Bsp`]: a build amortised over many frames.
     Bsp,
+    /// [`Presorted`](crate::Presorted): a quadratic build, then a lookup and a cull per
+    /// frame; for callers that announce very many frames.
+    Presorted,
 }
 
 impl Strategy {
@@ -84,6 +91,7 @@ impl Strategy {
             Strategy::ConvexParts => "convex-parts",
             Strategy::Newell => "newell",
             Strategy::Bsp => "bsp",
+            Strategy::Presorted => "presorted",
         }
     }
 }
@@ -107,6 +115,10 @@ pub struct CostModel {
     pub bsp_frame_per_piece: f64,
     /// Newell per frame, per piece.
     pub newell_frame_per_piece: f64,
+    /// Presorted build, per pair of pieces (`n²`).
+    pub presorted_build_per_pair: f64,
+    /// Presorted per frame (region lookup and cull), per piece.
+    pub presorted_frame_per_piece: f64,
 }
 
 impl CostModel {
@@ -115,6 +127,8 @@ impl CostModel {
         bsp_build_per_piece_level: 262.0,
         bsp_frame_per_piece: 5.8,
         newell_frame_per_piece: 88.0,
+        presorted_build_per_pair: 180.0,
+        presorted_frame_per_piece: 2.9,
     };
 
     /// Predicted nanoseconds for `pieces` pieces over `frames` frames.
@@ -128,6 +142,9 @@ impl CostModel {
             Strategy::Bsp => {
                 self.bsp_build_per_piece_level * n * n.log2().max(1.0)
                     + frames * self.bsp_frame_per_piece * n
+            }
+            Strategy::Presorted => {
+                self.presorted_build_per_pair * n * n + frames * self.presorted_frame_per_piece * n
             }
         }
     }
@@ -206,18 +223,15 @@ impl Plan {
         }
         let n = pieces.len();
         let frames = hint.frames.max(1);
-        let newell = costs.predict(Strategy::Newell, n, frames);
-        let bsp = costs.predict(Strategy::Bsp, n, frames);
         let frame_words = if frames == 1 {
             "one frame".to_owned()
         } else {
             format!("{frames} frames")
         };
-        let (strategy, cheaper, dearer) = if newell <= bsp {
-            (Strategy::Newell, newell, bsp)
-        } else {
-            (Strategy::Bsp, bsp, newell)
-        };
+        let mut predicted = [Strategy::Newell, Strategy::Bsp, Strategy::Presorted]
+            .map(|s| (s, costs.predict(s, n, frames)));
+        predicted.sort_by(|a, b| a.1.total_cmp(&b.1));
+        let [(strategy, cheaper), (_, dearer), _] = predicted;
         Plan {
             strategy,
             reason: format!(
@@ -250,6 +264,7 @@ impl Plan {
                 Box::new(Newell::new(geometry))
             }
             (Strategy::Newell, _) => Box::new(Newell::without_coverage(geometry)),
+            (Strategy::Presorted, _) => Box::new(crate::Presorted::new(geometry)),
             // A tree over its fragment budget (BspOptions) would cost more than it saves:
             // Newell is exact too and needs no tree.
             _ => Bsp::new_or_fallback(geometry, &BspOptions::DEFAULT, BspFallback::Newell)

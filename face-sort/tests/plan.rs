@@ -148,6 +148,25 @@ fn a_dent_or_a_second_body_is_not_convex() {
 }
 
 #[test]
+fn very_many_frames_take_presorted_and_it_stays_exact() {
+    let mesh = common::read_obj(&common::asset("keenan-crane/spot/spot_control_mesh.obj"));
+    let geometry = Geometry::with_exact_corners(&mesh).unwrap();
+    let n = geometry.pieces().len() as u64;
+    // Below the break-even the BSP, above it Presorted.
+    let few = Plan::analyse(&geometry, PlanHint { frames: 10 * n });
+    assert_eq!(few.strategy, Strategy::Bsp, "{}", few.reason);
+    let many = Plan::analyse(&geometry, PlanHint { frames: 1000 * n });
+    assert_eq!(many.strategy, Strategy::Presorted, "{}", many.reason);
+    let mut auto = Auto::new(&geometry, PlanHint { frames: 1000 * n });
+    let mut list = face_sort::DrawList::new();
+    let view =
+        face_sort::View::fit(&geometry.bounds(), 128, 128).with_yaw_pitch_roll(30.0, 20.0, 5.0);
+    auto.sort(&view, &mut list);
+    assert_eq!(auto.name(), "presorted");
+    assert_eq!(face_sort::oracle::count_violations(&view, &list), 0);
+}
+
+#[test]
 fn one_frame_of_a_real_model_takes_newell_and_animation_takes_bsp() {
     let spot = common::read_obj(&common::asset("keenan-crane/spot/spot_quadrangulated.obj"));
     let geometry = Geometry::new(&spot).unwrap();

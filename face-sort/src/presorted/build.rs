@@ -37,15 +37,73 @@ pub(super) struct Core {
 struct Builder<'a> {
     geometry: &'a Geometry,
     pieces: &'a PolygonSet,
-    bounds: Vec<PieceBounds>,
+    bounds: &'a [PieceBounds],
     options: &'a PresortOptions,
     tolerance: f64,
+    /// This builder's regions: its octant's root first.
     nodes: Vec<Node>,
     leaves: Vec<Leaf>,
     cores: Vec<Core>,
     core_sets: Vec<Vec<u32>>,
     pair_tests: usize,
     started: Instant,
+}
+
+/// Every pair that can ever need an order, as adjacency lists (`a` before `b`): the pieces
+/// split into ranges scanned side by side on `threads` threads.
+/// Adjacency lists: where each piece's targets start, and the targets.
+type Adjacency = (Vec<u32>, Vec<u32>);
+
+fn pairs_ever(
+    pieces: &PolygonSet,
+    tolerance: f64,
+    max_pairs: usize,
+    threads: usize,
+) -> Result<Adjacency, PresortError> {
+    let n = pieces.len();
+    let chunk = n.div_ceil(threads.max(1)).max(1);
+    let parts: Vec<Result<Adjacency, PresortError>> = std::thread::scope(|scope| {
+        let handles: Vec<_> = (0..n)
+            .step_by(chunk)
+            .map(|first| {
+                scope.spawn(move || {
+                    let mut counts = Vec::with_capacity(chunk);
+                    let mut targets = Vec::new();
+                    for a in first..(first + chunk).min(n) {
+                        let before = targets.len();
+                        for b in 0..n {
+                            if a != b && may_ever_hide(pieces, a, b, tolerance) {
+                                if targets.len() >= max_pairs {
+                                    return Err(PresortError::PairBudget { limit: max_pairs });
+                                }
+                                targets.push(b as u32);
+                            }
+                        }
+                        counts.push((targets.len() - before) as u32);
+                    }
+                    Ok((counts, targets))
+                })
+            })
+            .collect();
+        handles
+            .into_iter()
+            .map(|h| h.join().expect("a pair scan does not panic"))
+            .collect()
+    });
+    let mut start = Vec::with_capacity(n + 1);
+    start.push(0u32);
+    let mut all = Vec::new();
+    for part in parts {
+        let (counts, targets) = part?;
+        if all.len() + targets.len() > max_pairs {
+            return Err(PresortError::PairBudget { limit: max_pairs });
+        }
+        for c in counts {
+            start.push(start.last().expect("starts at 0") + c);
+        }
+        all.extend(targets);
+    }
+    Ok((start, all))
 }
 
 pub(super) fn build(geometry: &Geometry, options: &PresortOptions) -> Result<Built, PresortError> {
@@ -59,52 +117,171 @@ pub(super) fn build(geometry: &Geometry, options: &PresortOptions) -> Result<Bui
         options.max_pieces.max(geometry.pieces().len()),
     )
     .map_err(PresortError::Pieces)?;
-    let pieces = &pieces;
-    let n = pieces.len();
-    // Every pair that can ever need an order, as adjacency lists: `a` before `b`.
-    let mut start = Vec::with_capacity(n + 1);
-    let mut targets: Vec<u32> = Vec::new();
-    start.push(0u32);
-    for a in 0..n {
-        for b in 0..n {
-            if a != b && may_ever_hide(pieces, a, b, tolerance) {
-                if targets.len() >= options.max_pairs {
-                    return Err(PresortError::PairBudget {
-                        limit: options.max_pairs,
-                    });
-                }
-                targets.push(b as u32);
-            }
-        }
-        start.push(targets.len() as u32);
-    }
-    let mut builder = Builder {
-        geometry,
-        pieces,
-        bounds: PieceBounds::of(pieces),
-        options,
-        tolerance,
-        nodes: Vec::new(),
-        leaves: Vec::new(),
-        cores: Vec::new(),
-        core_sets: Vec::new(),
-        pair_tests: 0,
-        started: Instant::now(),
-    };
     let octants = Region::octants(near);
-    // The roots first, so that the octant of a direction is its root's index.
-    for region in octants {
-        builder.nodes.push(Node {
+    if cuts as f64 > options.soup_cuts_per_piece * geometry.pieces().len() as f64 {
+        // A soup of crossing polygons: its cycles hold from every side, so every region
+        // would be left to the whole BSP after costing its tests. Leave them all at once.
+        return Ok(Built {
+            nodes: octants
+                .map(|region| Node {
+                    region,
+                    kind: NodeKind::Uncertified,
+                })
+                .to_vec(),
+            leaves: Vec::new(),
+            shared: Arc::new(pieces),
+            cores: Vec::new(),
+            near,
+            pair_tests: 0,
+            candidate_pairs: 0,
+            cuts,
+        });
+    }
+    let pieces = &pieces;
+    let threads = std::thread::available_parallelism().map_or(1, |t| t.get().min(8));
+    let (start, targets) = pairs_ever(pieces, tolerance, options.max_pairs, threads)?;
+    let bounds = PieceBounds::of(pieces);
+    let started = Instant::now();
+    // Each octant is certified on its own, the octants shared out among the threads.
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let built: Vec<Vec<(usize, Result<Builder<'_>, PresortError>)>> = std::thread::scope(|scope| {
+        let handles: Vec<_> = (0..threads)
+            .map(|_| {
+                scope.spawn(|| {
+                    let mut done = Vec::new();
+                    loop {
+                        let k = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                        if k >= octants.len() {
+                            return done;
+                        }
+                        let mut builder = Builder {
+                            geometry,
+                            pieces,
+                            bounds: &bounds,
+                            options,
+                            tolerance,
+                            nodes: Vec::new(),
+                            leaves: Vec::new(),
+                            cores: Vec::new(),
+                            core_sets: Vec::new(),
+                            pair_tests: 0,
+                            started,
+                        };
+                        let result = builder.octant(octants[k], &start, &targets).map(|kind| {
+                            builder.nodes[0].kind = kind;
+                            builder
+                        });
+                        done.push((k, result));
+                    }
+                })
+            })
+            .collect();
+        handles
+            .into_iter()
+            .map(|h| h.join().expect("a region build does not panic"))
+            .collect()
+    });
+    let mut by_octant: Vec<Option<Builder<'_>>> = (0..octants.len()).map(|_| None).collect();
+    for (k, result) in built.into_iter().flatten() {
+        by_octant[k] = Some(result?);
+    }
+    let candidate_pairs = targets.len();
+    drop(targets);
+    // Merge: the eight roots first (so that the octant of a direction is its root's index),
+    // then each octant's other regions, leaves and cores, renumbered.
+    let mut nodes: Vec<Node> = Vec::new();
+    let (mut leaves, mut cores) = (Vec::new(), Vec::new());
+    let mut pair_tests = 0;
+    let parts: Vec<Builder<'_>> = by_octant
+        .into_iter()
+        .map(|b| b.expect("every octant was built"))
+        .collect();
+    let mut node_offsets = Vec::with_capacity(parts.len());
+    let mut offset = parts.len();
+    for part in &parts {
+        node_offsets.push(offset);
+        offset += part.nodes.len() - 1;
+    }
+    for part in &parts {
+        nodes.push(part.nodes[0]);
+    }
+    for (k, part) in parts.into_iter().enumerate() {
+        let (leaf_offset, core_offset) = (leaves.len() as u32, cores.len() as u32);
+        let local = |i: u32| -> u32 {
+            if i == 0 {
+                k as u32
+            } else {
+                (node_offsets[k] + i as usize - 1) as u32
+            }
+        };
+        let renumber = |kind: NodeKind| match kind {
+            NodeKind::Leaf(l) => NodeKind::Leaf(l + leaf_offset),
+            NodeKind::Directions { first } => NodeKind::Directions {
+                first: local(first),
+            },
+            NodeKind::Distance { mid, first } => NodeKind::Distance {
+                mid,
+                first: local(first),
+            },
+            NodeKind::Uncertified => NodeKind::Uncertified,
+        };
+        nodes[k].kind = renumber(part.nodes[0].kind);
+        for node in &part.nodes[1..] {
+            nodes.push(Node {
+                region: node.region,
+                kind: renumber(node.kind),
+            });
+        }
+        for mut leaf in part.leaves {
+            for step in &mut leaf.pieces {
+                if *step & CORE != 0 {
+                    *step = CORE | ((*step & !CORE) + core_offset);
+                }
+            }
+            leaves.push(leaf);
+        }
+        cores.extend(part.cores);
+        pair_tests += part.pair_tests;
+    }
+    // The shared set: the pieces, then each core's fragments.
+    let mut shared = pieces.clone();
+    for core in &mut cores {
+        core.offset = shared.len() as u32;
+        let fragments = core.tree.fragments();
+        for f in 0..fragments.len() {
+            let face = core.faces[fragments.face(f) as usize];
+            shared.push(fragments.corners(f), face, *fragments.plane(f));
+        }
+    }
+    Ok(Built {
+        nodes,
+        leaves,
+        shared: Arc::new(shared),
+        cores,
+        near,
+        pair_tests,
+        candidate_pairs,
+        cuts,
+    })
+}
+
+impl Builder<'_> {
+    /// Certifies one octant (its root is this builder's node 0).
+    fn octant(
+        &mut self,
+        region: Region,
+        start: &[u32],
+        targets: &[u32],
+    ) -> Result<NodeKind, PresortError> {
+        self.nodes.push(Node {
             region,
             kind: NodeKind::Leaf(u32::MAX),
         });
-    }
-    for (k, region) in octants.iter().enumerate() {
-        let mut candidates = Vec::new();
         let grown = region.grown();
-        let test = OcclusionTest::new(pieces, &builder.bounds, grown);
-        let facing = builder.facing(&grown, &test);
-        for a in 0..n {
+        let test = OcclusionTest::new(self.pieces, self.bounds, grown);
+        let facing = self.facing(&grown, &test);
+        let mut candidates = Vec::new();
+        for a in 0..self.pieces.len() {
             if !facing[a] {
                 continue;
             }
@@ -114,35 +291,12 @@ pub(super) fn build(geometry: &Geometry, options: &PresortOptions) -> Result<Bui
                 }
             }
         }
-        let order = (0..n as u32).filter(|&i| facing[i as usize]).collect();
-        let kind = builder.certify(*region, &Partial::open(order), &candidates, 0)?;
-        builder.nodes[k].kind = kind;
+        let order = (0..self.pieces.len() as u32)
+            .filter(|&i| facing[i as usize])
+            .collect();
+        self.certify(region, &Partial::open(order), &candidates, 0)
     }
-    let candidate_pairs = targets.len();
-    drop(targets);
-    // The shared set: the pieces, then each core's fragments.
-    let mut shared = pieces.clone();
-    for core in &mut builder.cores {
-        core.offset = shared.len() as u32;
-        let fragments = core.tree.fragments();
-        for f in 0..fragments.len() {
-            let face = core.faces[fragments.face(f) as usize];
-            shared.push(fragments.corners(f), face, *fragments.plane(f));
-        }
-    }
-    Ok(Built {
-        nodes: builder.nodes,
-        leaves: builder.leaves,
-        shared: Arc::new(shared),
-        cores: builder.cores,
-        near,
-        pair_tests: builder.pair_tests,
-        candidate_pairs,
-        cuts,
-    })
-}
 
-impl Builder<'_> {
     fn facing(&self, grown: &Region, test: &OcclusionTest<'_>) -> Vec<bool> {
         (0..self.pieces.len())
             .map(|i| may_face(self.pieces, i, grown, test.hull(), self.tolerance))
@@ -167,7 +321,7 @@ impl Builder<'_> {
             });
         }
         let grown = region.grown();
-        let mut test = OcclusionTest::new(self.pieces, &self.bounds, grown);
+        let mut test = OcclusionTest::new(self.pieces, self.bounds, grown);
         let facing = self.facing(&grown, &test);
         let mut edges = Vec::new();
         for &(a, b) in candidates {
@@ -196,7 +350,7 @@ impl Builder<'_> {
             // Acyclic, or the cycles left are ordered per frame by BSP trees of their own.
             return Ok(NodeKind::Leaf(self.leaf(region, &partial)?));
         }
-        if depth < self.options.max_depth && self.nodes.len() + 4 <= self.options.max_nodes {
+        if depth < self.options.max_depth && 8 * (self.nodes.len() + 4) <= self.options.max_nodes {
             let split_distance = !region.orthographic_only()
                 && region.angular_radius() < parallax(&region, self.geometry);
             let children: Vec<Region> = if split_distance {

@@ -29,8 +29,8 @@
 //! - a cull mode other than back faces with no margin (the certificate assumes exactly the
 //!   pieces facing the viewer are drawn);
 //! - a region whose cycles still hold more than a quarter of its pieces two splits below its
-//!   octant (soups of crossing polygons): per-frame BSP trees of such cycles would cost as
-//!   much as the whole one.
+//!   octant: per-frame BSP trees of such cycles would cost as much as the whole one;
+//! - every view of a soup of crossing polygons ([`PresortOptions::soup_cuts_per_piece`]).
 //!
 //! # Cost
 //! The build tests every pair that can ever need an order (the plane-side test of
@@ -71,6 +71,10 @@ pub struct PresortOptions {
     pub max_pairs: usize,
     /// Longest build ([`PresortError::TimeBudget`] beyond).
     pub max_build_time: Duration,
+    /// A geometry whose pieces cut each other more than this many times per piece (a soup of
+    /// crossing polygons, not a surface) is left uncertified at once: its cycles would hold
+    /// from every side.
+    pub soup_cuts_per_piece: f64,
     /// Most pieces after cutting those that pass through each other (at least the
     /// geometry's pieces; [`PresortError::Pieces`] beyond).
     pub max_pieces: usize,
@@ -86,6 +90,7 @@ impl Default for PresortOptions {
             max_pairs: 50_000_000,
             max_build_time: Duration::from_secs(120),
             max_pieces: 1 << 22,
+            soup_cuts_per_piece: 0.5,
         }
     }
 }
