@@ -98,3 +98,29 @@ fn options_out_of_range_and_budgets_give_typed_errors() {
         PresortError::PairBudget { limit: 1000 }
     );
 }
+
+#[test]
+fn the_build_is_the_same_on_any_number_of_threads() {
+    let geometry =
+        Geometry::with_exact_corners(&read_obj(&asset("keenan-crane/spot/spot_control_mesh.obj")))
+            .unwrap();
+    let build = |threads| {
+        Presorted::try_new(
+            &geometry,
+            &PresortOptions {
+                threads,
+                ..PresortOptions::default()
+            },
+        )
+        .unwrap()
+    };
+    let (mut one, mut three) = (build(1), build(3));
+    assert_eq!(one.regions(), three.regions());
+    assert_eq!(one.orders(), three.orders());
+    let (mut a, mut b) = (DrawList::new(), DrawList::new());
+    for view in random_views(&geometry, 8, 11) {
+        one.sort(&view, &mut a);
+        three.sort(&view, &mut b);
+        assert_eq!(a.items(), b.items());
+    }
+}

@@ -138,7 +138,11 @@ pub(super) fn build(geometry: &Geometry, options: &PresortOptions) -> Result<Bui
         });
     }
     let pieces = &pieces;
-    let threads = std::thread::available_parallelism().map_or(1, |t| t.get().min(8));
+    let threads = match options.threads {
+        0 => std::thread::available_parallelism().map_or(1, std::num::NonZero::get),
+        n => n,
+    }
+    .min(8);
     let (start, targets) = pairs_ever(pieces, tolerance, options.max_pairs, threads)?;
     let bounds = PieceBounds::of(pieces);
     let started = Instant::now();

@@ -75,6 +75,9 @@ pub struct PresortOptions {
     /// crossing polygons, not a surface) is left uncertified at once: its cycles would hold
     /// from every side.
     pub soup_cuts_per_piece: f64,
+    /// Threads the build may use (octants are certified side by side); 0: one per core
+    /// ([`std::thread::available_parallelism`]). The result is the same on any number.
+    pub threads: usize,
     /// Most pieces after cutting those that pass through each other (at least the
     /// geometry's pieces; [`PresortError::Pieces`] beyond).
     pub max_pieces: usize,
@@ -91,6 +94,7 @@ impl Default for PresortOptions {
             max_build_time: Duration::from_secs(120),
             max_pieces: 1 << 22,
             soup_cuts_per_piece: 0.5,
+            threads: 0,
         }
     }
 }
