@@ -193,7 +193,23 @@ struct SceneMesh {
     mesh: PolygonMesh,
     centre: DVec3,
     bounds: Bounds,
-    bsp: Bsp,
+    sorter: MeshSorter,
+}
+
+/// How a mesh's instances are ordered: one sorter per mesh, the viewer mapped into each
+/// instance's frame.
+enum MeshSorter {
+    Bsp(Bsp),
+    Presorted(Box<crate::Presorted>),
+}
+
+impl MeshSorter {
+    fn sort_culled(&mut self, cull: &CullTest, out: &mut DrawList) {
+        match self {
+            MeshSorter::Bsp(bsp) => bsp.sort_culled(cull, out),
+            MeshSorter::Presorted(presorted) => presorted.sort_culled(cull, out),
+        }
+    }
 }
 
 /// The coarse order: axis-aligned planes between instance boxes.
@@ -274,7 +290,7 @@ impl SceneSorter {
                 Ok(SceneMesh {
                     centre: geometry.bounds().centre(),
                     bounds: geometry.bounds(),
-                    bsp: Bsp::new(&geometry),
+                    sorter: MeshSorter::Bsp(Bsp::new(&geometry)),
                     mesh,
                 })
             })
@@ -351,6 +367,30 @@ impl SceneSorter {
             corners: Vec::new(),
             empty: Arc::new(PolygonSet::new()),
         })
+    }
+
+    /// Orders every mesh's instances by a [`Presorted`](crate::Presorted) of the mesh
+    /// (built from [`Geometry::with_exact_corners`]) instead of its BSP: no ordering per
+    /// frame and no extra items, for a build per mesh (quadratic in its pieces). Every
+    /// instance shares its mesh's orders, the viewer mapped into the instance's frame
+    /// (occlusion and facing are preserved by affine maps).
+    ///
+    /// # Errors
+    /// The first mesh whose build stops ([`PresortError`](crate::PresortError)); meshes
+    /// before it keep their new sorters.
+    pub fn presort_meshes(
+        &mut self,
+        options: &crate::PresortOptions,
+    ) -> Result<(), crate::PresortError> {
+        for mesh in &mut self.meshes {
+            // The mesh was accepted by `Geometry::new`; with exact corners it only fans what
+            // `new` snapped, so it is accepted too (else the BSP stays).
+            if let Ok(geometry) = Geometry::with_exact_corners(&mesh.mesh) {
+                let presorted = crate::Presorted::try_new(&geometry, options)?;
+                mesh.sorter = MeshSorter::Presorted(Box::new(presorted));
+            }
+        }
+        Ok(())
     }
 
     /// The scene's frame of reference, a world box: fit views to it (its centre is the
@@ -604,7 +644,7 @@ impl SceneSorter {
             * self.inverses[index]
             * DAffine3::from_translation(centre);
         let to_world = to_local.inverse();
-        mesh.bsp
+        mesh.sorter
             .sort_culled(&cull.transformed(&to_local), &mut self.local);
         let mirrored = instance.transform.matrix3.determinant() < 0.0;
         let offset = self.face_offsets[index];

@@ -92,6 +92,22 @@ fn instanced_scenes_are_exact_and_draw_what_the_flattened_scene_draws() {
 }
 
 #[test]
+fn instances_share_their_meshs_presorted_orders_exactly() {
+    let (meshes, instances) = test_support::models::instanced_scene(24, 7);
+    let mut scene = SceneSorter::new(meshes, instances).unwrap();
+    let flat = Geometry::new(&scene.flattened()).unwrap();
+    scene
+        .presort_meshes(&face_sort::PresortOptions::default())
+        .unwrap();
+    let mut list = DrawList::new();
+    for view in views(&scene) {
+        scene.sort(&view, &mut list);
+        assert_eq!(oracle::count_violations(&view, &list), 0, "{view:?}");
+        assert_same_faces(&list, &flat, &view, &format!("{view:?}"));
+    }
+}
+
+#[test]
 fn moving_instances_stay_exact_and_rebuild_only_their_clusters() {
     let (meshes, instances) = test_support::models::instanced_scene(16, 3);
     let mut scene = SceneSorter::new(meshes, instances.clone()).unwrap();

@@ -47,7 +47,9 @@ use std::time::{Duration, Instant};
 
 use glam::DVec3;
 
-use crate::{Bsp, BspError, DrawList, FaceSorter, Geometry, PolygonSet, SorterStats, View, Viewer};
+use crate::{
+    Bsp, BspError, CullTest, DrawList, FaceSorter, Geometry, PolygonSet, SorterStats, View, Viewer,
+};
 use region::Region;
 
 /// Tag of a leaf step that draws a core (a cycle ordered per frame) instead of a piece.
@@ -297,18 +299,6 @@ impl Presorted {
         self.fallback_frames
     }
 
-    #[doc(hidden)]
-    pub fn debug_region(&mut self, view: &View) -> Option<(Vec<DVec3>, f64, f64, usize)> {
-        let leaf = self.locate(view)?;
-        let r = &self.leaves[leaf as usize];
-        Some((
-            r.region.corners.to_vec(),
-            r.region.near,
-            r.region.far,
-            r.pieces.len(),
-        ))
-    }
-
     /// Whether the last frame fell back to the whole BSP.
     #[must_use]
     pub fn last_frame_fell_back(&self) -> bool {
@@ -316,8 +306,7 @@ impl Presorted {
     }
 
     /// The leaf whose region holds the viewer, when the certificate covers it.
-    fn locate(&mut self, view: &View) -> Option<u32> {
-        let cull = view.cull_test();
+    fn locate(&mut self, cull: &CullTest) -> Option<u32> {
         if cull.facing_rule() != Some((true, false)) || self.nodes.is_empty() {
             return None;
         }
@@ -368,20 +357,26 @@ impl Presorted {
     }
 }
 
-impl FaceSorter for Presorted {
-    fn name(&self) -> &'static str {
-        "presorted"
+impl Presorted {
+    /// The order for a viewer given by its cull test alone (no projection is needed): with
+    /// [`CullTest::transformed`] one sorter serves every placement of its geometry, as a
+    /// scene's instances do. Views the certificate does not cover fall back to the BSP.
+    pub fn sort_culled(&mut self, cull: &CullTest, out: &mut DrawList) {
+        self.sort_in(cull, None, out);
     }
 
-    fn sort(&mut self, view: &View, out: &mut DrawList) {
-        let Some(leaf) = self.locate(view) else {
+    fn sort_in(&mut self, cull: &CullTest, view: Option<&View>, out: &mut DrawList) {
+        let Some(leaf) = self.locate(cull) else {
             self.fallback_frames += 1;
             self.last_fallback = true;
-            self.fallback.sort(view, out);
+            match view {
+                Some(view) => self.fallback.sort(view, out),
+                None => self.fallback.sort_culled(cull, out),
+            }
             return;
         };
         self.last_fallback = false;
-        let cull = view.cull_test();
+        let cull = *cull;
         let (point, w) = cull.viewer_point();
         out.begin(&self.shared);
         let leaf = &self.leaves[leaf as usize];
@@ -397,6 +392,16 @@ impl FaceSorter for Presorted {
                 out.push(piece, face);
             }
         }
+    }
+}
+
+impl FaceSorter for Presorted {
+    fn name(&self) -> &'static str {
+        "presorted"
+    }
+
+    fn sort(&mut self, view: &View, out: &mut DrawList) {
+        self.sort_in(&view.cull_test(), Some(view), out);
     }
 
     fn stats(&self) -> SorterStats {
