@@ -124,3 +124,32 @@ fn the_build_is_the_same_on_any_number_of_threads() {
         assert_eq!(a.items(), b.items());
     }
 }
+
+#[test]
+fn one_order_serves_every_view_where_no_pair_can_cycle() {
+    // A convex body: no piece can ever hide another it faces with. A closed curved model:
+    // regions needed.
+    for (model, single) in [
+        ("combobulate-samples/octahedron.obj", true),
+        ("assimp-obj/box.obj", true),
+        ("keenan-crane/spot/spot_control_mesh.obj", false),
+    ] {
+        let geometry = Geometry::with_exact_corners(&read_obj(&asset(model))).unwrap();
+        let mut sorter = Presorted::new(&geometry);
+        assert_eq!(sorter.one_order_for_every_view(), single, "{model}");
+        if single {
+            assert_eq!(sorter.orders(), 1);
+            let mut list = DrawList::new();
+            // Any view, the eye even near the model: still the one order, exact.
+            for view in random_views(&geometry, 6, 3) {
+                let near =
+                    view.with_perspective(1.1 * 0.5 * geometry.bounds().diagonal() * view.scale());
+                for view in [view, near] {
+                    sorter.sort(&view, &mut list);
+                    assert!(!sorter.last_frame_fell_back(), "{model}");
+                    assert_eq!(oracle::count_violations(&view, &list), 0, "{model}");
+                }
+            }
+        }
+    }
+}

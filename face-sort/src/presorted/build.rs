@@ -138,12 +138,57 @@ pub(super) fn build(geometry: &Geometry, options: &PresortOptions) -> Result<Bui
         });
     }
     let pieces = &pieces;
+    let n = pieces.len();
     let threads = match options.threads {
         0 => std::thread::available_parallelism().map_or(1, std::num::NonZero::get),
         n => n,
     }
     .min(8);
     let (start, targets) = pairs_ever(pieces, tolerance, options.max_pairs, threads)?;
+    // The pairs that may ever need an order are necessary for every viewer, orthographic or
+    // perspective, wherever the eye: when they have no cycle, one order serves every view.
+    let everything = Graph { start, targets };
+    let components = everything.components(&vec![true; n]);
+    let Graph { start, targets } = everything;
+    if components.iter().all(|c| c.len() == 1) {
+        let order: Vec<u32> = components.into_iter().map(|c| c[0]).collect();
+        let region = octants[0];
+        let mut builder = Builder {
+            geometry,
+            pieces,
+            bounds: &[],
+            options,
+            tolerance,
+            nodes: Vec::new(),
+            leaves: Vec::new(),
+            cores: Vec::new(),
+            core_sets: Vec::new(),
+            pair_tests: 0,
+            started: Instant::now(),
+        };
+        builder.leaf(
+            region,
+            &Partial {
+                order,
+                blocks: Vec::new(),
+            },
+        )?;
+        return Ok(Built {
+            nodes: octants
+                .map(|region| Node {
+                    region,
+                    kind: NodeKind::Leaf(0),
+                })
+                .to_vec(),
+            leaves: builder.leaves,
+            shared: Arc::new(pieces.clone()),
+            cores: Vec::new(),
+            near: 0.0,
+            pair_tests: 0,
+            candidate_pairs: targets.len(),
+            cuts,
+        });
+    }
     let bounds = PieceBounds::of(pieces);
     let started = Instant::now();
     // Each octant is certified on its own, the octants shared out among the threads.

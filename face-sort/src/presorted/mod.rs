@@ -17,6 +17,10 @@
 //! condensation of the kept pairs is a DAG, and nothing outside a set can need to go between
 //! two of its pieces (it would belong to the set).
 //!
+//! When the pairs that may ever need an order have no cycle at all, one order serves every
+//! view, orthographic or perspective, wherever the eye
+//! ([`Presorted::one_order_for_every_view`]).
+//!
 //! No view is sampled: a region's certificate holds at every viewer in it. Regions are grown
 //! by [`PRESORT_GROWTH`](crate::tolerance::PRESORT_GROWTH) before they are certified, so that
 //! a viewer rounding places on the wrong side of a boundary is still covered.
@@ -263,6 +267,14 @@ impl Presorted {
     #[must_use]
     pub fn orders(&self) -> usize {
         self.leaves.len()
+    }
+
+    /// Whether one order serves every view covered by back-face culling, orthographic or
+    /// perspective, wherever the eye: the pairs that may ever need an order (the plane-side
+    /// test, necessary for every viewer) have no cycle. Then there is no region to look up.
+    #[must_use]
+    pub fn one_order_for_every_view(&self) -> bool {
+        self.leaves.len() == 1 && self.near == 0.0
     }
 
     /// Regions left uncertified (their cycles hold too many pieces): views in them are
