@@ -153,19 +153,7 @@ pub(super) fn build(geometry: &Geometry, options: &PresortOptions) -> Result<Bui
     if components.iter().all(|c| c.len() == 1) {
         let order: Vec<u32> = components.into_iter().map(|c| c[0]).collect();
         let region = octants[0];
-        let mut builder = Builder {
-            geometry,
-            pieces,
-            bounds: &[],
-            options,
-            tolerance,
-            nodes: Vec::new(),
-            leaves: Vec::new(),
-            cores: Vec::new(),
-            core_sets: Vec::new(),
-            pair_tests: 0,
-            started: Instant::now(),
-        };
+        let mut builder = Builder::new(geometry, pieces, &[], options, Instant::now());
         builder.leaf(
             region,
             &Partial {
@@ -203,19 +191,7 @@ pub(super) fn build(geometry: &Geometry, options: &PresortOptions) -> Result<Bui
                         if k >= octants.len() {
                             return done;
                         }
-                        let mut builder = Builder {
-                            geometry,
-                            pieces,
-                            bounds: &bounds,
-                            options,
-                            tolerance,
-                            nodes: Vec::new(),
-                            leaves: Vec::new(),
-                            cores: Vec::new(),
-                            core_sets: Vec::new(),
-                            pair_tests: 0,
-                            started,
-                        };
+                        let mut builder = Builder::new(geometry, pieces, &bounds, options, started);
                         let result = builder.octant(octants[k], &start, &targets).map(|kind| {
                             builder.nodes[0].kind = kind;
                             builder
@@ -314,7 +290,30 @@ pub(super) fn build(geometry: &Geometry, options: &PresortOptions) -> Result<Bui
     })
 }
 
-impl Builder<'_> {
+impl<'a> Builder<'a> {
+    /// A builder with no regions yet; its budget of time runs from `started`.
+    fn new(
+        geometry: &'a Geometry,
+        pieces: &'a PolygonSet,
+        bounds: &'a [PieceBounds],
+        options: &'a PresortOptions,
+        started: Instant,
+    ) -> Self {
+        Builder {
+            geometry,
+            pieces,
+            bounds,
+            options,
+            tolerance: PLANE_SIDE * geometry.bounds().diagonal(),
+            nodes: Vec::new(),
+            leaves: Vec::new(),
+            cores: Vec::new(),
+            core_sets: Vec::new(),
+            pair_tests: 0,
+            started,
+        }
+    }
+
     /// Certifies one octant (its root is this builder's node 0).
     fn octant(
         &mut self,
