@@ -69,6 +69,9 @@ fn sorting_again_allocates_nothing() {
     // on a closed model large enough for its coverage test.
     let split = Geometry::new(&read_obj(&asset("suzanne/suzanne.obj"))).unwrap();
     let torus = Geometry::new(&face_sort::generate::torus(600)).unwrap();
+    let exact = SorterKind::Presorted
+        .geometry_for(&read_obj(&asset("suzanne/suzanne.obj")))
+        .unwrap();
     let sorters = SorterKind::ALL
         .iter()
         .map(|kind| (kind.build(&geometry), views_of(&geometry)))
@@ -77,7 +80,10 @@ fn sorting_again_allocates_nothing() {
         // Newell's coverage test runs from 64 drawn pieces (boxes has 48).
         .chain([(SorterKind::Newell.build(&torus), views_of(&torus))])
         // Newell breaking cycles (suzanne's interpenetrating parts).
-        .chain([(SorterKind::Newell.build(&split), views_of(&split))]);
+        .chain([(SorterKind::Newell.build(&split), views_of(&split))])
+        // Presorted on its own geometry, where views find certified orders and small cycles
+        // ordered by BSP trees of their own (boxes' views all fall back).
+        .chain([(SorterKind::Presorted.build(&exact), views_of(&exact))]);
     let (mut newell_cycles, mut newell_alone) = (0, 0);
     for (mut sorter, views) in sorters {
         let mut list = DrawList::new();
