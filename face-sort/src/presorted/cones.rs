@@ -10,33 +10,32 @@
 use glam::DVec3;
 
 use crate::tolerance::{PRESORT_CLIP, PRESORT_SEPARATION};
+use crate::{Plane, split_polygon};
 
-/// Keeps the part of the cone `rays` (cyclic order) where `h · w ≥ −PRESORT_CLIP · |w|`
-/// (a half-space through the origin, grown by a sliver so that nothing it holds is lost to
-/// rounding), writing the rays of the result, in the same cyclic order, into `out`. The cone
-/// must lie in an open half-space, so that the segment between two neighbouring rays sweeps
-/// the face between them.
-pub(crate) fn clip(rays: &[DVec3], h: DVec3, out: &mut Vec<DVec3>) {
+/// Keeps the part of the cone `rays` (cyclic order) where `h · ŵ ≥ −PRESORT_CLIP` for unit
+/// `ŵ` (a half-space through the origin, grown by a sliver so that nothing it holds is lost
+/// to rounding), writing unit rays of the result, in the same cyclic order, into `out`
+/// (empty when fewer than three are left). The cone must lie in an open half-space, so that
+/// the segment between two neighbouring unit rays sweeps the face between them: the crate's
+/// polygon split then clips it, the rays as the polygon's corners.
+/// `units` and `behind` are scratch buffers.
+pub(crate) fn clip(
+    rays: &[DVec3],
+    h: DVec3,
+    out: &mut Vec<DVec3>,
+    units: &mut Vec<DVec3>,
+    behind: &mut Vec<DVec3>,
+) {
     out.clear();
-    let n = rays.len();
-    let value = |w: DVec3| h.dot(w) + PRESORT_CLIP * w.length();
-    for i in 0..n {
-        let (a, b) = (rays[i], rays[(i + 1) % n]);
-        let (va, vb) = (value(a), value(b));
-        if va >= 0.0 {
-            out.push(a);
-        }
-        if (va >= 0.0) != (vb >= 0.0) {
-            // The grown half-space is a circular cone, not a plane: cut at the plane
-            // `h · w = 0` moved by the sliver at the crossing instead (a ray between the two).
-            let (ha, hb) = (h.dot(a), h.dot(b));
-            let t = if (ha - hb).abs() > 0.0 {
-                (ha / (ha - hb)).clamp(0.0, 1.0)
-            } else {
-                0.5
-            };
-            out.push(a + (b - a) * t);
-        }
+    behind.clear();
+    let Some(plane) = Plane::try_from_point_normal(DVec3::ZERO, h) else {
+        return;
+    };
+    units.clear();
+    units.extend(rays.iter().map(|r| r.normalize()));
+    split_polygon(units, &plane, PRESORT_CLIP, out, behind);
+    for r in out.iter_mut() {
+        *r = r.normalize();
     }
 }
 
@@ -148,11 +147,12 @@ mod tests {
             DVec3::new(-1.0, -1.0, 1.0),
             DVec3::new(1.0, -1.0, 1.0),
         ];
-        let mut out = Vec::new();
-        clip(&square, DVec3::X, &mut out);
+        let (mut out, mut units, mut behind) = (Vec::new(), Vec::new(), Vec::new());
+        clip(&square, DVec3::X, &mut out, &mut units, &mut behind);
         assert_eq!(out.len(), 4);
         assert!(out.iter().all(|w| w.x >= -1e-9));
-        clip(&square, DVec3::new(0.0, 0.0, -1.0), &mut out);
+        let down = DVec3::new(0.0, 0.0, -1.0);
+        clip(&square, down, &mut out, &mut units, &mut behind);
         assert!(out.is_empty());
     }
 

@@ -129,6 +129,8 @@ pub(crate) struct OcclusionTest<'a> {
     hull_rays: Vec<DVec3>,
     clipped: Vec<DVec3>,
     scratch: Vec<DVec3>,
+    units: Vec<DVec3>,
+    behind: Vec<DVec3>,
     differences: Vec<DVec3>,
     facets: Vec<DVec3>,
 }
@@ -153,6 +155,8 @@ impl<'a> OcclusionTest<'a> {
             hull_rays: Vec::new(),
             clipped: Vec::new(),
             scratch: Vec::new(),
+            units: Vec::new(),
+            behind: Vec::new(),
             differences: Vec::new(),
             facets: Vec::new(),
         }
@@ -239,16 +243,25 @@ impl<'a> OcclusionTest<'a> {
         eye_cone: std::ops::Range<usize>,
     ) -> bool {
         let (ca, cb) = (self.pieces.corners(a), self.pieces.corners(b));
-        cones::clip(&self.eye_rays[eye_cone.clone()], na, &mut self.scratch);
+        cones::clip(
+            &self.eye_rays[eye_cone],
+            na,
+            &mut self.scratch,
+            &mut self.units,
+            &mut self.behind,
+        );
         if self.scratch.len() < 3 {
             return false;
         }
-        cones::clip(&self.scratch, nb, &mut self.clipped);
+        cones::clip(
+            &self.scratch,
+            nb,
+            &mut self.clipped,
+            &mut self.units,
+            &mut self.behind,
+        );
         if self.clipped.len() < 3 {
             return false;
-        }
-        for r in &mut self.clipped {
-            *r = r.normalize();
         }
         // The clipped cone's facets, inward.
         self.facets.clear();
