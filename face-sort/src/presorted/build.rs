@@ -23,6 +23,22 @@ pub(super) struct Built {
     pub cuts: usize,
 }
 
+impl Built {
+    /// No certificate at all: every view falls back (a build that stopped on a budget).
+    pub fn uncovered(geometry: &Geometry) -> Built {
+        Built {
+            nodes: Vec::new(),
+            leaves: Vec::new(),
+            shared: Arc::clone(geometry.pieces()),
+            cores: Vec::new(),
+            near: f64::INFINITY,
+            pair_tests: 0,
+            candidate_pairs: 0,
+            cuts: 0,
+        }
+    }
+}
+
 /// A set of pieces a leaf cannot order once for all its viewers (a cycle among them, left at
 /// the deepest split): ordered per frame by a BSP tree of their own.
 pub(super) struct Core {
@@ -435,6 +451,7 @@ impl<'a> Builder<'a> {
         let n = partial.order.len();
         let mut leaf = Leaf {
             region,
+            edges: region.edge_normals(),
             pieces: Vec::with_capacity(n),
             faces: Vec::with_capacity(n),
             rows: Vec::with_capacity(n),

@@ -156,6 +156,8 @@ enum NodeKind {
 #[derive(Clone, Debug)]
 struct Leaf {
     region: Region,
+    /// `region.edge_normals()`, for the per-frame test whether the viewer is still inside.
+    edges: [DVec3; 3],
     pieces: Vec<u32>,
     faces: Vec<u32>,
     rows: Vec<[f64; 4]>,
@@ -200,25 +202,7 @@ impl Presorted {
     #[must_use]
     pub fn new(geometry: &Geometry) -> Self {
         Self::try_new(geometry, &PresortOptions::default()).unwrap_or_else(|_| {
-            let start = Instant::now();
-            let fallback = Bsp::new(geometry);
-            Presorted {
-                shared: Arc::clone(geometry.pieces()),
-                nodes: Vec::new(),
-                leaves: Vec::new(),
-                cores: Vec::new(),
-                core_sorters: Vec::new(),
-                core_list: DrawList::new(),
-                near: f64::INFINITY,
-                fallback,
-                last_leaf: None,
-                last_fallback: false,
-                fallback_frames: 0,
-                build_ms: start.elapsed().as_secs_f64() * 1e3,
-                pair_tests: 0,
-                candidate_pairs: 0,
-                cuts: 0,
-            }
+            Self::assemble(geometry, build::Built::uncovered(geometry), Instant::now())
         })
     }
 
@@ -232,13 +216,19 @@ impl Presorted {
         }
         let start = Instant::now();
         let built = build::build(geometry, options)?;
+        Ok(Self::assemble(geometry, built, start))
+    }
+
+    /// The sorter over what the build made (and the fallback BSP, built here), its build
+    /// time counted from `start`.
+    fn assemble(geometry: &Geometry, built: build::Built, start: Instant) -> Self {
         let fallback = Bsp::new(geometry);
         let core_sorters = built
             .cores
             .iter()
             .map(|c| Bsp::from_tree(Arc::clone(&c.tree)))
             .collect();
-        Ok(Presorted {
+        Presorted {
             shared: built.shared,
             nodes: built.nodes,
             leaves: built.leaves,
@@ -254,7 +244,7 @@ impl Presorted {
             pair_tests: built.pair_tests,
             candidate_pairs: built.candidate_pairs,
             cuts: built.cuts,
-        })
+        }
     }
 
     /// Regions in the tree (inner ones included).
@@ -360,12 +350,8 @@ impl Presorted {
 
     /// Whether the last leaf's region holds the viewer (a quick test before the descent).
     fn leaf_holds(&self, leaf: u32, u: DVec3, t: f64) -> bool {
-        let region = &self.leaves[leaf as usize].region;
-        let [a, b, c] = region.corners;
-        region.holds_distance(t)
-            && a.cross(b).dot(u) >= 0.0
-            && b.cross(c).dot(u) >= 0.0
-            && c.cross(a).dot(u) >= 0.0
+        let leaf = &self.leaves[leaf as usize];
+        leaf.region.holds_distance(t) && leaf.edges.iter().all(|e| e.dot(u) >= 0.0)
     }
 }
 

@@ -69,11 +69,7 @@ impl Region {
     /// [`child_holding`](Self::child_holding) numbers them: corner 0's, 1's, 2's, the middle.
     pub fn split_directions(&self) -> [Region; 4] {
         let [a, b, c] = self.corners;
-        let (ab, bc, ca) = (
-            (a + b).normalize(),
-            (b + c).normalize(),
-            (c + a).normalize(),
-        );
+        let [ab, bc, ca] = self.midpoints();
         [[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]
             .map(|corners| Region { corners, ..*self })
     }
@@ -81,12 +77,7 @@ impl Region {
     /// Which of [`split_directions`](Self::split_directions) holds `u` (one of them when `u`
     /// lies on a shared edge).
     pub fn child_holding(&self, u: DVec3) -> usize {
-        let [a, b, c] = self.corners;
-        let (ab, bc, ca) = (
-            (a + b).normalize(),
-            (b + c).normalize(),
-            (c + a).normalize(),
-        );
+        let [ab, bc, ca] = self.midpoints();
         if ca.cross(ab).dot(u) < 0.0 {
             0
         } else if ab.cross(bc).dot(u) < 0.0 {
@@ -96,6 +87,23 @@ impl Region {
         } else {
             3
         }
+    }
+
+    /// The unit midpoints of the edges `ab`, `bc`, `ca`.
+    fn midpoints(&self) -> [DVec3; 3] {
+        let [a, b, c] = self.corners;
+        [
+            (a + b).normalize(),
+            (b + c).normalize(),
+            (c + a).normalize(),
+        ]
+    }
+
+    /// Inward normals of the three edges' great circles: `u` is in the triangle when it is on
+    /// or in front of each.
+    pub fn edge_normals(&self) -> [DVec3; 3] {
+        let [a, b, c] = self.corners;
+        [a.cross(b), b.cross(c), c.cross(a)]
     }
 
     /// The distance where [`split_distance`](Self::split_distance) cuts.
