@@ -1,0 +1,98 @@
+//! What `Presorted` makes of every OBJ model of the repository: pieces, cuts, pairs that may
+//! ever need an order, whether one
+//! order serves every view, certified orders, small cycles, uncertified regions, cached bytes
+//! and build time on every core; then, for spot and blub, the planner's `CostModel` figures
+//! (build per pair of pieces on one thread, frame per piece, orthographic).
+//!
+//! `cargo run --release -p face-sort --example presort_models`
+
+#[path = "../tests/common/mod.rs"]
+mod common;
+
+use std::time::Instant;
+
+use face_sort::{DrawList, FaceSorter, Geometry, PresortOptions, Presorted, SorterKind, View};
+
+const MODELS: [&str; 20] = [
+    "assimp-obj/box.obj",
+    "assimp-obj/concave_polygon.obj",
+    "combobulate-samples/book.obj",
+    "combobulate-samples/octahedron.obj",
+    "combobulate-samples/tetrahedron.obj",
+    "compas/boxes.obj",
+    "compas/faces.obj",
+    "compas/hypar.obj",
+    "compas/quadmesh.obj",
+    "compas/tubemesh.obj",
+    "cornell-box/cornell_box.obj",
+    "fandisk-quads/fandisk_quads.converted.obj",
+    "keenan-crane/blub/blub_control_mesh.obj",
+    "keenan-crane/blub/blub_quadrangulated.obj",
+    "keenan-crane/spot/spot_control_mesh.obj",
+    "keenan-crane/spot/spot_control_mesh_texture.obj",
+    "keenan-crane/spot/spot_quadrangulated.obj",
+    "keenan-crane/spot/spot_triangulated.obj",
+    "opensubdiv-torus/catmark_torus_creases0.obj",
+    "suzanne/suzanne.obj",
+];
+
+fn geometry(model: &str) -> Geometry {
+    let mesh = common::read_obj(&common::asset(model));
+    SorterKind::Presorted.geometry_for(&mesh).unwrap()
+}
+
+fn main() {
+    println!(
+        "model | pieces | cuts | pairs ever | one order | orders | small cycles | uncertified | cached MB | build ms"
+    );
+    for model in MODELS {
+        let geometry = geometry(model);
+        let start = Instant::now();
+        let sorter = Presorted::new(&geometry);
+        let build = start.elapsed().as_secs_f64() * 1e3;
+        println!(
+            "{model} | {} | {} | {} | {} | {} | {} | {} | {:.1} | {build:.0}",
+            geometry.pieces().len(),
+            sorter.cuts(),
+            sorter.pairs().0,
+            sorter.one_order_for_every_view(),
+            sorter.orders(),
+            sorter.cores().0,
+            sorter.uncertified_regions(),
+            sorter.stats().cached_bytes as f64 / 1e6,
+        );
+    }
+    println!("\nCostModel: build ns per pair of pieces on one thread, frame ns per piece");
+    for model in [
+        "keenan-crane/spot/spot_quadrangulated.obj",
+        "keenan-crane/blub/blub_quadrangulated.obj",
+    ] {
+        let geometry = geometry(model);
+        let n = geometry.pieces().len() as f64;
+        let start = Instant::now();
+        let one_thread = PresortOptions {
+            threads: 1,
+            ..PresortOptions::default()
+        };
+        let mut sorter = Presorted::try_new(&geometry, &one_thread).unwrap();
+        let build = start.elapsed().as_secs_f64() * 1e9;
+        let mut list = DrawList::new();
+        let mut times = Vec::new();
+        for k in 0..2000 {
+            let view = View::fit(&geometry.bounds(), 512, 512).with_yaw_pitch_roll(
+                15.0 + 0.02 * f64::from(k),
+                25.0,
+                0.0,
+            );
+            let start = Instant::now();
+            sorter.sort(&view, &mut list);
+            times.push(start.elapsed().as_secs_f64() * 1e9);
+        }
+        times.sort_by(f64::total_cmp);
+        println!(
+            "{model}: build {:.0} ns per pair, frame {:.2} ns per piece",
+            build / (n * n),
+            times[times.len() / 2] / n
+        );
+    }
+}
