@@ -1,7 +1,9 @@
 //! What `Presorted` makes of every OBJ model of the repository: pieces, cuts, pairs that may
 //! ever need an order, whether one
 //! order serves every view, certified orders, small cycles, uncertified regions, cached bytes
-//! and build time on every core; then, for spot and blub, the planner's `CostModel` figures
+//! and build time on every core; the certified orders a page turned by the pointer would carry
+//! (`Presorted::certified_orders`, orthographic and an eye at 2 bounding radii: regions,
+//! orders, cycles and the most planes of a cycle's tree, or why there are none); then, for spot and blub, the planner's `CostModel` figures
 //! (build per pair of pieces on one thread, frame per piece, orthographic).
 //!
 //! `cargo run --release -p face-sort --example presort_models`
@@ -41,9 +43,23 @@ fn geometry(model: &str) -> Geometry {
     SorterKind::Presorted.geometry_for(&mesh).unwrap()
 }
 
+/// Regions, orders, cycles and the most planes of a cycle's tree of the certified orders.
+fn page(sorter: &Presorted, eye_distance: Option<f64>) -> String {
+    match sorter.certified_orders(eye_distance) {
+        Ok(c) => format!(
+            "{} regions, {} orders, {} cycles, {} planes at most",
+            c.regions.len(),
+            c.orders.len(),
+            c.cores.len(),
+            c.cores.iter().map(|k| k.planes.len()).max().unwrap_or(0)
+        ),
+        Err(e) => e.to_string(),
+    }
+}
+
 fn main() {
     println!(
-        "model | pieces | cuts | pairs ever | one order | orders | small cycles | uncertified | cached MB | build ms"
+        "model | pieces | cuts | pairs ever | one order | orders | small cycles | uncertified | cached MB | build ms | page ortho | page eye at 2 radii"
     );
     for model in MODELS {
         let geometry = geometry(model);
@@ -51,7 +67,7 @@ fn main() {
         let sorter = Presorted::new(&geometry);
         let build = start.elapsed().as_secs_f64() * 1e3;
         println!(
-            "{model} | {} | {} | {} | {} | {} | {} | {} | {:.1} | {build:.0}",
+            "{model} | {} | {} | {} | {} | {} | {} | {} | {:.1} | {build:.0} | {} | {}",
             geometry.pieces().len(),
             sorter.cuts(),
             sorter.pairs().0,
@@ -60,6 +76,8 @@ fn main() {
             sorter.cores().0,
             sorter.uncertified_regions(),
             sorter.stats().cached_bytes as f64 / 1e6,
+            page(&sorter, None),
+            page(&sorter, Some(geometry.bounds().diagonal())),
         );
     }
     println!("\nCostModel: build ns per pair of pieces on one thread, frame ns per piece");

@@ -368,6 +368,60 @@ impl BspTree {
             + self.leaf_runs.capacity() * size_of::<LeafRun>()
             + self.spheres.capacity() * size_of::<[f64; 4]>()
     }
+
+    /// The inner nodes' plane rows `[nx, ny, nz, offset]`, in the numbering that
+    /// [`order_for_sides`](Self::order_for_sides) reads (convex leaves need no side).
+    pub(crate) fn inner_rows(&self) -> Vec<[f64; 4]> {
+        self.inners.iter().map(|inner| inner.row).collect()
+    }
+
+    /// Every fragment (indices into [`fragments`](Self::fragments)), back faces included, in
+    /// the order [`Bsp`] gives a viewer on the front side of inner node `k`'s plane exactly
+    /// when `in_front(k)`: a painter's order for every such viewer once back faces are culled
+    /// (a convex leaf's front faces never overlap, so its fragments keep their stored order).
+    pub(crate) fn order_for_sides(&self, in_front: &dyn Fn(usize) -> bool, out: &mut Vec<u32>) {
+        out.clear();
+        if self.nodes.is_empty() {
+            return;
+        }
+        let mut inner_of = vec![NONE; self.nodes.len()];
+        for (k, inner) in self.inners.iter().enumerate() {
+            inner_of[inner.node as usize] = k as u32;
+        }
+        // Depth-first: a node to expand, or a run of fragments to emit.
+        enum Task {
+            Node(u32),
+            Run(u32, u32),
+        }
+        let mut stack = vec![Task::Node(0)];
+        while let Some(task) = stack.pop() {
+            match task {
+                Task::Run(first, count) => out.extend(first..first + count),
+                Task::Node(k) => {
+                    let node = &self.nodes[k as usize];
+                    if node.leaf {
+                        out.extend(node.first..node.first + node.same);
+                        continue;
+                    }
+                    let front = in_front(inner_of[k as usize] as usize);
+                    let own = Task::Run(node.first, node.same + node.opposite);
+                    let (first, second) = if front {
+                        (node.back_child, node.front_child)
+                    } else {
+                        (node.front_child, node.back_child)
+                    };
+                    // Pushed in reverse: `first` subtree, own fragments, `second` subtree.
+                    if second != NONE {
+                        stack.push(Task::Node(second));
+                    }
+                    stack.push(own);
+                    if first != NONE {
+                        stack.push(Task::Node(first));
+                    }
+                }
+            }
+        }
+    }
 }
 
 /// The per-view pass's view of the nodes: inner nodes in pre-order with their planes, and the

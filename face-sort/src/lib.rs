@@ -79,7 +79,10 @@ pub use plan::{Auto, ConvexParts, CostModel, CullOnly, Plan, PlanHint, Strategy}
 pub use plane::{Plane, Side, newell_normal};
 pub use polygon::{Box2, clip_convex_2d, signed_area_2d, split_polygon};
 pub use polygon_set::PolygonSet;
-pub use presorted::{PresortError, PresortOptions, Presorted};
+pub use presorted::{
+    CertifiedOrders, CertifiedOrdersError, CertifiedRegion, CoreOrders, MAX_CORE_PLANES, OrderStep,
+    PresortError, PresortOptions, Presorted,
+};
 pub use scene::{Instance, Layer, MAX_LODS, SceneError, SceneSorter, SceneStats};
 pub use small::SmallPieceFilter;
 pub use sorter::{FaceSorter, SorterStats};

@@ -8,7 +8,7 @@
 
 use std::sync::{Arc, Mutex};
 
-use face_sort::{Geometry, View};
+use face_sort::{Geometry, PolygonSet, View};
 use glam::{DMat3, DVec2, DVec3};
 
 use aspect_bake::{AngleRange, Bake};
@@ -39,7 +39,7 @@ pub struct BakedContainer {
 /// [`brush`](Self::brush) results; the containers are reused.
 #[derive(Clone, Debug)]
 pub struct BakedSpriteTree {
-    maps: Vec<Option<(SpriteTransform, Option<Vec<DVec2>>)>>,
+    maps: Vec<PolygonMap>,
     containers: Vec<BakedContainer>,
     brushes: Vec<Brush>,
 }
@@ -50,28 +50,8 @@ impl BakedSpriteTree {
     /// polygon unless it is a whole quad piece. Polygons without a piece map are left out.
     #[must_use]
     pub fn realise(bake: &Bake, geometry: &Geometry, view: &View) -> Self {
-        let maps = PieceMaps::new(geometry, view);
-        let space = *maps.space();
-        let pieces = geometry.pieces();
         let set = &bake.polygons();
-        let polygon_maps = (0..set.len())
-            .map(|i| {
-                let (face, plane, corners) = (set.face(i), set.plane(i), set.corners(i));
-                let piece = (0..pieces.len())
-                    .filter(|&p| pieces.face(p) == face)
-                    .max_by(|&a, &b| {
-                        let s = |p: usize| pieces.plane(p).normal().dot(plane.normal());
-                        s(a).total_cmp(&s(b))
-                    })?;
-                let map = maps.get(piece)?;
-                let clip = if map.clip.is_none() && pieces.corners(piece) == corners {
-                    None
-                } else {
-                    Some(clip_of(&space, &map.transform, corners))
-                };
-                Some((map.transform, clip))
-            })
-            .collect::<Vec<_>>();
+        let polygon_maps = polygon_maps(set, geometry, view);
         let containers = bake
             .cells()
             .iter()
@@ -149,6 +129,39 @@ impl BakedSpriteTree {
         self.containers.iter().map(|c| c.sprites.len()).sum()
     }
 }
+
+/// Per polygon of `set`, its source piece's transform in the sprite space of `view` (the
+/// piece of the same face whose plane is nearest the polygon's) and a clip polygon unless
+/// it is that whole piece; `None` when no piece has a map.
+pub(crate) fn polygon_maps(set: &PolygonSet, geometry: &Geometry, view: &View) -> Vec<PolygonMap> {
+    let maps = PieceMaps::new(geometry, view);
+    let space = *maps.space();
+    let pieces = geometry.pieces();
+    let mut pieces_of: std::collections::HashMap<u32, Vec<usize>> =
+        std::collections::HashMap::new();
+    for p in 0..pieces.len() {
+        pieces_of.entry(pieces.face(p)).or_default().push(p);
+    }
+    (0..set.len())
+        .map(|i| {
+            let (face, plane, corners) = (set.face(i), set.plane(i), set.corners(i));
+            let piece = pieces_of.get(&face)?.iter().copied().max_by(|&a, &b| {
+                let s = |p: usize| pieces.plane(p).normal().dot(plane.normal());
+                s(a).total_cmp(&s(b))
+            })?;
+            let map = maps.get(piece)?;
+            let clip = if map.clip.is_none() && pieces.corners(piece) == corners {
+                None
+            } else {
+                Some(clip_of(&space, &map.transform, corners))
+            };
+            Some((map.transform, clip))
+        })
+        .collect()
+}
+
+/// A polygon's sprite transform and clip ([`polygon_maps`]).
+pub(crate) type PolygonMap = Option<(SpriteTransform, Option<Vec<DVec2>>)>;
 
 fn clip_of(space: &SpriteSpace, t: &SpriteTransform, corners: &[DVec3]) -> Vec<DVec2> {
     corners

@@ -89,6 +89,7 @@ mod numbers;
 mod occlusion;
 mod order;
 mod overlay;
+mod page_pieces;
 mod painter;
 mod pdf;
 mod pick;
@@ -101,6 +102,7 @@ mod spin_culled;
 mod svg;
 pub mod tolerance;
 mod transform;
+mod turn_page;
 
 pub use aspect_bake;
 pub use aspect_bake::{AngleRange, Bake, BakeCell};
@@ -129,6 +131,7 @@ pub use spin::{SpinOptions, write_spin_html};
 pub use spin_culled::write_culled_spin_html;
 pub use svg::{SvgOptions, project_sprite, write_svg};
 pub use transform::{MapKind, PieceMap, PieceMaps, SpriteSpace, SpriteTransform, piece_map};
+pub use turn_page::{TurnPage, TurnPageOptions, write_turn_html};
 
 pub use face_sort;
 pub use obj_quads;

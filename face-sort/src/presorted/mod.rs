@@ -42,6 +42,7 @@
 //! [`PresortOptions::max_pairs`] and [`PresortOptions::max_build_time`].
 
 mod build;
+mod certified;
 mod cones;
 mod occlusion;
 mod region;
@@ -53,6 +54,9 @@ use glam::DVec3;
 
 use crate::{
     Bsp, BspError, CullTest, DrawList, FaceSorter, Geometry, PolygonSet, SorterStats, View, Viewer,
+};
+pub use certified::{
+    CertifiedOrders, CertifiedOrdersError, CertifiedRegion, CoreOrders, MAX_CORE_PLANES, OrderStep,
 };
 use region::Region;
 

@@ -14,4 +14,5 @@ mod plot;
 mod spin;
 mod spin_culled;
 mod textures;
+mod turn_page;
 mod writers;

@@ -1,0 +1,292 @@
+//! The page that turns with the pointer: a [`Presorted`]'s certified orders as data, and a
+//! few lines of script that map the pointer to yaw and pitch, find the region of directions
+//! holding the viewer, and show that region's order. The script orders nothing: every order
+//! on the page was certified when the sorter was built.
+
+use std::fmt::Write as _;
+
+use base64::Engine as _;
+use face_sort::{
+    CertifiedOrders, CertifiedOrdersError, Geometry, OrderStep, Presorted, Projection, View,
+};
+use glam::{DMat3, DMat4, DVec3};
+
+use crate::id_colour;
+use crate::page_pieces::{Placement, num, piece_classes};
+use crate::svg::hex;
+
+/// Options of [`write_turn_html`].
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct TurnPageOptions {
+    /// Fill each face with its ID colour (CONVENTIONS.md) instead of `colour`. Default: false.
+    pub ids: bool,
+    /// Page background. Default: black (ID 0).
+    pub background: [u8; 4],
+    /// Each element is laid out at this many times its extent at rest (as
+    /// [`SpinOptions::oversize`](crate::SpinOptions)). Default: 4.
+    pub oversize: f64,
+    /// Orthographic views get this perspective distance (pixels). Default: 1e8.
+    pub orthographic_distance: f64,
+    /// Yaw and pitch in degrees shown until the pointer moves (a fragment `#yaw,pitch` in the
+    /// page's address overrides it). Default: (0, 0).
+    pub start: (f64, f64),
+}
+
+impl TurnPageOptions {
+    /// The defaults.
+    pub const DEFAULT: TurnPageOptions = TurnPageOptions {
+        ids: false,
+        background: [0, 0, 0, 255],
+        oversize: 4.0,
+        orthographic_distance: 1e8,
+        start: (0.0, 0.0),
+    };
+
+    /// ID colours mode.
+    #[must_use]
+    pub fn with_ids(mut self, ids: bool) -> Self {
+        self.ids = ids;
+        self
+    }
+
+    /// The view shown until the pointer moves, yaw and pitch in degrees.
+    #[must_use]
+    pub fn with_start(mut self, yaw: f64, pitch: f64) -> Self {
+        self.start = (yaw, pitch);
+        self
+    }
+}
+
+impl Default for TurnPageOptions {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
+/// What a turning page holds (from [`write_turn_html`]).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct TurnPage {
+    /// The page.
+    pub html: String,
+    /// Regions of directions the script looks up.
+    pub regions: usize,
+    /// Distinct orders.
+    pub orders: usize,
+    /// Cycles whose order the script picks by the viewer's side of their planes.
+    pub cycles: usize,
+    /// Elements on the page.
+    pub elements: usize,
+}
+
+/// A [`Presorted`] built from `geometry` as a self-contained page that turns the model with
+/// the pointer: the pointer's position across the page maps to yaw (−180° to 180°) and pitch
+/// (−90° to 90°), the rotation `Ry(yaw)·Rx(pitch)` of [`View::with_yaw_pitch_roll`].
+///
+/// - Every piece of the certified orders is an element under a fixed `matrix3d` (the model
+///   at rest in `view`'s size, scale and projection; `view`'s rotation is ignored). One
+///   custom property on the container carries the rotation to every element's individual
+///   `rotate`, which composes after its `transform`; the container's `perspective`
+///   projects (a huge one for orthographic views).
+/// - `backface-visibility: hidden` culls, as the certificate assumes.
+/// - The script finds the region whose spherical triangle holds the direction toward the
+///   viewer (three dot products a region) and writes that order's precomputed `z-index` to
+///   every element, hiding those the order does not use. A cycle left to a BSP tree in the
+///   sorter is a table of orders here, one per side of its few planes, looked up by the
+///   viewer's side of each.
+///
+/// `colour(face)` fills a face (ignored in ID mode).
+///
+/// # Errors
+/// [`CertifiedOrdersError`]: the view's eye nearer than the certificate reaches, regions
+/// without a certified order, or a cycle with too many planes.
+pub fn write_turn_html(
+    sorter: &Presorted,
+    geometry: &Geometry,
+    view: &View,
+    colour: &dyn Fn(u32) -> [u8; 4],
+    options: &TurnPageOptions,
+) -> Result<TurnPage, CertifiedOrdersError> {
+    let rest = view.with_rotation(DMat3::IDENTITY);
+    let (eye, distance) = match rest.projection() {
+        Projection::Orthographic => (None, options.orthographic_distance),
+        Projection::Perspective { distance } => (Some(distance / rest.scale()), distance),
+    };
+    let certified = sorter.certified_orders(eye)?;
+    let set = &*certified.pieces;
+    let (w, h) = (rest.width(), rest.height());
+    let origin = DVec3::new(f64::from(w) * 0.5, f64::from(h) * 0.5, 0.0);
+    let flip = DMat3::from_diagonal(DVec3::new(1.0, -1.0, 1.0));
+    let mut page = String::new();
+    let _ = write!(
+        page,
+        "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>face-sort presorted</title><style>\n\
+         html,body{{margin:0;padding:0;overflow:hidden;width:{w}px;height:{h}px;background:{bg}}}\n\
+         #s{{position:absolute;left:{cx}px;top:{cy}px;width:0;height:0;perspective:{d}px;perspective-origin:0 0;--r:0 0 1 0deg}}\n\
+         #s>i,#s>b{{position:absolute;left:0;top:0;transform-origin:0 0;backface-visibility:hidden;rotate:var(--r);visibility:hidden}}\n\
+         b{{width:0;height:0;border-style:solid;border-color:transparent}}\n",
+        bg = hex(options.background),
+        cx = num(origin.x),
+        cy = num(origin.y),
+        d = num(distance),
+    );
+    let maps = crate::bake::polygon_maps(set, geometry, &rest);
+    let elements_of = piece_classes(
+        &mut page,
+        set,
+        &maps,
+        geometry,
+        &Placement {
+            place: DMat4::from_translation(-origin),
+            place_point: flip,
+            scale: rest.scale(),
+        },
+        &|face| {
+            hex(if options.ids {
+                id_colour(face)
+            } else {
+                colour(face)
+            })
+        },
+        options.oversize,
+    );
+    page.push_str("</style></head><body><div id=\"s\">\n");
+    let mut elements = 0;
+    for (p, of) in elements_of.iter().enumerate() {
+        for (name, tag) in of {
+            let _ = write!(page, "<{tag} class=\"{name}\"></{tag}>");
+            elements += 1;
+        }
+        if p % 16 == 15 {
+            page.push('\n');
+        }
+    }
+    page.push_str("\n</div><script>\n");
+    write_data(&mut page, &certified, &elements_of, eye, options.start);
+    page.push_str(SCRIPT);
+    page.push_str("</script></body></html>\n");
+    Ok(TurnPage {
+        html: page,
+        regions: certified.regions.len(),
+        orders: certified.orders.len(),
+        cycles: certified.cores.len(),
+        elements,
+    })
+}
+
+/// Little-endian bytes of `values` in base64 (the script reads them as typed arrays).
+fn base64_u32(values: impl IntoIterator<Item = u32>) -> String {
+    let bytes: Vec<u8> = values.into_iter().flat_map(u32::to_le_bytes).collect();
+    base64::engine::general_purpose::STANDARD.encode(bytes)
+}
+
+/// Little-endian f64 bytes in base64.
+fn base64_f64(values: impl IntoIterator<Item = f64>) -> String {
+    let bytes: Vec<u8> = values.into_iter().flat_map(f64::to_le_bytes).collect();
+    base64::engine::general_purpose::STANDARD.encode(bytes)
+}
+
+/// The tables the script reads:
+/// - `N`: elements per polygon;
+/// - `E`: the eye's distance from the centre in model units (0: orthographic);
+/// - `R`: per region, its three inward edge normals, and `RO` its order;
+/// - `O[o]`: per polygon, its position (from 1) in order `o`, 0 when the order does not use it;
+///   `OC[o]`: `[core, slot]` pairs, the core's pieces taking positions `slot + 1…`;
+/// - `C[c]`: a cycle's planes (`[nx, ny, nz, offset]` each) and, per key, its polygons.
+fn write_data(
+    page: &mut String,
+    certified: &CertifiedOrders,
+    elements_of: &[Vec<(String, char)>],
+    eye: Option<f64>,
+    start: (f64, f64),
+) {
+    let n = elements_of.len();
+    let _ = writeln!(
+        page,
+        "const N={:?};\nconst E={};\nconst S=[{},{}];",
+        elements_of.iter().map(Vec::len).collect::<Vec<_>>(),
+        eye.map_or("0".to_owned(), |e| format!("{e:e}")),
+        num(start.0),
+        num(start.1),
+    );
+    let _ = writeln!(
+        page,
+        "const R=\"{}\";\nconst RO={:?};",
+        base64_f64(
+            certified
+                .regions
+                .iter()
+                .flat_map(|r| r.edge_normals.iter().flat_map(|e| e.to_array()))
+        ),
+        certified
+            .regions
+            .iter()
+            .map(|r| r.order)
+            .collect::<Vec<_>>(),
+    );
+    page.push_str("const O=[");
+    let mut slots = Vec::new();
+    for steps in &certified.orders {
+        let mut position = vec![0u32; n];
+        let mut next = 1u32;
+        let mut cores = Vec::new();
+        for step in steps {
+            match *step {
+                OrderStep::Piece(p) => {
+                    position[p as usize] = next;
+                    next += 1;
+                }
+                OrderStep::Core(c) => {
+                    cores.push([c, next - 1]);
+                    next += certified.cores[c as usize]
+                        .orders
+                        .first()
+                        .map_or(0, |o| o.len() as u32);
+                }
+            }
+        }
+        let _ = write!(page, "\"{}\",", base64_u32(position));
+        slots.push(cores);
+    }
+    let _ = writeln!(page, "];\nconst OC={slots:?};");
+    page.push_str("const C=[");
+    for core in &certified.cores {
+        let _ = write!(
+            page,
+            "[\"{}\",{:?}],",
+            base64_f64(core.planes.iter().flatten().copied()),
+            core.orders
+        );
+    }
+    page.push_str("];\n");
+}
+
+/// The page's script: tables in, `z-index` and visibility out.
+const SCRIPT: &str = r#"const f64=s=>new Float64Array(Uint8Array.from(atob(s),c=>c.charCodeAt(0)).buffer);
+const u32=s=>new Uint32Array(Uint8Array.from(atob(s),c=>c.charCodeAt(0)).buffer);
+const s=document.getElementById('s'),el=s.children,first=[0];
+for(const k of N)first.push(first[first.length-1]+k);
+const regions=f64(R),orders=O.map(u32),cores=C.map(([p,o])=>[f64(p),o]);
+let shown=-1,keys=[];
+function put(p,z){for(let e=first[p];e<first[p+1];e++){el[e].style.zIndex=z;el[e].style.visibility=z?'visible':'hidden';}}
+function turn(yaw,pitch){
+ const a=yaw*Math.PI/360,b=pitch*Math.PI/360,cy=Math.cos(a),sy=Math.sin(a),cp=Math.cos(b),sp=Math.sin(b);
+ const x=cy*sp,y=sy*cp,z=-sy*sp,w=cy*cp,l=Math.hypot(x,y,z);
+ s.style.setProperty('--r',l>1e-12?`${-x/l} ${y/l} ${-z/l} ${2*Math.atan2(l,w)}rad`:'0 0 1 0deg');
+ // Toward the viewer in the model: the third row of the rotation.
+ const u=[2*(x*z-w*y),2*(y*z+w*x),1-2*(x*x+y*y)];
+ // The region holding u: the one it is deepest inside (on a shared edge, either is exact).
+ let o=0,best=-Infinity;
+ for(let r=0;r<RO.length;r++){const k=9*r;let d=Infinity;
+  for(let j=0;j<9;j+=3)d=Math.min(d,regions[k+j]*u[0]+regions[k+j+1]*u[1]+regions[k+j+2]*u[2]);
+  if(d>best){best=d;o=RO[r];}}
+ if(o!==shown){const z=orders[o];for(let p=0;p<N.length;p++)put(p,z[p]);shown=o;keys=OC[o].map(()=>-1);}
+ const t=E>0?E:1,m=E>0?1:0;
+ OC[o].forEach(([c,slot],j)=>{const [planes,table]=cores[c];let key=0;
+  for(let i=0;4*i<planes.length;i++)if(planes[4*i]*u[0]*t+planes[4*i+1]*u[1]*t+planes[4*i+2]*u[2]*t-m*planes[4*i+3]>=0)key|=1<<i;
+  if(key!==keys[j]){table[key].forEach((p,i)=>put(p,slot+1+i));keys[j]=key;}});
+}
+const h=location.hash.slice(1).split(',').map(Number);
+turn(...(h.length===2&&h.every(Number.isFinite)?h:S));
+addEventListener('pointermove',e=>turn(360*e.clientX/innerWidth-180,180*e.clientY/innerHeight-90));
+"#;
