@@ -3,9 +3,10 @@
 mod common;
 
 use common::{asset, read_obj};
-use face_sort::glam::DQuat;
+use face_sort::glam::{DQuat, DVec3};
 use face_sort::{
-    CullMode, DrawList, FaceSorter, Geometry, PresortError, PresortOptions, Presorted, View, oracle,
+    CertifiedOrdersError, CullMode, DrawList, FaceSorter, Geometry, PresortError, PresortOptions,
+    Presorted, View, oracle,
 };
 
 /// Views at seeded random rotations (any yaw, pitch and roll), orthographic and perspective
@@ -152,4 +153,74 @@ fn one_order_serves_every_view_where_no_pair_can_cycle() {
             }
         }
     }
+}
+
+/// The certificate as data (what a page that turns with the pointer carries), played as its
+/// script plays it, leaves no violation: at random views of the kind it was made for, and a
+/// millionth of a radian either side of region edges. Cycles are flattened for every side of
+/// their planes; where too many planes vary over a region, the region is quartered.
+#[test]
+fn certified_orders_played_as_a_page_leave_no_violation() {
+    for model in [
+        "keenan-crane/spot/spot_control_mesh.obj",
+        "suzanne/suzanne.obj",
+        "combobulate-samples/book.obj",
+    ] {
+        let geometry = Geometry::with_exact_corners(&read_obj(&asset(model))).unwrap();
+        let sorter = Presorted::new(&geometry);
+        let radius = 0.5 * geometry.bounds().diagonal();
+        let base = View::fit(&geometry.bounds(), 384, 384);
+        let mut rng = test_support::Rng::new(11);
+        for eye in [None, Some(2.0 * radius), Some(3.5 * radius)] {
+            let orders = sorter.certified_orders(eye).unwrap();
+            assert!(!orders.regions.is_empty(), "{model}");
+            let view_of = |u: DVec3| {
+                // A rotation taking u to +z (the direction toward the viewer), any roll.
+                let view = base.with_quaternion(DQuat::from_rotation_arc(u.normalize(), DVec3::Z));
+                match eye {
+                    None => view,
+                    Some(t) => view.with_perspective(t * view.scale()),
+                }
+            };
+            let mut directions: Vec<DVec3> = (0..16).map(|_| rng.direction()).collect();
+            for r in orders.regions.iter().step_by(5) {
+                let [a, b, _] = r.corners;
+                let (m, n) = ((a + b).normalize(), r.edge_normals[0].normalize());
+                directions.extend([m + n * 1e-6, m - n * 1e-6]);
+            }
+            let mut list = DrawList::new();
+            for u in directions {
+                let view = view_of(u);
+                orders.play(&view, &mut list);
+                assert!(!list.is_empty(), "{model}: nothing drawn at {u}");
+                let found = oracle::find_violations(&view, &list, 3);
+                assert!(found.is_empty(), "{model}, eye {eye:?}, at {u}: {found:?}");
+            }
+        }
+    }
+}
+
+#[test]
+fn certified_orders_refuse_eyes_nearer_than_the_certificate() {
+    let geometry =
+        Geometry::with_exact_corners(&read_obj(&asset("keenan-crane/spot/spot_control_mesh.obj")))
+            .unwrap();
+    let sorter = Presorted::new(&geometry);
+    let radius = 0.5 * geometry.bounds().diagonal();
+    assert!(matches!(
+        sorter.certified_orders(Some(1.2 * radius)),
+        Err(CertifiedOrdersError::TooNear { .. })
+    ));
+    assert!(matches!(
+        sorter.certified_orders(Some(f64::NAN)),
+        Err(CertifiedOrdersError::TooNear { .. })
+    ));
+    // boxes: regions of near eyes are left uncertified.
+    let boxes = Geometry::with_exact_corners(&read_obj(&asset("compas/boxes.obj"))).unwrap();
+    let boxes_sorter = Presorted::new(&boxes);
+    let near = 0.5 * boxes.bounds().diagonal() * 2.0;
+    assert!(matches!(
+        boxes_sorter.certified_orders(Some(near)),
+        Err(CertifiedOrdersError::Uncertified { regions }) if regions > 0
+    ));
 }

@@ -174,9 +174,16 @@ pub fn write_turn_html(
     })
 }
 
-/// Little-endian bytes of `values` in base64 (the script reads them as typed arrays).
-fn base64_u32(values: impl IntoIterator<Item = u32>) -> String {
-    let bytes: Vec<u8> = values.into_iter().flat_map(u32::to_le_bytes).collect();
+/// Polygon indices in base64, little-endian, two bytes each when every index fits (`wide`:
+/// four); the script reads them as typed arrays.
+fn base64_ids(values: impl IntoIterator<Item = u32>, wide: bool) -> String {
+    let bytes: Vec<u8> = values
+        .into_iter()
+        .flat_map(|v| {
+            let b = v.to_le_bytes();
+            if wide { b.to_vec() } else { b[..2].to_vec() }
+        })
+        .collect();
     base64::engine::general_purpose::STANDARD.encode(bytes)
 }
 
@@ -187,11 +194,13 @@ fn base64_f64(values: impl IntoIterator<Item = f64>) -> String {
 }
 
 /// The tables the script reads:
-/// - `N`: elements per polygon;
-/// - `E`: the eye's distance from the centre in model units (0: orthographic);
+/// - `N`: elements per polygon; `W`: whether polygon indices take four bytes (else two);
+/// - `E`: the eye's distance from the centre in model units (0: orthographic); `S`: the
+///   start view;
 /// - `R`: per region, its three inward edge normals, and `RO` its order;
-/// - `O[o]`: per polygon, its position (from 1) in order `o`, 0 when the order does not use it;
-///   `OC[o]`: `[core, slot]` pairs, the core's pieces taking positions `slot + 1…`;
+/// - `O[o]`: order `o`'s polygons in paint order, the `i`-th at `z-index` `(i + 1)·K`;
+///   `OC[o]`: `[cycle, z]` pairs, the cycle's polygons taking `z-index` `z, z + 1, …`
+///   between the polygons its step sits between;
 /// - `C[c]`: a cycle's planes (`[nx, ny, nz, offset]` each) and, per key, its polygons.
 fn write_data(
     page: &mut String,
@@ -200,11 +209,32 @@ fn write_data(
     eye: Option<f64>,
     start: (f64, f64),
 ) {
-    let n = elements_of.len();
+    let wide = elements_of.len() > usize::from(u16::MAX);
+    let core_size = |c: u32| {
+        certified.cores[c as usize]
+            .orders
+            .first()
+            .map_or(0, |o| o.len() as u32)
+    };
+    // K: more than the cycles' polygons between two consecutive pieces of any order.
+    let mut k = 1u32;
+    for steps in &certified.orders {
+        let mut run = 0;
+        for step in steps {
+            match *step {
+                OrderStep::Piece(_) => run = 0,
+                OrderStep::Core(c) => {
+                    run += core_size(c);
+                    k = k.max(run + 1);
+                }
+            }
+        }
+    }
     let _ = writeln!(
         page,
-        "const N={:?};\nconst E={};\nconst S=[{},{}];",
+        "const N={:?};\nconst W={};\nconst K={k};\nconst E={};\nconst S=[{},{}];",
         elements_of.iter().map(Vec::len).collect::<Vec<_>>(),
+        u8::from(wide),
         eye.map_or("0".to_owned(), |e| format!("{e:e}")),
         num(start.0),
         num(start.1),
@@ -227,25 +257,21 @@ fn write_data(
     page.push_str("const O=[");
     let mut slots = Vec::new();
     for steps in &certified.orders {
-        let mut position = vec![0u32; n];
-        let mut next = 1u32;
-        let mut cores = Vec::new();
+        let (mut pieces, mut cores) = (Vec::new(), Vec::new());
+        let mut z = 0;
         for step in steps {
             match *step {
                 OrderStep::Piece(p) => {
-                    position[p as usize] = next;
-                    next += 1;
+                    pieces.push(p);
+                    z = pieces.len() as u32 * k;
                 }
                 OrderStep::Core(c) => {
-                    cores.push([c, next - 1]);
-                    next += certified.cores[c as usize]
-                        .orders
-                        .first()
-                        .map_or(0, |o| o.len() as u32);
+                    cores.push([c, z + 1]);
+                    z += core_size(c);
                 }
             }
         }
-        let _ = write!(page, "\"{}\",", base64_u32(position));
+        let _ = write!(page, "\"{}\",", base64_ids(pieces, wide));
         slots.push(cores);
     }
     let _ = writeln!(page, "];\nconst OC={slots:?};");
@@ -253,22 +279,25 @@ fn write_data(
     for core in &certified.cores {
         let _ = write!(
             page,
-            "[\"{}\",{:?}],",
+            "[\"{}\",\"{}\"],",
             base64_f64(core.planes.iter().flatten().copied()),
-            core.orders
+            base64_ids(core.orders.iter().flatten().copied(), wide)
         );
     }
     page.push_str("];\n");
 }
 
 /// The page's script: tables in, `z-index` and visibility out.
-const SCRIPT: &str = r#"const f64=s=>new Float64Array(Uint8Array.from(atob(s),c=>c.charCodeAt(0)).buffer);
-const u32=s=>new Uint32Array(Uint8Array.from(atob(s),c=>c.charCodeAt(0)).buffer);
+const SCRIPT: &str = r#"const bytes=s=>Uint8Array.from(atob(s),c=>c.charCodeAt(0)).buffer;
+const ids=s=>W?new Uint32Array(bytes(s)):new Uint16Array(bytes(s));
 const s=document.getElementById('s'),el=s.children,first=[0];
 for(const k of N)first.push(first[first.length-1]+k);
-const regions=f64(R),orders=O.map(u32),cores=C.map(([p,o])=>[f64(p),o]);
+const regions=new Float64Array(bytes(R)),orders=O.map(ids);
+const cores=C.map(([p,t])=>{const planes=new Float64Array(bytes(p)),all=ids(t),n=all.length>>(planes.length/4);
+ return [planes,n,all];});
 let shown=-1,keys=[];
 function put(p,z){for(let e=first[p];e<first[p+1];e++){el[e].style.zIndex=z;el[e].style.visibility=z?'visible':'hidden';}}
+function cycle(c,key,z){const [,n,all]=cores[c];for(let i=0;i<n;i++)put(all[key*n+i],z&&z+i);}
 function turn(yaw,pitch){
  const a=yaw*Math.PI/360,b=pitch*Math.PI/360,cy=Math.cos(a),sy=Math.sin(a),cp=Math.cos(b),sp=Math.sin(b);
  const x=cy*sp,y=sy*cp,z=-sy*sp,w=cy*cp,l=Math.hypot(x,y,z);
@@ -280,11 +309,13 @@ function turn(yaw,pitch){
  for(let r=0;r<RO.length;r++){const k=9*r;let d=Infinity;
   for(let j=0;j<9;j+=3)d=Math.min(d,regions[k+j]*u[0]+regions[k+j+1]*u[1]+regions[k+j+2]*u[2]);
   if(d>best){best=d;o=RO[r];}}
- if(o!==shown){const z=orders[o];for(let p=0;p<N.length;p++)put(p,z[p]);shown=o;keys=OC[o].map(()=>-1);}
+ if(o!==shown){
+  if(shown>=0){for(const p of orders[shown])put(p,0);OC[shown].forEach(([c],j)=>cycle(c,keys[j],0));}
+  orders[o].forEach((p,i)=>put(p,(i+1)*K));shown=o;keys=OC[o].map(()=>-1);}
  const t=E>0?E:1,m=E>0?1:0;
- OC[o].forEach(([c,slot],j)=>{const [planes,table]=cores[c];let key=0;
-  for(let i=0;4*i<planes.length;i++)if(planes[4*i]*u[0]*t+planes[4*i+1]*u[1]*t+planes[4*i+2]*u[2]*t-m*planes[4*i+3]>=0)key|=1<<i;
-  if(key!==keys[j]){table[key].forEach((p,i)=>put(p,slot+1+i));keys[j]=key;}});
+ OC[o].forEach(([c,z],j)=>{const planes=cores[c][0];let key=0;
+  for(let i=0;4*i<planes.length;i++)if(t*(planes[4*i]*u[0]+planes[4*i+1]*u[1]+planes[4*i+2]*u[2])-m*planes[4*i+3]>=0)key|=1<<i;
+  if(key!==keys[j]){cycle(c,key,z);keys[j]=key;}});
 }
 const h=location.hash.slice(1).split(',').map(Number);
 turn(...(h.length===2&&h.every(Number.isFinite)?h:S));

@@ -30,6 +30,7 @@ mod render;
 mod scene_demo;
 mod scenes;
 mod stress;
+mod turn;
 
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -67,6 +68,9 @@ enum Command {
     /// Numerical stress: every exact sorter on transformed models and degenerate scenes;
     /// violations, pixel error, fragments, NaN counts, time (docs/ROBUSTNESS.md).
     Stress(stress::StressArgs),
+    /// Write a page that turns the model with the pointer, showing orders certified by
+    /// face-sort's `Presorted` (the script only looks up the viewer's region).
+    Turn(turn::TurnArgs),
 }
 
 fn main() -> ExitCode {
@@ -88,6 +92,7 @@ fn main() -> ExitCode {
     let result = std::panic::catch_unwind(|| match cli.command {
         Command::Render(args) => render::run(&args),
         Command::Bake(args) => bake::run(&args),
+        Command::Turn(args) => turn::run(&args),
         Command::Bench(args) => bench::run(&args),
         Command::Fuzz(args) => fuzz::run(&args),
         Command::Ci(args) => ci::run(&args),

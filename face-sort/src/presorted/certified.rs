@@ -5,11 +5,12 @@ use std::sync::Arc;
 
 use glam::DVec3;
 
+use super::region::Region;
 use super::{CORE, NodeKind, Presorted};
-use crate::PolygonSet;
+use crate::{DrawList, PolygonSet, View};
 
-/// Most inner planes of a cycle's BSP tree that [`CertifiedOrders`] enumerates the sides of
-/// (its orders number `2^planes`).
+/// Most planes of a cycle's BSP tree whose side varies over a region's viewers, which
+/// [`CertifiedOrders`] enumerates (a cycle's orders number `2^planes`).
 pub const MAX_CORE_PLANES: usize = 12;
 
 /// One step of a certified order: a piece, or a cycle whose order depends on the viewer's
@@ -69,6 +70,17 @@ pub struct CertifiedOrders {
     pub cores: Vec<CoreOrders>,
 }
 
+/// Regions, orders and cycles collected so far.
+type Collected<'a> = (
+    &'a mut Vec<CertifiedRegion>,
+    &'a mut Vec<Vec<OrderStep>>,
+    &'a mut Vec<CoreOrders>,
+);
+
+/// Most times a region is quartered so that its cycles have at most [`MAX_CORE_PLANES`]
+/// planes whose side varies.
+const CYCLE_SPLITS: usize = 4;
+
 /// Why [`Presorted::certified_orders`] cannot give the orders of a kind of viewer.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[non_exhaustive]
@@ -90,12 +102,68 @@ pub enum CertifiedOrdersError {
         /// How many regions (all eight octants when there is no certificate).
         regions: usize,
     },
-    /// A cycle's BSP tree has more planes than [`MAX_CORE_PLANES`].
-    #[error("a cycle's BSP tree has {planes} planes, more than {MAX_CORE_PLANES}")]
+    /// A cycle's BSP tree has more planes than [`MAX_CORE_PLANES`] whose side varies over
+    /// its region's viewers.
+    #[error(
+        "a cycle's BSP tree has {planes} planes whose side varies over its region, more than {MAX_CORE_PLANES}"
+    )]
     CorePlanes {
         /// Its planes.
         planes: usize,
     },
+}
+
+impl CertifiedOrders {
+    /// The list a sink that hides back faces paints for `view` when it follows these orders:
+    /// the region deepest around the direction toward the viewer, its cycles by the viewer's
+    /// side of their planes, and back faces left out. This is what a page's script does, for
+    /// checking it; `view` must be of the kind the orders were made for (orthographic, or its
+    /// eye at their distance), with back faces culled.
+    pub fn play(&self, view: &View, out: &mut DrawList) {
+        out.begin(&self.pieces);
+        let (point, w) = view.cull_test().viewer_point();
+        let Some(u) = point.try_normalize() else {
+            return;
+        };
+        let depth = |r: &CertifiedRegion| {
+            r.edge_normals
+                .iter()
+                .map(|n| n.dot(u))
+                .fold(f64::INFINITY, f64::min)
+        };
+        let Some(region) = self
+            .regions
+            .iter()
+            .max_by(|a, b| depth(a).total_cmp(&depth(b)))
+        else {
+            return;
+        };
+        let side =
+            |row: &[f64; 4]| row[0] * point.x + row[1] * point.y + row[2] * point.z - w * row[3];
+        let mut draw = |p: u32| {
+            let plane = self.pieces.plane(p as usize);
+            let n = plane.normal();
+            if side(&[n.x, n.y, n.z, plane.offset()]) > 0.0 {
+                out.push(p, self.pieces.face(p as usize));
+            }
+        };
+        for step in &self.orders[region.order as usize] {
+            match *step {
+                OrderStep::Piece(p) => draw(p),
+                OrderStep::Core(c) => {
+                    let core = &self.cores[c as usize];
+                    let key = core
+                        .planes
+                        .iter()
+                        .enumerate()
+                        .fold(0, |key, (k, row)| key | usize::from(side(row) >= 0.0) << k);
+                    for &p in &core.orders[key] {
+                        draw(p);
+                    }
+                }
+            }
+        }
+    }
 }
 
 impl Presorted {
@@ -123,7 +191,6 @@ impl Presorted {
         let mut regions = Vec::new();
         let mut leaf_order: Vec<Option<u32>> = vec![None; self.leaves.len()];
         let mut orders = Vec::new();
-        let mut core_index: Vec<Option<u32>> = vec![None; self.cores.len()];
         let mut cores = Vec::new();
         let mut uncertified = 0;
         let mut stack: Vec<usize> = (0..8).rev().collect();
@@ -138,30 +205,16 @@ impl Presorted {
                 }
                 NodeKind::Uncertified => uncertified += 1,
                 NodeKind::Leaf(leaf) => {
-                    let order = match leaf_order[leaf as usize] {
-                        Some(order) => order,
-                        None => {
-                            let steps = self.leaves[leaf as usize]
-                                .pieces
-                                .iter()
-                                .map(|&step| {
-                                    if step & CORE == 0 {
-                                        return Ok(OrderStep::Piece(step));
-                                    }
-                                    let c = (step & !CORE) as usize;
-                                    if core_index[c].is_none() {
-                                        cores.push(self.core_orders(c)?);
-                                        core_index[c] = Some(cores.len() as u32 - 1);
-                                    }
-                                    Ok(OrderStep::Core(core_index[c].unwrap_or_default()))
-                                })
-                                .collect::<Result<Vec<_>, _>>()?;
-                            orders.push(steps);
-                            let order = orders.len() as u32 - 1;
-                            leaf_order[leaf as usize] = Some(order);
-                            order
-                        }
-                    };
+                    let stored = &self.leaves[leaf as usize];
+                    if stored.pieces.iter().any(|&step| step & CORE != 0) {
+                        let mut out = (&mut regions, &mut orders, &mut cores);
+                        self.with_cycles(leaf, node.region, t, 0, &mut out)?;
+                        continue;
+                    }
+                    let order = *leaf_order[leaf as usize].get_or_insert_with(|| {
+                        orders.push(stored.pieces.iter().map(|&p| OrderStep::Piece(p)).collect());
+                        orders.len() as u32 - 1
+                    });
                     regions.push(CertifiedRegion {
                         edge_normals: node.region.edge_normals(),
                         corners: node.region.corners,
@@ -183,22 +236,112 @@ impl Presorted {
         })
     }
 
-    /// Core `c`'s tree flattened for every side of its inner planes.
-    fn core_orders(&self, c: usize) -> Result<CoreOrders, CertifiedOrdersError> {
-        let core = &self.cores[c];
-        let planes = core.tree.inner_rows();
-        if planes.len() > MAX_CORE_PLANES {
-            return Err(CertifiedOrdersError::CorePlanes {
-                planes: planes.len(),
-            });
+    /// Leaf `leaf`'s order for the viewers of `region` (part of its own) at distance `t`,
+    /// with its cycles flattened for them; where a cycle has too many planes whose side
+    /// varies over the region, each quarter of the region instead (at most
+    /// [`CYCLE_SPLITS`] times).
+    fn with_cycles(
+        &self,
+        leaf: u32,
+        region: Region,
+        t: f64,
+        depth: usize,
+        out: &mut Collected<'_>,
+    ) -> Result<(), CertifiedOrdersError> {
+        let stored = &self.leaves[leaf as usize];
+        let mut cores = Vec::new();
+        let mut steps = Vec::with_capacity(stored.pieces.len());
+        for &step in &stored.pieces {
+            if step & CORE == 0 {
+                steps.push(OrderStep::Piece(step));
+                continue;
+            }
+            match self.core_orders((step & !CORE) as usize, &region, t) {
+                Ok(core) => {
+                    steps.push(OrderStep::Core((out.2.len() + cores.len()) as u32));
+                    cores.push(core);
+                }
+                Err(CertifiedOrdersError::CorePlanes { .. }) if depth < CYCLE_SPLITS => {
+                    for child in region.split_directions() {
+                        self.with_cycles(leaf, child, t, depth + 1, out)?;
+                    }
+                    return Ok(());
+                }
+                Err(e) => return Err(e),
+            }
         }
-        let mut orders = Vec::with_capacity(1 << planes.len());
+        out.2.extend(cores);
+        out.1.push(steps);
+        out.0.push(CertifiedRegion {
+            edge_normals: region.edge_normals(),
+            corners: region.corners,
+            order: out.1.len() as u32 - 1,
+        });
+        Ok(())
+    }
+
+    /// Core `c`'s tree flattened for every side of its inner planes that the viewers of
+    /// `region` at distance `t` (∞: orthographic) may take; a plane every such viewer is on
+    /// the same side of is decided once.
+    fn core_orders(
+        &self,
+        c: usize,
+        region: &Region,
+        t: f64,
+    ) -> Result<CoreOrders, CertifiedOrdersError> {
+        let core = &self.cores[c];
+        let rows = core.tree.inner_rows();
+        let fixed: Vec<Option<bool>> = rows.iter().map(|row| side_over(row, region, t)).collect();
+        let free: Vec<usize> = (0..rows.len()).filter(|&k| fixed[k].is_none()).collect();
+        if free.len() > MAX_CORE_PLANES {
+            return Err(CertifiedOrdersError::CorePlanes { planes: free.len() });
+        }
+        let mut bit_of = vec![usize::MAX; rows.len()];
+        for (bit, &k) in free.iter().enumerate() {
+            bit_of[k] = bit;
+        }
+        let mut orders = Vec::with_capacity(1 << free.len());
         let mut order = Vec::new();
-        for key in 0..1usize << planes.len() {
-            core.tree
-                .order_for_sides(&|k| key >> k & 1 == 1, &mut order);
+        for key in 0..1usize << free.len() {
+            core.tree.order_for_sides(
+                &|k| fixed[k].unwrap_or_else(|| key >> bit_of[k] & 1 == 1),
+                &mut order,
+            );
             orders.push(order.iter().map(|&f| core.offset + f).collect());
         }
-        Ok(CoreOrders { planes, orders })
+        Ok(CoreOrders {
+            planes: free.iter().map(|&k| rows[k]).collect(),
+            orders,
+        })
+    }
+}
+
+/// The side (`true`: on or in front) of plane `row` that every viewer of `region` (grown by
+/// [`PRESORT_GROWTH`](crate::tolerance::PRESORT_GROWTH)) at distance `t` is on, if they
+/// share one. Orthographic: `n · u` is linear over the triangle's cone, so its corners
+/// decide. An eye `t · u`: `n · u` lies within `|n|·cos(α ± ρ)` for the angle `α` between `n`
+/// and the triangle's centre and the triangle's angular radius `ρ`.
+fn side_over(row: &[f64; 4], region: &Region, t: f64) -> Option<bool> {
+    let grown = region.grown();
+    let n = DVec3::new(row[0], row[1], row[2]);
+    let (lo, hi) = if t.is_infinite() {
+        let values = grown.corners.map(|c| n.dot(c));
+        (
+            values.iter().copied().fold(f64::INFINITY, f64::min),
+            values.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+        )
+    } else {
+        let (length, m, rho) = (n.length(), grown.centre(), grown.angular_radius());
+        let alpha = (n.dot(m) / length).clamp(-1.0, 1.0).acos();
+        let near = length * (alpha - rho).max(0.0).cos();
+        let far = length * (alpha + rho).min(std::f64::consts::PI).cos();
+        (t * far - row[3], t * near - row[3])
+    };
+    if lo > 0.0 {
+        Some(true)
+    } else if hi < 0.0 {
+        Some(false)
+    } else {
+        None
     }
 }

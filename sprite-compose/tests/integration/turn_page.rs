@@ -86,8 +86,8 @@ fn check(name: &str, g: &Geometry, base: View, random: usize) {
 
 #[test]
 fn turning_pages_in_chromium_are_exact() {
-    // The book: one order for every view. spot's control mesh: 44 regions and 65 cycles
-    // ordered by the viewer's side of their planes. Fandisk in perspective.
+    // The book: one order for every view. spot's control mesh: cycles ordered by the viewer's
+    // side of their planes. Fandisk in perspective.
     let load =
         |path: &str| Geometry::with_exact_corners(&support::load_obj(path)).expect("a model");
     let book = load("combobulate-samples/book.obj");
@@ -107,4 +107,21 @@ fn turning_pages_in_chromium_are_exact() {
     let fandisk = load("fandisk-quads/fandisk_quads.converted.obj");
     let base = View::fit(&fandisk.bounds(), SIZE, SIZE).with_perspective(2.0 * f64::from(SIZE));
     check("fandisk-persp", &fandisk, base, 4);
+    // suzanne: cycles whose planes are decided region by region.
+    let suzanne = load("suzanne/suzanne.obj");
+    let base = View::fit(&suzanne.bounds(), SIZE, SIZE).with_perspective(2.0 * f64::from(SIZE));
+    check("suzanne-persp", &suzanne, base, 3);
+}
+
+/// The full spot (6,134 elements) at 512 × 512, orthographic and perspective.
+#[test]
+#[ignore = "the full spot: a minute in release; run with --release --ignored"]
+fn the_full_spot_turning_page_in_chromium() {
+    let spot = Geometry::with_exact_corners(&support::load_obj(
+        "keenan-crane/spot/spot_quadrangulated.obj",
+    ))
+    .expect("a model");
+    let base = View::fit(&spot.bounds(), 512, 512);
+    check("spot-full-ortho", &spot, base, 4);
+    check("spot-full-persp", &spot, base.with_perspective(1024.0), 4);
 }

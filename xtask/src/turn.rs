@@ -1,0 +1,106 @@
+//! `cargo xtask turn`: a model as a page that turns with the pointer, showing orders
+//! certified by `face_sort::Presorted` (no script orders anything).
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Instant;
+
+use anyhow::{Context, Result};
+use clap::Args;
+use face_sort::{SorterKind, View};
+
+use crate::render::{self, PolicyChoice};
+
+/// Options of `turn`.
+#[derive(Debug, Args)]
+pub struct TurnArgs {
+    /// Model (.obj, .gltf, .glb).
+    model: PathBuf,
+    /// The page to write.
+    #[arg(long, value_name = "FILE")]
+    html: PathBuf,
+    /// Yaw in degrees shown until the pointer moves (the page's address may override it with
+    /// `#yaw,pitch`).
+    #[arg(
+        long,
+        value_name = "DEG",
+        allow_hyphen_values = true,
+        default_value_t = 0.0
+    )]
+    yaw: f64,
+    /// Pitch in degrees shown until the pointer moves.
+    #[arg(
+        long,
+        value_name = "DEG",
+        allow_hyphen_values = true,
+        default_value_t = 0.0
+    )]
+    pitch: f64,
+    /// Perspective with the eye D pixels from the centre (as in `render`); orthographic
+    /// without.
+    #[arg(long, value_name = "D")]
+    persp: Option<f64>,
+    /// Page size (scale "fit").
+    #[arg(long, value_name = "WxH", default_value = "512x512", value_parser = render::parse_size)]
+    size: (u32, u32),
+    /// ID colours (CONVENTIONS.md) instead of the model's own.
+    #[arg(long)]
+    ids: bool,
+    /// Which faces the loader accepts.
+    #[arg(long, value_enum, default_value_t = PolicyChoice::Polygons)]
+    policy: PolicyChoice,
+}
+
+/// Runs `turn`.
+pub fn run(args: &TurnArgs) -> Result<ExitCode> {
+    let (source, mesh) = render::load_mesh(&args.model, args.policy, false)?;
+    let geometry = SorterKind::Presorted
+        .geometry_for(&mesh)
+        .map_err(|e| anyhow::anyhow!("{}: {e}", args.model.display()))?;
+    let mut view = View::fit(&geometry.bounds(), args.size.0, args.size.1);
+    if let Some(d) = args.persp {
+        anyhow::ensure!(
+            d.is_finite() && d > 0.0,
+            "--persp must be a positive number of pixels"
+        );
+        view = view.with_perspective(d);
+    }
+    let start = Instant::now();
+    let sorter = face_sort::Presorted::try_new(&geometry, &face_sort::PresortOptions::default())?;
+    let build_ms = start.elapsed().as_secs_f64() * 1e3;
+    let (style, _) = crate::raster::face_style(&geometry, &source, None, None)?;
+    let brushes = style.sprite_brushes(&source, None);
+    let colour = |face: u32| {
+        brushes
+            .get(face as usize)
+            .copied()
+            .unwrap_or(sprite_compose::Brush::Palette)
+            .solid_colour(face)
+    };
+    let options = sprite_compose::TurnPageOptions::DEFAULT
+        .with_ids(args.ids)
+        .with_start(args.yaw, args.pitch);
+    let page = sprite_compose::write_turn_html(&sorter, &geometry, &view, &colour, &options)
+        .with_context(|| format!("{}: the page", args.model.display()))?;
+    if let Some(parent) = args.html.parent().filter(|p| !p.as_os_str().is_empty()) {
+        std::fs::create_dir_all(parent)
+            .with_context(|| format!("creating {}", parent.display()))?;
+    }
+    std::fs::write(&args.html, &page.html)
+        .with_context(|| format!("writing {}", args.html.display()))?;
+    println!(
+        "{}: presorted in {build_ms:.0} ms; page {} B: {} regions, {} orders, {} cycles, {} elements{}",
+        args.model.display(),
+        page.html.len(),
+        page.regions,
+        page.orders,
+        page.cycles,
+        page.elements,
+        if sorter.one_order_for_every_view() {
+            "; one order serves every view"
+        } else {
+            ""
+        }
+    );
+    Ok(ExitCode::SUCCESS)
+}
