@@ -724,3 +724,41 @@ fn segment_distance(p: glam::DVec2, a: glam::DVec2, b: glam::DVec2) -> f64 {
     let t = ((p - a).dot(ab) / ab.length_squared().max(1e-300)).clamp(0.0, 1.0);
     (a + ab * t).distance(p)
 }
+
+#[test]
+fn turn_writes_a_page_or_says_why_not() {
+    let dir = temp_dir("turn");
+    let page = dir.join("book.html");
+    let book = test_support::model_path("combobulate-samples/book.obj");
+    let result = xtask(&[
+        "turn",
+        book.to_str().unwrap(),
+        "--html",
+        page.to_str().unwrap(),
+        "--yaw",
+        "30",
+        "--pitch",
+        "-20",
+    ]);
+    assert!(result.status.success(), "{}", text(&result.stderr));
+    let stdout = text(&result.stdout);
+    assert!(
+        stdout.contains("1 orders") && stdout.contains("one order serves every view"),
+        "{stdout}"
+    );
+    let html = std::fs::read_to_string(&page).unwrap();
+    assert!(html.contains("const S=[30,-20]") && html.contains("backface-visibility:hidden"));
+    // boxes: near eyes are left uncertified, so there is no page for them.
+    let boxes = test_support::model_path("compas/boxes.obj");
+    let result = xtask(&[
+        "turn",
+        boxes.to_str().unwrap(),
+        "--html",
+        dir.join("boxes.html").to_str().unwrap(),
+        "--persp",
+        "600",
+    ]);
+    assert!(!result.status.success());
+    let stderr = text(&result.stderr);
+    assert!(stderr.contains("no certified order"), "{stderr}");
+}
