@@ -28,9 +28,10 @@ pub struct TurnPageOptions {
     pub oversize: f64,
     /// Orthographic views get this perspective distance (pixels). Default: 1e8.
     pub orthographic_distance: f64,
-    /// Yaw and pitch in degrees shown until the pointer moves (a fragment `#yaw,pitch` in the
-    /// page's address overrides it). Default: (0, 0).
-    pub start: (f64, f64),
+    /// Views (yaw and pitch in degrees) the page turns through when it loads, the last shown
+    /// until the pointer moves (a fragment `#yaw,pitch` in the page's address overrides
+    /// them). Default: none, which shows yaw 0, pitch 0.
+    pub start: Vec<(f64, f64)>,
 }
 
 impl TurnPageOptions {
@@ -40,7 +41,7 @@ impl TurnPageOptions {
         background: [0, 0, 0, 255],
         oversize: 4.0,
         orthographic_distance: 1e8,
-        start: (0.0, 0.0),
+        start: Vec::new(),
     };
 
     /// ID colours mode.
@@ -53,7 +54,15 @@ impl TurnPageOptions {
     /// The view shown until the pointer moves, yaw and pitch in degrees.
     #[must_use]
     pub fn with_start(mut self, yaw: f64, pitch: f64) -> Self {
-        self.start = (yaw, pitch);
+        self.start = vec![(yaw, pitch)];
+        self
+    }
+
+    /// Views the page turns through as it loads, the last shown until the pointer moves
+    /// (for checking that switching orders leaves nothing of the previous ones).
+    #[must_use]
+    pub fn with_start_path(mut self, views: &[(f64, f64)]) -> Self {
+        self.start = views.to_vec();
         self
     }
 }
@@ -162,7 +171,7 @@ pub fn write_turn_html(
         }
     }
     page.push_str("\n</div><script>\n");
-    write_data(&mut page, &certified, &elements_of, eye, options.start);
+    write_data(&mut page, &certified, &elements_of, eye, &options.start);
     page.push_str(SCRIPT);
     page.push_str("</script></body></html>\n");
     Ok(TurnPage {
@@ -196,7 +205,7 @@ fn base64_f64(values: impl IntoIterator<Item = f64>) -> String {
 /// The tables the script reads:
 /// - `N`: elements per polygon; `W`: whether polygon indices take four bytes (else two);
 /// - `E`: the eye's distance from the centre in model units (0: orthographic); `S`: the
-///   start view;
+///   views to turn through as it loads;
 /// - `R`: per region, its three inward edge normals, and `RO` its order;
 /// - `O[o]`: order `o`'s polygons in paint order, the `i`-th at `z-index` `(i + 1)·K`;
 ///   `OC[o]`: `[cycle, z]` pairs, the cycle's polygons taking `z-index` `z, z + 1, …`
@@ -207,7 +216,7 @@ fn write_data(
     certified: &CertifiedOrders,
     elements_of: &[Vec<(String, char)>],
     eye: Option<f64>,
-    start: (f64, f64),
+    start: &[(f64, f64)],
 ) {
     let wide = elements_of.len() > usize::from(u16::MAX);
     let core_size = |c: u32| {
@@ -232,12 +241,15 @@ fn write_data(
     }
     let _ = writeln!(
         page,
-        "const N={:?};\nconst W={};\nconst K={k};\nconst E={};\nconst S=[{},{}];",
+        "const N={:?};\nconst W={};\nconst K={k};\nconst E={};\nconst S=[{}];",
         elements_of.iter().map(Vec::len).collect::<Vec<_>>(),
         u8::from(wide),
         eye.map_or("0".to_owned(), |e| format!("{e:e}")),
-        num(start.0),
-        num(start.1),
+        start
+            .iter()
+            .map(|(yaw, pitch)| format!("[{},{}]", num(*yaw), num(*pitch)))
+            .collect::<Vec<_>>()
+            .join(","),
     );
     let _ = writeln!(
         page,
@@ -318,6 +330,6 @@ function turn(yaw,pitch){
   if(key!==keys[j]){cycle(c,key,z);keys[j]=key;}});
 }
 const h=location.hash.slice(1).split(',').map(Number);
-turn(...(h.length===2&&h.every(Number.isFinite)?h:S));
+for(const v of h.length===2&&h.every(Number.isFinite)?[h]:S.length?S:[[0,0]])turn(...v);
 addEventListener('pointermove',e=>turn(360*e.clientX/innerWidth-180,180*e.clientY/innerHeight-90));
 "#;

@@ -747,7 +747,7 @@ fn turn_writes_a_page_or_says_why_not() {
         "{stdout}"
     );
     let html = std::fs::read_to_string(&page).unwrap();
-    assert!(html.contains("const S=[30,-20]") && html.contains("backface-visibility:hidden"));
+    assert!(html.contains("const S=[[30,-20]]") && html.contains("backface-visibility:hidden"));
     // boxes: near eyes are left uncertified, so there is no page for them.
     let boxes = test_support::model_path("compas/boxes.obj");
     let result = xtask(&[

@@ -61,6 +61,35 @@ fn wrong_pixels(shot: &IdImage, t: &Truth) -> Vec<(u32, u32)> {
         .collect()
 }
 
+/// With `DIAG` set, prints every wrong unambiguous pixel: the screenshot's ID, the truth's,
+/// the screenshot's RGBA, and the 5 × 5 IDs around it (`shot/truth`, `?` where ambiguous).
+pub(crate) fn print_wrong_pixels(shot: &IdImage, t: &Truth, rgba: &[u8]) {
+    if std::env::var("DIAG").is_err() {
+        return;
+    }
+    let w = t.width as usize;
+    for (x, y) in wrong_pixels(shot, t) {
+        let (x, y) = (x as usize, y as usize);
+        let k = y * w + x;
+        println!(
+            "  wrong at {x} {y}: shot {} truth {} rgba {:?}",
+            shot.ids[k],
+            t.ids[k],
+            &rgba[4 * k..4 * k + 4]
+        );
+        for yy in y.saturating_sub(2)..(y + 3).min(t.height as usize) {
+            let row: Vec<String> = (x.saturating_sub(2)..(x + 3).min(w))
+                .map(|xx| {
+                    let j = yy * w + xx;
+                    let mark = if t.unambiguous[j] { "" } else { "?" };
+                    format!("{}/{}{mark}", shot.ids[j], t.ids[j])
+                })
+                .collect();
+            println!("    {}", row.join(" "));
+        }
+    }
+}
+
 /// An ID shown in a distinct colour (ID colours themselves are near-black blues), 0 black.
 fn false_colour(id: u32) -> [u8; 4] {
     if id == 0 {

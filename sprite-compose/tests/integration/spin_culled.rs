@@ -10,7 +10,7 @@ use sprite_compose::aspect_bake::{Axis, PictureOptions, Spin, bake_picture, draw
 use sprite_compose::face_sort::{Geometry, View};
 use sprite_compose::{SpinOptions, write_culled_spin_html};
 
-use crate::browser::{chromium, screenshot_at};
+use crate::browser::{chromium, print_wrong_pixels, screenshot_at};
 use crate::support;
 use crate::writers::{SIZE, ids_of_rgba};
 
@@ -54,19 +54,7 @@ fn check(name: &str, g: &Geometry, view: View, random: usize) {
         let shot = ids_of_rgba(size, size, &rgba);
         let t_img = truth(&spin.view_at(degrees), g);
         let e = pixel_error(&shot, &t_img);
-        if std::env::var("DIAG").is_ok() {
-            for k in 0..t_img.ids.len() {
-                if t_img.unambiguous[k] && shot.ids[k] != t_img.ids[k] {
-                    println!(
-                        "  wrong at {} {}: shot {} truth {}",
-                        k % t_img.width as usize,
-                        k / t_img.width as usize,
-                        shot.ids[k],
-                        t_img.ids[k]
-                    );
-                }
-            }
-        }
+        print_wrong_pixels(&shot, &t_img, &rgba);
         println!(
             "culled spin {name} at {t:.4} s = {degrees:.3}° ({} cells, page {} B): {}/{}",
             baked.cells().len(),

@@ -9,7 +9,7 @@ use sprite_compose::face_sort::glam::DVec3;
 use sprite_compose::face_sort::{Geometry, Presorted, View};
 use sprite_compose::{TurnPageOptions, write_turn_html};
 
-use crate::browser::{chromium, screenshot_at};
+use crate::browser::{chromium, print_wrong_pixels, screenshot_at};
 use crate::support;
 use crate::writers::{SIZE, ids_of_rgba};
 
@@ -51,7 +51,7 @@ fn check(name: &str, g: &Geometry, base: View, random: usize) {
         views.push(yaw_pitch_of(middle - n * 1e-6));
     }
     let none = |_: u32| [0, 0, 0, 255];
-    for (yaw, pitch) in views {
+    for (k, &(yaw, pitch)) in views.iter().enumerate() {
         let page = write_turn_html(
             &sorter,
             g,
@@ -59,13 +59,15 @@ fn check(name: &str, g: &Geometry, base: View, random: usize) {
             &none,
             &TurnPageOptions::DEFAULT
                 .with_ids(true)
-                .with_start(yaw, pitch),
+                // Through every earlier view: switching must leave nothing of their orders.
+                .with_start_path(&views[..=k]),
         )
         .expect("a page");
         let rgba = screenshot_at(browser, &page.html, &format!("turn-{name}"), base.width());
         let shot = ids_of_rgba(base.width(), base.height(), &rgba);
         let t = truth(&base.with_yaw_pitch_roll(yaw, pitch, 0.0), g);
         let e = pixel_error(&shot, &t);
+        print_wrong_pixels(&shot, &t, &rgba);
         println!(
             "turn page {name} at yaw {yaw:.6}° pitch {pitch:.6}° ({} regions, {} orders, {} cycles, {} elements, {} B): {}/{}",
             page.regions,
