@@ -390,6 +390,46 @@ fn picture_bakes_are_exact_for_the_picture_in_few_cells() {
     }
 }
 
+/// Suzanne (eyes that pass through the head, 121 cuts) spun in yaw at pitch 20°,
+/// orthographic and perspective: cutting pieces of the cycles that end cells brings the
+/// sweep's 18–19 cells to at most 16, each verified. Ignored in CI (seconds in release,
+/// minutes in a debug build): `cargo test --release -p aspect-bake --test bake suzanne --
+/// --ignored --nocapture`.
+#[test]
+#[ignore = "seconds in release, minutes in debug"]
+fn suzanne_bakes_in_at_most_sixteen_verified_cells() {
+    use aspect_bake::{PictureOptions, bake_picture, verify_picture};
+    let mesh = test_support::load_polygon_mesh("suzanne/suzanne.obj");
+    let g = Geometry::with_exact_corners(&mesh).unwrap();
+    for persp in [None, Some(1024.0)] {
+        let mut view = View::fit(&g.bounds(), 512, 512);
+        if let Some(d) = persp {
+            view = view.with_perspective(d);
+        }
+        let axis = Axis::Yaw {
+            pitch: 20.0,
+            roll: 0.0,
+        };
+        let spin = Spin::new(view, axis).unwrap();
+        let (baked, stats) = bake_picture(&g, &spin, &PictureOptions::DEFAULT).unwrap();
+        println!(
+            "suzanne {persp:?}: {} cells, {} pieces, {} cuts",
+            baked.cells().len(),
+            stats.pieces,
+            stats.cuts
+        );
+        assert!(baked.cells().len() <= 16, "{persp:?}");
+        verify_picture(&baked, &spin, 4, 7).unwrap();
+        // Without the boundary cuts the sweep needs more cells.
+        let without = PictureOptions {
+            max_boundary_cuts: 0,
+            ..PictureOptions::DEFAULT
+        };
+        let (plain, _) = bake_picture(&g, &spin, &without).unwrap();
+        assert!(plain.cells().len() > baked.cells().len(), "{persp:?}");
+    }
+}
+
 /// A picture bake refuses views it cannot serve: no culling, a cull margin, an eye inside
 /// the model.
 #[test]

@@ -25,6 +25,7 @@ const PICTURE: PictureOptions = PictureOptions {
     max_pairs: 10_000,
     budget_bytes: 1 << 20,
     max_cycle_cuts: 8,
+    max_boundary_cuts: 4,
 };
 const EXACT: BakeOptions<'static> = BakeOptions {
     range_deg: None,

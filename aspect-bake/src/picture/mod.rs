@@ -80,16 +80,21 @@ pub struct PictureOptions {
     /// Pieces overlapping cyclically at some view are cut (one piece by another's plane, the
     /// bake then redone) at most this many times before [`BakeError::Cycle`].
     pub max_cycle_cuts: usize,
+    /// A bake with more than eight cells tries cutting a piece of a cycle that ended a cell
+    /// (by another's plane, the bake then redone) at most this many times, keeping each cut
+    /// that lowers the number of cells.
+    pub max_boundary_cuts: usize,
 }
 
 impl PictureOptions {
-    /// 16 bins, 4 million pieces, 5 million pairs, 1 GiB, 64 cycle cuts.
+    /// 16 bins, 4 million pieces, 5 million pairs, 1 GiB, 64 cycle cuts, 32 boundary cuts.
     pub const DEFAULT: PictureOptions = PictureOptions {
         bins: 16,
         max_pieces: 4_000_000,
         max_pairs: 5_000_000,
         budget_bytes: 1 << 30,
         max_cycle_cuts: 64,
+        max_boundary_cuts: 32,
     };
 }
 
@@ -262,6 +267,7 @@ fn cells_from(
                 lo: last.lo,
                 hi: first.hi + std::f64::consts::TAU,
                 edges: both.collect(),
+                closing: first.closing.clone(),
             };
             cells.remove(0);
             let n = cells.len();
@@ -269,6 +275,87 @@ fn cells_from(
         }
     }
     Ok(cells)
+}
+
+/// One bake's sweep over a set of pieces, before its cells get orders.
+struct Baked {
+    set: PolygonSet,
+    cells: Vec<SweepCell>,
+    constraints: Vec<Constraint>,
+    candidate_pairs: usize,
+    origin: f64,
+}
+
+/// Cuts of pieces a bake may still make.
+struct CutBudget {
+    /// Of pieces that overlap cyclically at one view ([`PictureOptions::max_cycle_cuts`]).
+    cycle_cuts: usize,
+    /// Of pieces whose cycles end cells ([`PictureOptions::max_boundary_cuts`]).
+    boundary_cuts: usize,
+}
+
+/// The cells of `set` (from the better of two sweep origins when the first gives many),
+/// cutting pieces that overlap cyclically at one view while `budget` allows; `cuts` counts
+/// the cuts.
+fn bake_set(
+    mut set: PolygonSet,
+    spin: &Spin,
+    (sigma, diagonal): (f64, f64),
+    options: &PictureOptions,
+    budget: &mut CutBudget,
+    cuts: &mut usize,
+) -> Result<Baked, BakeError> {
+    let tolerance = crate::tolerance::PICTURE_SIDE * diagonal;
+    loop {
+        let pieces = Pieces::new(spin, &set, sigma, diagonal);
+        let (mut constraints, candidate_pairs) = pairs::constraints(
+            &pieces,
+            options.bins.clamp(1, pairs::MAX_BINS),
+            options.max_pairs,
+        )?;
+        let mut dag = Dag::new(set.len());
+        let (cells, origin) = match cells_from(&pieces, &mut constraints, 0.0, &mut dag) {
+            Ok(cells) if cells.len() <= SECOND_SWEEP_FROM => (cells, 0.0),
+            Ok(cells) => {
+                // Many cells: sweep again from the first angle where a cell had to end (the
+                // first sweep's start is arbitrary), and keep the shorter.
+                let origin = cells[1].lo;
+                match cells_from(&pieces, &mut constraints, origin, &mut dag) {
+                    Ok(second) if second.len() < cells.len() => (second, origin),
+                    _ => (cells, 0.0),
+                }
+            }
+            Err(Interrupt::Error(e)) => return Err(e),
+            Err(Interrupt::Cycle(at, edges)) => {
+                let cut = (budget.cycle_cuts > 0)
+                    .then(|| cut_cycle(&set, &edges, tolerance))
+                    .flatten();
+                let Some(next) = cut else {
+                    return Err(BakeError::Cycle {
+                        degrees: at.to_degrees(),
+                    });
+                };
+                if next.len() > options.max_pieces.min(pairs::MAX_PIECES) {
+                    return Err(BakeError::Pieces {
+                        pieces: next.len(),
+                        budget: options.max_pieces,
+                    });
+                }
+                set = next;
+                *cuts += 1;
+                budget.cycle_cuts -= 1;
+                continue;
+            }
+        };
+        drop(pieces);
+        return Ok(Baked {
+            set,
+            cells,
+            constraints,
+            candidate_pairs,
+            origin,
+        });
+    }
 }
 
 /// Bakes `geometry` along a full turn of `spin` into the fewest cells this greedy sweep finds
@@ -288,59 +375,62 @@ pub fn bake_picture(
     let started = Instant::now();
     let sigma = drawn_sign(spin)?;
     let diagonal = geometry.bounds().diagonal();
-    let (mut set, mut cuts) = pieces::split_crossing(
+    let (set, mut cuts) = pieces::split_crossing(
         geometry.pieces(),
         diagonal,
         options.max_pieces.min(pairs::MAX_PIECES),
     )?;
     check_eye(spin, &set)?;
     let tolerance = crate::tolerance::PICTURE_SIDE * diagonal;
-    let mut cycles_cut = 0;
-    let (cells, constraints, candidate_pairs, origin) = loop {
-        let pieces = Pieces::new(spin, &set, sigma, diagonal);
-        let (mut constraints, candidate_pairs) = pairs::constraints(
-            &pieces,
-            options.bins.clamp(1, pairs::MAX_BINS),
-            options.max_pairs,
-        )?;
-        let mut dag = Dag::new(set.len());
-        match cells_from(&pieces, &mut constraints, 0.0, &mut dag) {
-            Ok(cells) if cells.len() <= SECOND_SWEEP_FROM => {
-                break (cells, constraints, candidate_pairs, 0.0);
+    let mut budget = CutBudget {
+        cycle_cuts: options.max_cycle_cuts,
+        boundary_cuts: options.max_boundary_cuts,
+    };
+    let mut best = bake_set(
+        set,
+        spin,
+        (sigma, diagonal),
+        options,
+        &mut budget,
+        &mut cuts,
+    )?;
+    // Many cells: cut a piece of a cycle that ended a cell (by another's plane), and keep the
+    // cut when the bake then has fewer cells.
+    'cut: while best.cells.len() > SECOND_SWEEP_FROM && budget.boundary_cuts > 0 {
+        for closing in best.cells.iter().map(|c| &c.closing) {
+            if budget.boundary_cuts == 0 {
+                break 'cut;
             }
-            Ok(cells) => {
-                // Many cells: sweep again from the first angle where a cell had to end (the
-                // first sweep's start is arbitrary), and keep the shorter.
-                let origin = cells[1].lo;
-                match cells_from(&pieces, &mut constraints, origin, &mut dag) {
-                    Ok(second) if second.len() < cells.len() => {
-                        break (second, constraints, candidate_pairs, origin);
-                    }
-                    _ => break (cells, constraints, candidate_pairs, 0.0),
-                }
-            }
-            Err(Interrupt::Error(e)) => return Err(e),
-            Err(Interrupt::Cycle(at, edges)) => {
-                let cut = (cycles_cut < options.max_cycle_cuts)
-                    .then(|| cut_cycle(&set, &edges, tolerance))
-                    .flatten();
-                let Some(next) = cut else {
-                    return Err(BakeError::Cycle {
-                        degrees: at.to_degrees(),
-                    });
-                };
-                if next.len() > options.max_pieces.min(pairs::MAX_PIECES) {
-                    return Err(BakeError::Pieces {
-                        pieces: next.len(),
-                        budget: options.max_pieces,
-                    });
-                }
-                set = next;
-                cuts += 1;
-                cycles_cut += 1;
+            let Some(next) = cut_cycle(&best.set, closing, tolerance) else {
+                continue;
+            };
+            budget.boundary_cuts -= 1;
+            let mut tried_cuts = cuts + 1;
+            let Ok(tried) = bake_set(
+                next,
+                spin,
+                (sigma, diagonal),
+                options,
+                &mut budget,
+                &mut tried_cuts,
+            ) else {
+                continue;
+            };
+            if tried.cells.len() < best.cells.len() {
+                best = tried;
+                cuts = tried_cuts;
+                continue 'cut;
             }
         }
-    };
+        break;
+    }
+    let Baked {
+        set,
+        cells,
+        constraints,
+        candidate_pairs,
+        origin,
+    } = best;
     let n = set.len();
     let mut dag = Dag::new(n);
     let bytes = cells.len() * cell_bytes(n);

@@ -45,6 +45,9 @@ pub(crate) struct SweepCell {
     pub(crate) lo: f64,
     pub(crate) hi: f64,
     pub(crate) edges: Vec<(u32, u32)>,
+    /// The cycle `(behind, front)` that one more constraint would have closed at `hi`
+    /// (empty for the last cell).
+    pub(crate) closing: Vec<(u32, u32)>,
 }
 
 /// Where the sweep could not continue: the constraints active at one angle form a cycle.
@@ -489,7 +492,23 @@ impl Sweep<'_> {
                 (c.behind, c.front)
             })
             .collect();
-        SweepCell { lo, hi, edges }
+        SweepCell {
+            lo,
+            hi,
+            edges,
+            closing: Vec::new(),
+        }
+    }
+
+    /// The `(behind, front)` edges of a cycle of live labels.
+    fn cycle_edges(&self, cycle: &[u32]) -> Vec<(u32, u32)> {
+        cycle
+            .iter()
+            .map(|&l| {
+                let c = &self.constraints[self.live[l as usize].constraint as usize];
+                (c.behind, c.front)
+            })
+            .collect()
     }
 
     /// The constraints of a cycle's labels that are not exact yet.
@@ -591,14 +610,7 @@ pub(crate) fn sweep(
                     // as it starts a third's): they leave this cell.
                     let ending = |s: &Span| s.end <= lo + EVENT_GAP_RAD;
                     if !cycle.iter().any(|&l| ending(&state.live[l as usize])) {
-                        let edges = cycle
-                            .iter()
-                            .map(|&l| {
-                                let c =
-                                    &state.constraints[state.live[l as usize].constraint as usize];
-                                (c.behind, c.front)
-                            })
-                            .collect();
+                        let edges = state.cycle_edges(&cycle);
                         return Err(CycleAt { at: lo, edges });
                     }
                     let kept: Vec<Span> =
@@ -655,7 +667,9 @@ pub(crate) fn sweep(
             let loose = state.loose(&cycle);
             if loose.is_empty() {
                 if from_queue && now > lo {
-                    cells.push(state.cell(lo, now));
+                    let mut cell = state.cell(lo, now);
+                    cell.closing = state.cycle_edges(&cycle);
+                    cells.push(cell);
                     lo = now;
                 }
                 // Otherwise a cycle closed out of order: redo the cell from its start.
