@@ -652,21 +652,27 @@ impl PixelRays {
     }
 
     /// A bound on the rounding error of [`depth`](Self::depth) at the same arguments: the
-    /// magnitudes of the terms it sums, [`DEPTH_ROUNDING`] relative, over its divisor. Small
-    /// except where the plane is nearly parallel to the ray (a piece seen edge-on), where no
-    /// f64 evaluation can tell its depth better.
+    /// magnitudes of the terms it sums, [`DEPTH_ROUNDING`] relative, over its divisor; plus
+    /// how far the depth moves when `p` itself moves by [`DEPTH_ROUNDING`] of its coordinates
+    /// (a point computed by clipping lies that close to where it should). Small except where
+    /// the plane is nearly parallel to the ray (a piece seen edge-on), where no f64
+    /// evaluation can tell its depth better.
     #[inline]
     #[must_use]
     pub fn depth_error(&self, p: DVec2, n: DVec3, offset: f64) -> f64 {
         let a = self.base(p);
         let across = (n.x * a.x).abs() + (n.y * a.y).abs();
+        // The point's own rounding, in view units, and the depth's slope across the screen.
+        let moved = DEPTH_ROUNDING * (p.x.abs() + p.y.abs()) * self.inverse_scale;
+        let tilt = n.x.abs() + n.y.abs();
         match self.eye {
-            None => DEPTH_ROUNDING * (offset.abs() + across) / n.z.abs(),
+            None => DEPTH_ROUNDING * (offset.abs() + across) / n.z.abs() + moved * tilt / n.z.abs(),
             Some(e) => {
                 let divisor = n.x * a.x + n.y * a.y - n.z * e;
                 let t = (offset - n.z * e) / divisor;
                 let terms = offset.abs() + (n.z * e).abs() + t.abs() * (across + (n.z * e).abs());
                 DEPTH_ROUNDING * e.abs() * (terms / divisor.abs() + t.abs())
+                    + e.abs() * t.abs() * moved * tilt / divisor.abs()
             }
         }
     }
