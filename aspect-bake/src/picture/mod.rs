@@ -77,8 +77,9 @@ pub struct PictureOptions {
     pub max_pairs: usize,
     /// The cells' orders stop at this many bytes ([`BakeError::SizeBudget`]).
     pub budget_bytes: usize,
-    /// Pieces overlapping cyclically at some view are cut (one piece by another's plane, the
-    /// bake then redone) at most this many times before [`BakeError::Cycle`].
+    /// Pieces overlapping cyclically at some view are cut (one piece by another's plane, or
+    /// the largest across its longest edge, the bake then redone) at most this many times
+    /// before [`BakeError::Cycle`]. Each cut redoes the bake, so this bounds its time too.
     pub max_cycle_cuts: usize,
     /// A bake with more than eight cells tries cutting a piece of a cycle that ended a cell
     /// (by another's plane, the bake then redone) at most this many times, keeping each cut
@@ -87,13 +88,13 @@ pub struct PictureOptions {
 }
 
 impl PictureOptions {
-    /// 16 bins, 4 million pieces, 5 million pairs, 1 GiB, 64 cycle cuts, 32 boundary cuts.
+    /// 16 bins, 4 million pieces, 5 million pairs, 1 GiB, 256 cycle cuts, 32 boundary cuts.
     pub const DEFAULT: PictureOptions = PictureOptions {
         bins: 16,
         max_pieces: 4_000_000,
         max_pairs: 5_000_000,
         budget_bytes: 1 << 30,
-        max_cycle_cuts: 64,
+        max_cycle_cuts: 256,
         max_boundary_cuts: 32,
     };
 }
