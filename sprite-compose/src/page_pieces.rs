@@ -17,6 +17,20 @@ pub(crate) struct Placement {
     pub(crate) scale: f64,
 }
 
+/// A face's fill: its ID colour (CONVENTIONS.md) in ID mode, else `colour(face)`.
+pub(crate) fn face_fill<'a>(
+    ids: bool,
+    colour: &'a dyn Fn(u32) -> [u8; 4],
+) -> impl Fn(u32) -> String + 'a {
+    move |face| {
+        crate::svg::hex(if ids {
+            crate::id_colour(face)
+        } else {
+            colour(face)
+        })
+    }
+}
+
 /// Writes one class per element of every polygon of `set` into `page` and returns, per
 /// polygon, its elements' class names and tags (`b`: a border triangle, `i`: a sprite quad).
 /// A whole triangle is one border triangle; a part of a cut piece is a fan of triangles

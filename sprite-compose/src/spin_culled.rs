@@ -7,7 +7,6 @@ use aspect_bake::{Bake, Spin};
 use face_sort::Geometry;
 use glam::{DMat3, DMat4, DVec3};
 
-use crate::id_colour;
 use crate::page_pieces::num;
 use crate::spin::SpinOptions;
 use crate::svg::hex;
@@ -210,13 +209,7 @@ pub fn write_culled_spin_html(
             place_point,
             scale: view.scale(),
         },
-        &|face| {
-            hex(if options.ids {
-                id_colour(face)
-            } else {
-                colour(face)
-            })
-        },
+        &crate::page_pieces::face_fill(options.ids, colour),
         options.oversize,
     );
     // Visibility of each element: shown in the cells that use it, hidden in the cells where

@@ -11,7 +11,6 @@ use face_sort::{
 };
 use glam::{DMat3, DMat4, DVec3};
 
-use crate::id_colour;
 use crate::page_pieces::{Placement, num, piece_classes};
 use crate::svg::hex;
 
@@ -150,13 +149,7 @@ pub fn write_turn_html(
             place_point: flip,
             scale: rest.scale(),
         },
-        &|face| {
-            hex(if options.ids {
-                id_colour(face)
-            } else {
-                colour(face)
-            })
-        },
+        &crate::page_pieces::face_fill(options.ids, colour),
         options.oversize,
     );
     page.push_str("</style></head><body><div id=\"s\">\n");

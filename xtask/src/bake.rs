@@ -413,15 +413,7 @@ fn run_picture(args: &BakeArgs, prepared: &Prepared) -> Result<ExitCode> {
     }
     if let Some(path) = &args.html {
         let lists = aspect_bake::drawn_lists(&baked, &prepared.spin)?;
-        let (style, _) = crate::raster::face_style(&geometry, &prepared.source, None, None)?;
-        let brushes = style.sprite_brushes(&prepared.source, None);
-        let colour = |face: u32| {
-            brushes
-                .get(face as usize)
-                .copied()
-                .unwrap_or(sprite_compose::Brush::Palette)
-                .solid_colour(face)
-        };
+        let colour = crate::raster::solid_colours(&geometry, &prepared.source)?;
         let options = sprite_compose::SpinOptions::DEFAULT
             .with_period(args.period)
             .with_ids(args.ids)

@@ -68,15 +68,7 @@ pub fn run(args: &TurnArgs) -> Result<ExitCode> {
     let start = Instant::now();
     let sorter = face_sort::Presorted::try_new(&geometry, &face_sort::PresortOptions::default())?;
     let build_ms = start.elapsed().as_secs_f64() * 1e3;
-    let (style, _) = crate::raster::face_style(&geometry, &source, None, None)?;
-    let brushes = style.sprite_brushes(&source, None);
-    let colour = |face: u32| {
-        brushes
-            .get(face as usize)
-            .copied()
-            .unwrap_or(sprite_compose::Brush::Palette)
-            .solid_colour(face)
-    };
+    let colour = crate::raster::solid_colours(&geometry, &source)?;
     let options = sprite_compose::TurnPageOptions::DEFAULT
         .with_ids(args.ids)
         .with_start(args.yaw, args.pitch);
