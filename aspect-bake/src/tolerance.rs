@@ -56,6 +56,12 @@ pub const VERIFY_MIN_SIDE_RAD: f64 = 1e-12;
 /// plane by less than this is never a violation.
 pub const PICTURE_SIDE: f64 = 1e-12;
 
+/// Picture bakes: an edge of a piece shorter than this times the model's diagonal `L` (two
+/// corners a rounding apart) has no direction rounding can tell, so its line separates no
+/// projections. Leaving it out of the separating-axis test only widens the piece's
+/// projection by less than that: the overlap found can only grow.
+pub const PICTURE_SHORT_EDGE: f64 = 1e-12;
+
 /// Picture bakes: every arc where a condition holds is widened (every arc that removes one
 /// shrunk) by this many radians, against the rounding of its ends (about `1e-15` rad). Too
 /// large makes events that coincide (a fold turning edge-on ends two pairs' overlap as it

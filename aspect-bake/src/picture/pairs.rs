@@ -16,7 +16,7 @@ use crate::BakeError;
 use crate::arcs::ArcSet;
 use crate::axis::Spin;
 use crate::event::{EventFn, Roots};
-use crate::tolerance::{ARC_MARGIN_RAD, BOX_SLACK, NEAR_EYE, PICTURE_SIDE};
+use crate::tolerance::{ARC_MARGIN_RAD, BOX_SLACK, NEAR_EYE, PICTURE_SHORT_EDGE, PICTURE_SIDE};
 
 /// The pieces along a spin: everything the pair tests read.
 pub(crate) struct Pieces<'a> {
@@ -37,6 +37,8 @@ pub(crate) struct Pieces<'a> {
     across_axis: DVec3,
     /// Plane-side tolerance (model units).
     side_tolerance: f64,
+    /// Edges no longer than this separate nothing (model units).
+    short_edge: f64,
 }
 
 /// How far an arc is widened (or shrunk) against the rounding of its ends:
@@ -72,6 +74,7 @@ impl<'a> Pieces<'a> {
                 .max(DVec3::ZERO)
                 .powf(0.5),
             side_tolerance: PICTURE_SIDE * diagonal,
+            short_edge: PICTURE_SHORT_EDGE * diagonal,
         }
     }
 
@@ -129,6 +132,9 @@ impl<'a> Pieces<'a> {
                     return rest;
                 }
                 let (a, b) = (cp[k], cp[(k + 1) % cp.len()]);
+                if a.distance(b) <= self.short_edge {
+                    continue; // no line that rounding can tell
+                }
                 // Only the separation within what is left matters.
                 let mut separated = rest.clone();
                 for &v in cq {
