@@ -20,7 +20,7 @@ pub(crate) struct ArcSet {
 }
 
 /// Inline room for the few arcs a set usually has.
-type Arcs = SmallVec<[(f64, f64); 4]>;
+pub(crate) type Arcs = SmallVec<[(f64, f64); 2]>;
 
 impl ArcSet {
     /// No angle.
@@ -114,6 +114,29 @@ impl ArcSet {
         ArcSet { arcs: out }
     }
 
+    /// The arcs as probes for quick sign tests ([`Probes`]).
+    pub(crate) fn probes(&self) -> Probes {
+        Probes(
+            self.arcs
+                .iter()
+                .map(|&(lo, hi)| {
+                    let mid = 0.5 * (lo + hi);
+                    (mid.cos(), mid.sin(), 0.5 * (hi - lo))
+                })
+                .collect(),
+        )
+    }
+
+    /// The set's arcs whose index `keep` accepts.
+    pub(crate) fn arcs_where(&self, mut keep: impl FnMut(usize) -> bool) -> ArcSet {
+        ArcSet {
+            arcs: (0..self.arcs.len())
+                .filter(|&k| keep(k))
+                .map(|k| self.arcs[k])
+                .collect(),
+        }
+    }
+
     /// Whether the set meets `[lo, hi]` (`0 ≤ lo ≤ hi ≤ 2π`).
     pub(crate) fn meets(&self, lo: f64, hi: f64) -> bool {
         self.arcs.iter().any(|&(a, b)| a <= hi && b >= lo)
@@ -181,14 +204,34 @@ impl ArcSet {
     }
 
     /// The arcs as `(start, length)` with those through angle 0 joined into one.
-    pub(crate) fn joined(&self) -> Vec<(f64, f64)> {
-        let mut out: Vec<(f64, f64)> = self.arcs.iter().map(|&(lo, hi)| (lo, hi - lo)).collect();
+    pub(crate) fn joined(&self) -> Arcs {
+        let mut out: Arcs = self.arcs.iter().map(|&(lo, hi)| (lo, hi - lo)).collect();
         if out.len() > 1 && self.arcs[0].0 <= 0.0 && self.arcs[self.arcs.len() - 1].1 >= TAU {
             let first = out.remove(0);
             let last = out.last_mut().expect("more than one arc");
             last.1 += first.1;
         }
         out
+    }
+}
+
+/// Per arc of a set, the cosine and sine of its middle and its half-length: sign tests of
+/// event functions over the arcs without evaluating trigonometry per function.
+pub(crate) struct Probes(SmallVec<[(f64, f64, f64); 2]>);
+
+impl Probes {
+    /// Whether `f > 0` certainly holds all over arc `k`: its value at the middle exceeds
+    /// the most it can change over half the arc (`(|a| + |b|)·half`, above
+    /// `hypot(a, b)·half`) plus its rounding, as in [`ArcSet::where_negative`].
+    pub(crate) fn positive_over(&self, k: usize, f: &EventFn) -> bool {
+        let (cos, sin, half) = self.0[k];
+        let value = f.a * cos + f.b * sin + f.c;
+        value - ((f.a.abs() + f.b.abs()) * half * (1.0 + 1e-12) + ROUNDING * f.scale) > 0.0
+    }
+
+    /// How many arcs.
+    pub(crate) fn len(&self) -> usize {
+        self.0.len()
     }
 }
 

@@ -63,7 +63,7 @@ impl EventFn {
     #[must_use]
     pub fn roots(&self) -> Roots {
         let r = self.a.hypot(self.b);
-        let zero = IDENTICALLY_ZERO * self.scale.max(f64::MIN_POSITIVE);
+        let zero = self.zero();
         if r <= zero {
             return if self.c.abs() <= zero {
                 Roots::Identically
@@ -86,6 +86,19 @@ impl EventFn {
                 up: phi - alpha,
             }
         }
+    }
+
+    /// What counts as zero against the function's scale.
+    fn zero(&self) -> f64 {
+        IDENTICALLY_ZERO * self.scale.max(f64::MIN_POSITIVE)
+    }
+
+    /// Whether the function is zero at every angle ([`Roots::Identically`]), without
+    /// solving for roots.
+    #[must_use]
+    pub fn is_identically_zero(&self) -> bool {
+        let zero = self.zero();
+        self.c.abs() <= zero && self.a.hypot(self.b) <= zero
     }
 
     /// How far a root may move for a rounding error of `ROOT_NOISE · scale` in the value:

@@ -40,6 +40,7 @@
 //! oracle on the drawn pieces at random angles inside every cell and within `1e-6°` of both
 //! of its ends.
 
+mod cycles;
 mod pairs;
 mod pieces;
 mod sweep;
@@ -66,7 +67,7 @@ use sweep::{Dag, SweepCell, moved};
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PictureOptions {
     /// Angular bins of the candidate search (more bins: tighter boxes, more passes; 1 to
-    /// 65,535).
+    /// 16,383).
     pub bins: usize,
     /// At most this many pieces after cutting the ones that cross ([`BakeError::Pieces`];
     /// never more than 2²⁴ − 1).
@@ -88,9 +89,9 @@ pub struct PictureOptions {
 }
 
 impl PictureOptions {
-    /// 16 bins, 4 million pieces, 5 million pairs, 1 GiB, 256 cycle cuts, 32 boundary cuts.
+    /// 32 bins, 4 million pieces, 5 million pairs, 1 GiB, 256 cycle cuts, 32 boundary cuts.
     pub const DEFAULT: PictureOptions = PictureOptions {
-        bins: 16,
+        bins: 32,
         max_pieces: 4_000_000,
         max_pairs: 5_000_000,
         budget_bytes: 1 << 30,
@@ -243,8 +244,7 @@ fn cells_from(
     dag: &mut Dag,
 ) -> Result<Vec<SweepCell>, Interrupt> {
     let refine = |c: &Constraint| pieces.refine(c);
-    let guess = |theta: f64| depth_order(pieces.spin, pieces.set, theta);
-    let mut cells = sweep::sweep(constraints, origin, pieces.set.len(), &refine, &guess)
+    let mut cells = sweep::sweep(constraints, origin, pieces.set.len(), &refine)
         .map_err(|c| Interrupt::Cycle(origin + c.at, c.edges))?;
     // A cell no longer than EVENT_GAP_RAD (two events a rounding apart) is exact nowhere for
     // sure: the next cell starts where it started instead.

@@ -11,6 +11,7 @@ use face_sort::{
     PixelRays, PolygonSet, ProjectionScratch, Side, View, clip_convex_2d, signed_area_2d,
 };
 use rayon::prelude::*;
+use smallvec::SmallVec;
 
 use crate::BakeError;
 use crate::arcs::ArcSet;
@@ -125,6 +126,8 @@ impl<'a> Pieces<'a> {
     /// the other piece on its outer side or on it).
     pub(crate) fn overlap(&self, i: usize, j: usize, within: &ArcSet) -> ArcSet {
         let mut rest = self.drawn[i].intersect(&self.drawn[j]).intersect(within);
+        let mut probes = rest.probes();
+        let mut lines: SmallVec<[EventFn; 8]> = SmallVec::new();
         for (p, q) in [(i, j), (j, i)] {
             let (cp, cq) = (self.set.corners(p), self.set.corners(q));
             for k in 0..cp.len() {
@@ -135,20 +138,36 @@ impl<'a> Pieces<'a> {
                 if a.distance(b) <= self.short_edge {
                     continue; // no line that rounding can tell
                 }
-                // Only the separation within what is left matters.
-                let mut separated = rest.clone();
+                // The side of each corner of `q` relative to the edge's line.
+                lines.clear();
                 for &v in cq {
                     let m = (b - a).cross(v - a) * self.sigma;
                     let f = self.track.event(m, m.dot(a));
-                    if m == DVec3::ZERO || matches!(f.roots(), Roots::Identically) {
+                    if m == DVec3::ZERO || f.is_identically_zero() {
                         continue; // on the edge's line at every angle
                     }
-                    separated = separated.where_negative(&f, margin(&f));
+                    lines.push(f);
+                }
+                // The line separates only where every corner is on its outer side: not over
+                // an arc where some corner surely stays inside.
+                let open: SmallVec<[bool; 2]> = (0..probes.len())
+                    .map(|arc| !lines.iter().any(|f| probes.positive_over(arc, f)))
+                    .collect();
+                if !open.contains(&true) {
+                    continue;
+                }
+                // Only the separation within what is left matters.
+                let mut separated = rest.arcs_where(|arc| open[arc]);
+                for f in &lines {
+                    separated = separated.where_negative(f, margin(f));
                     if separated.is_empty() {
                         break;
                     }
                 }
-                rest = rest.minus(&separated);
+                if !separated.is_empty() {
+                    rest = rest.minus(&separated);
+                    probes = rest.probes();
+                }
             }
         }
         rest
@@ -306,22 +325,29 @@ pub(crate) struct Constraint {
     pub(crate) behind: u32,
     pub(crate) front: u32,
     pub(crate) arcs: ArcSet,
-    /// Whether `arcs` are the closed-form arcs of overlap (else only a superset).
+    /// Whether `arcs` are the closed-form arcs of overlap (else only a superset: where both
+    /// are drawn while their boxes meet, which [`Pieces::refine`] narrows).
     pub(crate) exact: bool,
-    /// Where the pair's boxes met (what [`Pieces::refine`] intersects with).
-    pub(crate) within: ArcSet,
 }
 
 impl Pieces<'_> {
     /// The exact arcs of a constraint made by [`constraints`] (a fixed relation's pair).
     pub(crate) fn refine(&self, c: &Constraint) -> ArcSet {
-        self.overlap(c.behind as usize, c.front as usize, &c.within)
+        self.overlap(c.behind as usize, c.front as usize, &c.arcs)
     }
 }
 
-/// Bits of a candidate key: piece, piece, bin.
+/// Bits of a candidate key: piece, piece, bin, mark ([`RUN_START`], [`RUN_END`], [`AT_ZERO`]).
 const PIECE_BITS: u32 = 24;
-const BIN_BITS: u32 = 16;
+const BIN_BITS: u32 = 14;
+const MARK_BITS: u32 = 2;
+
+/// A run of bins where a pair's boxes meet starts at the key's bin.
+const RUN_START: u64 = 0;
+/// Such a run ends at the key's bin.
+const RUN_END: u64 = 1;
+/// The boxes meet in bin 0 without a run starting there.
+const AT_ZERO: u64 = 2;
 
 /// The most pieces a picture bake takes (candidate keys hold two piece indices).
 pub(crate) const MAX_PIECES: usize = (1 << PIECE_BITS) - 1;
@@ -332,60 +358,124 @@ pub(crate) const MAX_BINS: usize = (1 << BIN_BITS) - 1;
 /// Keys a bin's search counts at once toward the budget.
 const KEY_BLOCK: usize = 4096;
 
-/// A candidate pair and the arcs (whole bins) where their boxes met.
-pub(crate) struct Candidate {
-    i: u32,
-    j: u32,
-    bins: ArcSet,
+/// The f32 at or below `x`.
+fn down(x: f64) -> f32 {
+    let f = x as f32;
+    if f64::from(f) > x { f.next_down() } else { f }
+}
+
+/// The f32 at or above `x`.
+fn up(x: f64) -> f32 {
+    let f = x as f32;
+    if f64::from(f) < x { f.next_up() } else { f }
+}
+
+/// A screen box as f32 rounded outward (so still conservative), written `(min along, min
+/// across, max along, max across)`: along the screen axis that the turn moves least (a yaw
+/// spin's boxes grow only sideways, so sweeping down the screen meets few of them).
+type ScreenBox = [f32; 4];
+
+/// No box: meets nothing.
+const NO_BOX: ScreenBox = [
+    f32::INFINITY,
+    f32::INFINITY,
+    f32::NEG_INFINITY,
+    f32::NEG_INFINITY,
+];
+
+/// Whether two boxes meet.
+fn meet(a: &ScreenBox, b: &ScreenBox) -> bool {
+    a[0] <= b[2] && b[0] <= a[2] && a[1] <= b[3] && b[1] <= a[3]
+}
+
+/// Every piece's box over bin `bin` of `bins` ([`NO_BOX`] where the piece is not drawn).
+fn bin_boxes(pieces: &Pieces, bin: usize, bins: usize) -> Vec<ScreenBox> {
+    let width = std::f64::consts::TAU / bins as f64;
+    let (lo, hi) = (bin as f64 * width, (bin + 1) as f64 * width);
+    let view = pieces.spin.view_at_rad(0.5 * (lo + hi));
+    let swap = pieces.across_axis.y < pieces.across_axis.x;
+    (0..pieces.set.len())
+        .map(|i| {
+            if !pieces.drawn[i].meets(lo, hi) {
+                return NO_BOX;
+            }
+            let (min, max) = pieces.swept_box(&view, i, 0.5 * width);
+            let (min, max) = if swap {
+                (DVec2::new(min.y, min.x), DVec2::new(max.y, max.x))
+            } else {
+                (min, max)
+            };
+            [down(min.x), down(min.y), up(max.x), up(max.y)]
+        })
+        .collect()
+}
+
+/// A candidate key.
+fn key(i: u32, j: u32, bin: usize, mark: u64) -> u64 {
+    (u64::from(i) << (PIECE_BITS + BIN_BITS + MARK_BITS))
+        | (u64::from(j) << (BIN_BITS + MARK_BITS))
+        | ((bin as u64) << MARK_BITS)
+        | mark
+}
+
+/// The pair of a candidate key.
+fn pair_of(key: u64) -> (u32, u32) {
+    let piece_mask = (1u64 << PIECE_BITS) - 1;
+    let pair = key >> (BIN_BITS + MARK_BITS);
+    (
+        ((pair >> PIECE_BITS) & piece_mask) as u32,
+        (pair & piece_mask) as u32,
+    )
+}
+
+/// Whether two keys are of one pair.
+fn same_pair(a: &u64, b: &u64) -> bool {
+    a >> (BIN_BITS + MARK_BITS) == b >> (BIN_BITS + MARK_BITS)
 }
 
 /// Candidate pairs: pieces whose conservative screen boxes overlap in some angular bin
-/// while both may be drawn, and whose planes allow one to occlude the other; with the bins
-/// where that happens.
-fn candidates(pieces: &Pieces, bins: usize, max_pairs: usize) -> Result<Vec<Candidate>, BakeError> {
-    let width = std::f64::consts::TAU / bins as f64;
-    // (pair, bin) keys found so far over all bins, counted in blocks as they come, so that a
-    // search over the budget stops before its keys cost more than the budget states.
+/// while both may be drawn, and whose planes allow one to occlude the other. Each bin's
+/// search compares a pair's boxes in the bins either side, and keys only where a run of
+/// bins in which they meet starts or ends (or passes bin 0), so a pair costs one plane test
+/// per run and the keys stay few. Sorted (a pair's keys are consecutive).
+fn candidate_keys(pieces: &Pieces, bins: usize, max_pairs: usize) -> Result<Vec<u64>, BakeError> {
+    // Keys found so far over all bins, counted in blocks as they come, so that a search over
+    // the budget stops before its keys cost more than the budget states.
     let limit = max_pairs.saturating_mul(4);
     let found = AtomicUsize::new(0);
     let per_bin: Vec<Vec<u64>> = (0..bins)
         .into_par_iter()
         .map(|bin| {
-            let (lo, hi) = (bin as f64 * width, (bin + 1) as f64 * width);
-            let view = pieces.spin.view_at_rad(0.5 * (lo + hi));
-            let mut boxes: Vec<(DVec2, DVec2, u32)> = (0..pieces.set.len())
-                .filter(|&i| pieces.drawn[i].meets(lo, hi))
-                .map(|i| {
-                    let (min, max) = pieces.swept_box(&view, i, 0.5 * width);
-                    (min, max, i as u32)
-                })
+            let here = bin_boxes(pieces, bin, bins);
+            let before = bin_boxes(pieces, (bin + bins - 1) % bins, bins);
+            let after = bin_boxes(pieces, (bin + 1) % bins, bins);
+            let mut order: Vec<(ScreenBox, u32)> = here
+                .iter()
+                .zip(0..)
+                .filter(|(b, _)| b[0] <= b[2])
+                .map(|(b, i)| (*b, i))
                 .collect();
-            // Sweep along the screen axis that the turn moves least (a yaw spin's boxes grow
-            // only sideways, so sweeping down the screen meets few of them), with the boxes
-            // written (along, across).
-            if pieces.across_axis.y < pieces.across_axis.x {
-                for b in &mut boxes {
-                    b.0 = DVec2::new(b.0.y, b.0.x);
-                    b.1 = DVec2::new(b.1.y, b.1.x);
-                }
-            }
-            boxes.sort_unstable_by(|a, b| a.0.x.total_cmp(&b.0.x));
+            order.sort_unstable_by(|a, b| a.0[0].total_cmp(&b.0[0]));
             let mut keys = Vec::new();
-            'search: for (k, &(min_a, max_a, a)) in boxes.iter().enumerate() {
-                for &(min_b, max_b, b) in &boxes[k + 1..] {
-                    if min_b.x > max_a.x {
+            'search: for (k, &(box_a, a)) in order.iter().enumerate() {
+                for &(box_b, b) in &order[k + 1..] {
+                    if box_b[0] > box_a[2] {
                         break;
                     }
-                    if min_b.y > max_a.y || min_a.y > max_b.y {
+                    if box_b[1] > box_a[3] || box_a[1] > box_b[3] {
                         continue;
                     }
                     let (i, j) = (a.min(b), a.max(b));
-                    if pieces.relation(i as usize, j as usize) != Relation::Never {
-                        keys.push(
-                            (u64::from(i) << (PIECE_BITS + BIN_BITS))
-                                | (u64::from(j) << BIN_BITS)
-                                | bin as u64,
-                        );
+                    let (iu, ju) = (i as usize, j as usize);
+                    let starts = !meet(&before[iu], &before[ju]);
+                    let ends = !meet(&after[iu], &after[ju]);
+                    let at_zero = bin == 0 && !starts;
+                    if !(starts || ends || at_zero) || pieces.relation(iu, ju) == Relation::Never {
+                        continue;
+                    }
+                    let marks = [(starts, RUN_START), (ends, RUN_END), (at_zero, AT_ZERO)];
+                    for (_, mark) in marks.into_iter().filter(|m| m.0) {
+                        keys.push(key(i, j, bin, mark));
                         if keys.len() % KEY_BLOCK == 0
                             && found.fetch_add(KEY_BLOCK, Ordering::Relaxed) + KEY_BLOCK > limit
                         {
@@ -407,50 +497,38 @@ fn candidates(pieces: &Pieces, bins: usize, max_pairs: usize) -> Result<Vec<Cand
     }
     let mut keys: Vec<u64> = per_bin.into_iter().flatten().collect();
     keys.par_sort_unstable();
-    let mut out: Vec<Candidate> = Vec::new();
-    let piece_mask = (1u64 << PIECE_BITS) - 1;
-    let bin_mask = (1u64 << BIN_BITS) - 1;
-    let mut k = 0;
-    while k < keys.len() {
-        let pair = keys[k] >> BIN_BITS;
-        let mut arcs = ArcSet::empty();
-        let mut run: Option<(u64, u64)> = None;
-        while k < keys.len() && keys[k] >> BIN_BITS == pair {
-            let bin = keys[k] & bin_mask;
-            run = match run {
-                Some((first, last)) if bin == last + 1 => Some((first, bin)),
-                Some((first, last)) => {
-                    arcs = arcs.union(&bin_arc(first, last, width));
-                    Some((bin, bin))
-                }
-                None => Some((bin, bin)),
-            };
-            k += 1;
-        }
-        if let Some((first, last)) = run {
-            arcs = arcs.union(&bin_arc(first, last, width));
-        }
-        out.push(Candidate {
-            i: ((pair >> PIECE_BITS) & piece_mask) as u32,
-            j: (pair & piece_mask) as u32,
-            bins: arcs,
-        });
-        if out.len() > max_pairs {
-            return Err(BakeError::PairBudget {
-                pairs: out.len(),
-                budget: max_pairs,
-            });
-        }
-    }
-    Ok(out)
+    Ok(keys)
 }
 
-/// Bins `first..=last` as one arc, a hair wider than the bins (rounding of their ends).
-fn bin_arc(first: u64, last: u64, width: f64) -> ArcSet {
-    ArcSet::arc(
-        first as f64 * width - ARC_MARGIN_RAD,
-        (last - first + 1) as f64 * width + 2.0 * ARC_MARGIN_RAD,
-    )
+/// The bins where one pair's boxes meet (its keys, sorted), as arcs a hair wider than the
+/// bins (rounding of their ends): each run from its start to the next end round the circle,
+/// or the whole circle when the boxes meet in every bin (no run starts).
+fn bins_of(keys: &[u64], bins: usize) -> ArcSet {
+    let width = std::f64::consts::TAU / bins as f64;
+    let bin_mask = (1u64 << BIN_BITS) - 1;
+    let marked = |mark: u64| {
+        keys.iter()
+            .filter(move |&&k| k & 3 == mark)
+            .map(move |&k| ((k >> MARK_BITS) & bin_mask) as usize)
+    };
+    let ends: SmallVec<[usize; 4]> = marked(RUN_END).collect();
+    let mut arcs = ArcSet::empty();
+    let mut any = false;
+    for start in marked(RUN_START) {
+        any = true;
+        let end = ends
+            .iter()
+            .copied()
+            .find(|&e| e >= start)
+            .or_else(|| ends.first().copied())
+            .unwrap_or(start + bins - 1);
+        let length = (end + bins - start) % bins + 1;
+        arcs = arcs.union(&ArcSet::arc(
+            start as f64 * width - ARC_MARGIN_RAD,
+            length as f64 * width + 2.0 * ARC_MARGIN_RAD,
+        ));
+    }
+    if any { arcs } else { ArcSet::full() }
 }
 
 /// Every pair's constraint, with the number of candidate pairs. A pair of fixed relation
@@ -462,26 +540,33 @@ pub(crate) fn constraints(
     bins: usize,
     max_pairs: usize,
 ) -> Result<(Vec<Constraint>, usize), BakeError> {
-    let pairs = candidates(pieces, bins, max_pairs)?;
-    let found: Vec<Constraint> = pairs
-        .par_iter()
-        .flat_map_iter(|c| {
-            let (i, j) = (c.i, c.j);
+    let keys = candidate_keys(pieces, bins, max_pairs)?;
+    let pairs = keys.par_chunk_by(same_pair).count();
+    if pairs > max_pairs {
+        return Err(BakeError::PairBudget {
+            pairs,
+            budget: max_pairs,
+        });
+    }
+    let found: Vec<Constraint> = keys
+        .par_chunk_by(same_pair)
+        .flat_map_iter(|run| {
+            let (i, j) = pair_of(run[0]);
             let (iu, ju) = (i as usize, j as usize);
-            let mut out = Vec::new();
+            let bins = bins_of(run, bins);
+            let mut out: SmallVec<[Constraint; 1]> = SmallVec::new();
             match pieces.relation(iu, ju) {
                 Relation::Never => {}
                 Relation::Fixed { behind, front } => {
                     let arcs = pieces.drawn[iu]
                         .intersect(&pieces.drawn[ju])
-                        .intersect(&c.bins);
+                        .intersect(&bins);
                     if !arcs.is_empty() {
                         out.push(Constraint {
                             behind,
                             front,
                             arcs,
                             exact: false,
-                            within: c.bins.clone(),
                         });
                     }
                 }
@@ -490,7 +575,7 @@ pub(crate) fn constraints(
                     // and pieces that do not cross keep one relation over a connected
                     // overlap: one direction per stretch between events.
                     let events = pieces.events(iu, ju);
-                    for (start, length) in pieces.overlap(iu, ju, &c.bins).joined() {
+                    for (start, length) in pieces.overlap(iu, ju, &bins).joined() {
                         let end = start + length;
                         let mut cuts: Vec<f64> = events
                             .iter()
@@ -514,7 +599,6 @@ pub(crate) fn constraints(
                                 front,
                                 arcs: ArcSet::arc(a - ARC_MARGIN_RAD, b - a + 2.0 * ARC_MARGIN_RAD),
                                 exact: true,
-                                within: ArcSet::empty(),
                             });
                         }
                     }
@@ -523,5 +607,5 @@ pub(crate) fn constraints(
             out
         })
         .collect();
-    Ok((found, pairs.len()))
+    Ok((found, pairs))
 }

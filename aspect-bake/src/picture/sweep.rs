@@ -8,6 +8,7 @@ use std::f64::consts::TAU;
 
 use rayon::prelude::*;
 
+use super::cycles::{Acyclicity, CycleFinder};
 use super::pairs::Constraint;
 use crate::arcs::ArcSet;
 use crate::tolerance::EVENT_GAP_RAD;
@@ -20,6 +21,9 @@ struct Span {
     end: f64,
     constraint: u32,
     version: u32,
+    /// The constraint's ends, copied here so that checks read spans alone.
+    behind: u32,
+    front: u32,
 }
 
 impl Eq for Span {}
@@ -57,156 +61,6 @@ pub(crate) struct CycleAt {
     pub(crate) at: f64,
     /// The cycle's edges, `(behind, front)`.
     pub(crate) edges: Vec<(u32, u32)>,
-}
-
-/// A topological order kept while edges arrive one by one (Pearce and Kelly's dynamic
-/// topological sort): an edge that agrees with the order costs nothing; one that does not
-/// reorders only the nodes between its ends, or reports the cycle it closes.
-struct DynamicOrder {
-    out: Vec<Vec<(u32, u32)>>,
-    into: Vec<Vec<(u32, u32)>>,
-    position: Vec<u32>,
-    touched: Vec<u32>,
-    is_touched: Vec<bool>,
-    seen: Vec<u32>,
-    epoch: u32,
-    parent: Vec<(u32, u32)>,
-    stack: Vec<u32>,
-    forward: Vec<u32>,
-    backward: Vec<u32>,
-    pool: Vec<u32>,
-}
-
-impl DynamicOrder {
-    fn new(n: usize) -> Self {
-        DynamicOrder {
-            out: vec![Vec::new(); n],
-            into: vec![Vec::new(); n],
-            position: (0..n as u32).collect(),
-            touched: Vec::new(),
-            is_touched: vec![false; n],
-            seen: vec![0; n],
-            epoch: 0,
-            parent: vec![(0, 0); n],
-            stack: Vec::new(),
-            forward: Vec::new(),
-            backward: Vec::new(),
-            pool: Vec::new(),
-        }
-    }
-
-    /// Places the nodes in `order` (any order suits a graph without edges; a good guess
-    /// saves reordering later).
-    fn place(&mut self, order: &[u32]) {
-        debug_assert!(self.touched.is_empty());
-        for (k, &v) in order.iter().enumerate() {
-            self.position[v as usize] = k as u32;
-        }
-    }
-
-    /// Drops every edge (the order stays: any order suits no edges).
-    fn clear(&mut self) {
-        for &t in &self.touched {
-            self.out[t as usize].clear();
-            self.into[t as usize].clear();
-            self.is_touched[t as usize] = false;
-        }
-        self.touched.clear();
-    }
-
-    fn touch(&mut self, v: u32) {
-        if !self.is_touched[v as usize] {
-            self.is_touched[v as usize] = true;
-            self.touched.push(v);
-        }
-    }
-
-    /// Removes edge `u → v` labelled `id` (the order stays valid).
-    fn remove(&mut self, u: u32, v: u32, id: u32) {
-        if let Some(k) = self.out[u as usize].iter().position(|&e| e == (v, id)) {
-            self.out[u as usize].swap_remove(k);
-        }
-        if let Some(k) = self.into[v as usize].iter().position(|&e| e == (u, id)) {
-            self.into[v as usize].swap_remove(k);
-        }
-    }
-
-    /// Adds edge `u → v` labelled `id`, or returns the labels of a cycle it would close
-    /// (the new edge's first).
-    fn insert(&mut self, u: u32, v: u32, id: u32) -> Result<(), Vec<u32>> {
-        self.touch(u);
-        self.touch(v);
-        let (ui, vi) = (u as usize, v as usize);
-        if self.position[ui] > self.position[vi] {
-            self.epoch = self.epoch.wrapping_add(1);
-            if self.epoch == 0 {
-                self.seen.fill(0);
-                self.epoch = 1;
-            }
-            let epoch = self.epoch;
-            let upper = self.position[ui];
-            // Forward from v among nodes placed before u.
-            self.forward.clear();
-            self.stack.clear();
-            self.stack.push(v);
-            self.seen[vi] = epoch;
-            while let Some(w) = self.stack.pop() {
-                self.forward.push(w);
-                for &(x, label) in &self.out[w as usize] {
-                    if x == u {
-                        let mut cycle = vec![id, label];
-                        let mut y = w;
-                        while y != v {
-                            let (p, l) = self.parent[y as usize];
-                            cycle.push(l);
-                            y = p;
-                        }
-                        return Err(cycle);
-                    }
-                    let xi = x as usize;
-                    if self.seen[xi] != epoch && self.position[xi] < upper {
-                        self.seen[xi] = epoch;
-                        self.parent[xi] = (w, label);
-                        self.stack.push(x);
-                    }
-                }
-            }
-            // Backward from u among nodes placed after v.
-            let lower = self.position[vi];
-            self.backward.clear();
-            self.stack.push(u);
-            self.seen[ui] = epoch;
-            while let Some(w) = self.stack.pop() {
-                self.backward.push(w);
-                for &(x, _) in &self.into[w as usize] {
-                    let xi = x as usize;
-                    if self.seen[xi] != epoch && self.position[xi] > lower {
-                        self.seen[xi] = epoch;
-                        self.stack.push(x);
-                    }
-                }
-            }
-            // The backward set before the forward set, in the positions they held.
-            let position = &self.position;
-            self.forward.sort_unstable_by_key(|&w| position[w as usize]);
-            self.backward
-                .sort_unstable_by_key(|&w| position[w as usize]);
-            self.pool.clear();
-            self.pool.extend(
-                self.backward
-                    .iter()
-                    .chain(&self.forward)
-                    .map(|&w| position[w as usize]),
-            );
-            self.pool.sort_unstable();
-            for (k, &w) in self.backward.iter().chain(&self.forward).enumerate() {
-                self.position[w as usize] = self.pool[k];
-            }
-        }
-        self.out[ui].push((v, id));
-        self.into[vi].push((u, id));
-        Ok(())
-    }
 }
 
 /// Kahn's algorithm over `n` nodes with reusable buffers.
@@ -350,6 +204,8 @@ fn spans_of(c: &Constraint, constraint: u32, version: u32, origin: f64, out: &mu
             end,
             constraint,
             version,
+            behind: c.behind,
+            front: c.front,
         };
         if length >= TAU {
             out.push(span(0.0, TAU));
@@ -399,11 +255,20 @@ impl Queue {
     }
 }
 
-/// A likely order of the pieces at an absolute angle (back to front).
-pub(crate) type Guess<'a> = &'a dyn Fn(f64) -> Vec<u32>;
-
 /// A refinement function: the exact arcs of a constraint.
 pub(crate) type Refine<'a> = &'a (dyn Fn(&Constraint) -> ArcSet + Sync);
+
+/// The fewest spans a cell takes at once; more at once as the cell grows (a quarter of what
+/// it holds) checking the whole cell after each batch costs a constant factor.
+const MIN_BATCH: usize = 1024;
+
+/// A cycle of exact constraints that [`Sweep::settle`] left, as indices into its spans.
+struct Settled {
+    /// Every span on some cycle.
+    on_cycles: Vec<u32>,
+    /// One cycle.
+    cycle: Vec<u32>,
+}
 
 /// The sweep's working state.
 struct Sweep<'a> {
@@ -413,15 +278,7 @@ struct Sweep<'a> {
     refine: Refine<'a>,
     /// Spans not taken yet.
     queue: Queue,
-    /// A likely order of the pieces at an (absolute) angle: where each cell's dynamic order
-    /// starts.
-    guess: Guess<'a>,
-    /// Spans taken in this cell (an edge's label is its index here).
-    live: Vec<Span>,
-    /// Labels of the live spans of each constraint (only for constraints in `listed`).
-    labels: Vec<Vec<u32>>,
-    listed: Vec<u32>,
-    order: DynamicOrder,
+    finder: CycleFinder,
 }
 
 impl Sweep<'_> {
@@ -429,104 +286,54 @@ impl Sweep<'_> {
         self.version[s.constraint as usize] == s.version
     }
 
-    fn take(&mut self, s: Span) -> u32 {
-        let label = self.live.len() as u32;
-        self.live.push(s);
-        let k = s.constraint as usize;
-        if self.labels[k].is_empty() {
-            self.listed.push(s.constraint);
-        }
-        self.labels[k].push(label);
-        label
+    /// The `(behind, front)` edges of spans.
+    fn edges<'s>(spans: impl Iterator<Item = &'s Span>) -> Vec<(u32, u32)> {
+        spans.map(|s| (s.behind, s.front)).collect()
     }
 
-    fn insert(&mut self, label: u32) -> Result<(), Vec<u32>> {
-        let c = &self.constraints[self.live[label as usize].constraint as usize];
-        self.order.insert(c.behind, c.front, label)
-    }
-
-    /// Starts cell `lo` afresh: the live spans that reach past `lo` stay (their edges not yet
-    /// in the graph), those that start after it go back to the queue.
-    fn reset(&mut self, lo: f64) {
-        let old = std::mem::take(&mut self.live);
-        for &k in &self.listed {
-            self.labels[k as usize].clear();
-        }
-        self.listed.clear();
-        self.order.clear();
-        self.order.place(&(self.guess)(self.origin + lo));
-        let mut kept: Vec<Span> = Vec::new();
-        for s in old {
-            if !self.valid(&s) || s.end <= lo {
-                continue;
-            }
-            if s.start > lo {
-                self.queue.push(s);
-            } else {
-                kept.push(s);
-            }
-        }
-        while let Some(s) = self.queue.peek() {
-            if s.start > lo {
-                break;
-            }
-            self.queue.pop();
-            if self.valid(&s) && s.end > lo {
-                kept.push(s);
-            }
-        }
-        kept.sort_unstable();
-        for s in kept {
-            self.take(s);
-        }
-    }
-
-    /// The cell `[lo, hi)` with the edges of the valid live spans that meet it.
-    fn cell(&self, lo: f64, hi: f64) -> SweepCell {
-        let edges = self
-            .live
+    /// Checks `spans` for a cycle, returning one (indices into `spans`).
+    fn cycle(&mut self, spans: &[Span]) -> Option<Vec<u32>> {
+        let edges = spans
             .iter()
-            .filter(|s| self.valid(s) && s.start < hi && s.end > lo)
-            .map(|s| {
-                let c = &self.constraints[s.constraint as usize];
-                (c.behind, c.front)
-            })
-            .collect();
-        SweepCell {
-            lo,
-            hi,
-            edges,
-            closing: Vec::new(),
+            .enumerate()
+            .map(|(k, s)| (s.behind, s.front, k as u32));
+        match self.finder.check(edges) {
+            Acyclicity::Acyclic => None,
+            Acyclicity::Cyclic { cycle, .. } => Some(cycle),
         }
     }
 
-    /// The `(behind, front)` edges of a cycle of live labels.
-    fn cycle_edges(&self, cycle: &[u32]) -> Vec<(u32, u32)> {
-        cycle
-            .iter()
-            .map(|&l| {
-                let c = &self.constraints[self.live[l as usize].constraint as usize];
-                (c.behind, c.front)
-            })
-            .collect()
+    /// Refines every constraint not exact yet that lies on a cycle of `spans`, until none
+    /// does; returns a cycle of exact constraints that remains (indices into `spans`), if
+    /// any. A refined constraint's spans leave `spans`; its new ones that start by `upto` and
+    /// end after `lo` join it, later ones go to the queue.
+    fn settle(&mut self, spans: &mut Vec<Span>, lo: f64, upto: f64) -> Option<Settled> {
+        loop {
+            let edges = spans
+                .iter()
+                .enumerate()
+                .map(|(k, s)| (s.behind, s.front, k as u32));
+            let ch = self.finder.check(edges);
+            let Acyclicity::Cyclic { on_cycles, cycle } = ch else {
+                return None;
+            };
+            let mut loose: Vec<u32> = on_cycles
+                .iter()
+                .map(|&l| spans[l as usize].constraint)
+                .filter(|&k| !self.constraints[k as usize].exact)
+                .collect();
+            if loose.is_empty() {
+                return Some(Settled { on_cycles, cycle });
+            }
+            loose.sort_unstable();
+            loose.dedup();
+            self.refine_all(&loose, spans, lo, upto);
+        }
     }
 
-    /// The constraints of a cycle's labels that are not exact yet.
-    fn loose(&self, cycle: &[u32]) -> Vec<u32> {
-        let mut out: Vec<u32> = cycle
-            .iter()
-            .map(|&l| self.live[l as usize].constraint)
-            .filter(|&k| !self.constraints[k as usize].exact)
-            .collect();
-        out.sort_unstable();
-        out.dedup();
-        out
-    }
-
-    /// Replaces the arcs of constraints `ks` by their exact arcs (in parallel): their live
-    /// edges leave the graph; their new spans that start at or before `now` and reach past
-    /// `lo` are taken (returned, for insertion), the others queued.
-    fn refine_all(&mut self, ks: &[u32], lo: f64, now: f64) -> Vec<u32> {
+    /// Replaces the arcs of constraints `ks` by their exact arcs (in parallel), as
+    /// [`Sweep::settle`] describes.
+    fn refine_all(&mut self, ks: &[u32], spans: &mut Vec<Span>, lo: f64, upto: f64) {
         let refine = self.refine;
         let constraints = &*self.constraints;
         // Threads only pay for large batches.
@@ -539,44 +346,40 @@ impl Sweep<'_> {
                 .map(|&k| refine(&constraints[k as usize]))
                 .collect()
         };
-        let mut taken = Vec::new();
+        let mut fresh = Vec::new();
         for (&k, arcs) in ks.iter().zip(exact) {
             let ku = k as usize;
-            let (behind, front) = (self.constraints[ku].behind, self.constraints[ku].front);
-            for label in std::mem::take(&mut self.labels[ku]) {
-                self.order.remove(behind, front, label);
-            }
             let c = &mut self.constraints[ku];
             c.arcs = arcs;
             c.exact = true;
             self.version[ku] += 1;
-            let mut spans = Vec::new();
-            spans_of(c, k, self.version[ku], self.origin, &mut spans);
-            for s in spans {
-                if s.start <= now {
-                    if s.end > lo {
-                        taken.push(self.take(s));
-                    }
-                } else {
-                    self.queue.push(s);
-                }
+            spans_of(c, k, self.version[ku], self.origin, &mut fresh);
+        }
+        spans.retain(|s| self.version[s.constraint as usize] == s.version);
+        for s in fresh {
+            if s.start > upto {
+                self.queue.push(s);
+            } else if s.end > lo {
+                spans.push(s);
             }
         }
-        taken
     }
 }
 
 /// The greedy cells over one turn from `origin`: each cell takes the constraints active at
 /// its start, then those that start later in order, and ends where one would close a cycle.
-/// A cycle through constraints that are not exact refines them (`refine`, in place) first, so
+/// Constraints not exact yet that lie on a cycle are refined (`refine`, in place) first, so
 /// that every cell ends at a cycle of exact constraints. The last cell ends at `2π`
 /// (relative).
+///
+/// Spans join a cell in batches (a quarter of what the cell holds): after each, the whole
+/// cell is checked for cycles (Kahn's algorithm, and Tarjan's components of what it leaves),
+/// and where one closed, a binary search over the batch finds the span that closed it.
 pub(crate) fn sweep(
     constraints: &mut [Constraint],
     origin: f64,
     n: usize,
     refine: Refine<'_>,
-    guess: Guess<'_>,
 ) -> Result<Vec<SweepCell>, CycleAt> {
     let count = constraints.len();
     let mut state = Sweep {
@@ -584,99 +387,116 @@ pub(crate) fn sweep(
         version: vec![0; count],
         origin,
         refine,
-        guess,
         queue: Queue::default(),
-        live: Vec::new(),
-        labels: vec![Vec::new(); count],
-        listed: Vec::new(),
-        order: DynamicOrder::new(n),
+        finder: CycleFinder::new(n),
     };
+    let mut spans = Vec::with_capacity(count + count / 4);
     for (k, c) in state.constraints.iter().enumerate() {
-        spans_of(c, k as u32, 0, origin, &mut state.queue.sorted);
+        spans_of(c, k as u32, 0, origin, &mut spans);
     }
+    state.queue.sorted = spans;
     state.queue.sorted.par_sort_unstable();
     let mut cells = Vec::new();
     let mut lo = 0.0;
+    // The spans of the cell being built.
+    let mut window: Vec<Span> = Vec::new();
     'cells: loop {
-        state.reset(lo);
-        // The constraints active at `lo`: a cycle through loose ones refines every loose one
-        // there at once.
-        let mut k = 0;
-        while k < state.live.len() {
-            if let Err(cycle) = state.insert(k as u32) {
-                if state.loose(&cycle).is_empty() {
-                    // Constraints that end within a rounding gap of `lo` end with the event
-                    // that starts the others (a fold turning edge-on ends two pairs' overlap
-                    // as it starts a third's): they leave this cell.
-                    let ending = |s: &Span| s.end <= lo + EVENT_GAP_RAD;
-                    if !cycle.iter().any(|&l| ending(&state.live[l as usize])) {
-                        let edges = state.cycle_edges(&cycle);
-                        return Err(CycleAt { at: lo, edges });
-                    }
-                    let kept: Vec<Span> =
-                        state.live.iter().copied().filter(|s| !ending(s)).collect();
-                    state.live.clear();
-                    state.order.clear();
-                    for &k in &state.listed {
-                        state.labels[k as usize].clear();
-                    }
-                    state.listed.clear();
-                    for s in kept {
-                        state.take(s);
-                    }
-                    k = 0;
-                    continue;
-                }
-                let loose: Vec<u32> = state
-                    .live
-                    .iter()
-                    .map(|s| s.constraint)
-                    .filter(|&c| !state.constraints[c as usize].exact)
-                    .collect::<std::collections::BTreeSet<u32>>()
-                    .into_iter()
-                    .collect();
-                state.refine_all(&loose, lo, lo);
-                state.reset(lo);
-                k = 0;
+        // The spans active at `lo` stay; those that start later go back to the queue.
+        let mut kept = Vec::with_capacity(window.len());
+        for s in window.drain(..) {
+            if !state.valid(&s) || s.end <= lo {
                 continue;
             }
-            k += 1;
-        }
-        let mut now = lo;
-        let mut pending: Vec<u32> = Vec::new();
-        loop {
-            let (label, from_queue) = if let Some(label) = pending.pop() {
-                (label, false)
+            if s.start > lo {
+                state.queue.push(s);
             } else {
-                let Some(s) = state.queue.pop() else {
-                    cells.push(state.cell(lo, TAU));
-                    return Ok(cells);
-                };
-                if !state.valid(&s) {
-                    continue;
-                }
-                now = s.start;
-                (state.take(s), true)
-            };
-            if !state.valid(&state.live[label as usize]) {
-                continue;
+                kept.push(s);
             }
-            let Err(cycle) = state.insert(label) else {
+        }
+        window = kept;
+        while let Some(s) = state.queue.peek() {
+            if s.start > lo {
+                break;
+            }
+            state.queue.pop();
+            if state.valid(&s) && s.end > lo {
+                window.push(s);
+            }
+        }
+        // A cycle among the constraints active at `lo`.
+        while let Some(Settled { cycle, .. }) = state.settle(&mut window, lo, lo) {
+            // Constraints that end within a rounding gap of `lo` end with the event that
+            // starts the others (a fold turning edge-on ends two pairs' overlap as it starts
+            // a third's): they leave this cell.
+            let ending = |s: &Span| s.end <= lo + EVENT_GAP_RAD;
+            if !cycle.iter().any(|&l| ending(&window[l as usize])) {
+                let edges = Sweep::edges(cycle.iter().map(|&l| &window[l as usize]));
+                return Err(CycleAt { at: lo, edges });
+            }
+            window.retain(|s| !ending(s));
+        }
+        loop {
+            let size = (window.len() / 4).max(MIN_BATCH);
+            let accepted = window.len();
+            let mut upto = lo;
+            while window.len() < accepted + size {
+                let Some(s) = state.queue.pop() else {
+                    break;
+                };
+                if state.valid(&s) {
+                    upto = s.start;
+                    window.push(s);
+                }
+            }
+            if window.len() == accepted {
+                let edges = Sweep::edges(window.iter());
+                cells.push(SweepCell {
+                    lo,
+                    hi: TAU,
+                    edges,
+                    closing: Vec::new(),
+                });
+                return Ok(cells);
+            }
+            let Some(settled) = state.settle(&mut window, lo, upto) else {
                 continue;
             };
-            let loose = state.loose(&cycle);
-            if loose.is_empty() {
-                if from_queue && now > lo {
-                    let mut cell = state.cell(lo, now);
-                    cell.closing = state.cycle_edges(&cycle);
-                    cells.push(cell);
-                    lo = now;
+            // The span that closed the first cycle: every cycle of a prefix (by start) lies
+            // among the spans on the cycles just settled, so the search runs over those
+            // alone, and none of them needs refining.
+            let mut on_cycles: Vec<Span> = settled
+                .on_cycles
+                .iter()
+                .map(|&l| window[l as usize])
+                .collect();
+            on_cycles.sort_unstable();
+            let (mut good, mut bad) = (0, on_cycles.len());
+            while bad - good > 1 {
+                let mid = good + (bad - good) / 2;
+                if state.cycle(&on_cycles[..mid]).is_some() {
+                    bad = mid;
+                } else {
+                    good = mid;
                 }
-                // Otherwise a cycle closed out of order: redo the cell from its start.
+            }
+            let hi = on_cycles[bad - 1].start;
+            if hi <= lo {
+                // A refined constraint closed a cycle at `lo`: redo the cell.
                 continue 'cells;
             }
-            pending.extend(state.refine_all(&loose, lo, now));
-            pending.push(label);
+            let cycle = state
+                .cycle(&on_cycles[..bad])
+                .expect("the prefix has a cycle");
+            let closing = Sweep::edges(cycle.iter().map(|&l| &on_cycles[l as usize]));
+            let edges = Sweep::edges(window.iter().filter(|s| s.start < hi));
+            cells.push(SweepCell {
+                lo,
+                hi,
+                edges,
+                closing,
+            });
+            lo = hi;
+            continue 'cells;
         }
     }
 }
@@ -713,7 +533,6 @@ mod tests {
             front,
             arcs: ArcSet::arc(start, length),
             exact: true,
-            within: ArcSet::empty(),
         }
     }
 
@@ -722,15 +541,15 @@ mod tests {
         let exact = |c: &Constraint| c.arcs.clone();
         // 0 before 1 over [1, 2], 1 before 0 over [3, 4]: two cells.
         let mut constraints = vec![c(0, 1, 1.0, 1.0), c(1, 0, 3.0, 1.0)];
-        let cells = sweep(&mut constraints, 0.0, 2, &exact, &|_| vec![0, 1]).unwrap();
+        let cells = sweep(&mut constraints, 0.0, 2, &exact).unwrap();
         assert_eq!(cells.len(), 2);
         assert!((cells[0].hi - 3.0).abs() < 1e-12);
         // Without the conflict: one cell.
-        let cells = sweep(&mut constraints[..1], 0.0, 2, &exact, &|_| vec![0, 1]).unwrap();
+        let cells = sweep(&mut constraints[..1], 0.0, 2, &exact).unwrap();
         assert_eq!(cells.len(), 1);
         // A cycle at one angle is reported.
         let mut both = vec![c(0, 1, 1.0, 1.0), c(1, 0, 1.5, 1.0)];
-        assert!(sweep(&mut both, 1.6, 2, &exact, &|_| vec![0, 1]).is_err());
+        assert!(sweep(&mut both, 1.6, 2, &exact).is_err());
         // A cycle through a constraint that is not exact refines it; here its exact arcs
         // miss the conflict, so one cell remains.
         let mut loose = vec![c(0, 1, 1.0, 1.0), c(1, 0, 1.5, 3.0)];
@@ -742,7 +561,7 @@ mod tests {
                 ArcSet::arc(3.0, 1.0)
             }
         };
-        let cells = sweep(&mut loose, 0.0, 2, &shrink, &|_| vec![1, 0]).unwrap();
+        let cells = sweep(&mut loose, 0.0, 2, &shrink).unwrap();
         assert_eq!(cells.len(), 2);
         assert!(loose[1].exact);
         assert!((cells[0].hi - 3.0).abs() < 1e-12);
