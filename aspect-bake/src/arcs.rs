@@ -229,6 +229,13 @@ impl Probes {
         value - ((f.a.abs() + f.b.abs()) * half * (1.0 + 1e-12) + ROUNDING * f.scale) > 0.0
     }
 
+    /// Whether `f` certainly keeps one sign all over arc `k` (so has no root there).
+    pub(crate) fn one_sign_over(&self, k: usize, f: &EventFn) -> bool {
+        let (cos, sin, half) = self.0[k];
+        let value = f.a * cos + f.b * sin + f.c;
+        value.abs() - ((f.a.abs() + f.b.abs()) * half * (1.0 + 1e-12) + ROUNDING * f.scale) > 0.0
+    }
+
     /// How many arcs.
     pub(crate) fn len(&self) -> usize {
         self.0.len()

@@ -465,6 +465,7 @@ pub fn bake_picture(
     let mut global: Vec<u32> = (0..n as u32).collect();
     global.sort_unstable_by_key(|&p| key[p as usize]);
     let mut reversed_key: Vec<u32> = key.iter().map(|&k| n as u32 - 1 - k).collect();
+    let mut back_dag = Dag::new(n);
     for cell in &cells {
         if let Some(previous) = baked.last().map(|c: &BakeCell| &c.order) {
             for (rank, &p) in previous.iter().enumerate() {
@@ -475,12 +476,12 @@ pub fn bake_picture(
         }
         // Kahn's algorithm keeps the key order except where an edge forces a piece later;
         // run backwards it forces pieces earlier instead. Keep whichever moves fewer.
-        let forward = dag
-            .order(cell.edges.iter().copied(), &key)
-            .ok_or_else(|| cycle(cell))?;
-        let mut backward = dag
-            .order(cell.edges.iter().map(|&(a, b)| (b, a)), &reversed_key)
-            .ok_or_else(|| cycle(cell))?;
+        let (forward, backward) = rayon::join(
+            || dag.order(cell.edges.iter().copied(), &key),
+            || back_dag.order(cell.edges.iter().map(|&(a, b)| (b, a)), &reversed_key),
+        );
+        let forward = forward.ok_or_else(|| cycle(cell))?;
+        let mut backward = backward.ok_or_else(|| cycle(cell))?;
         backward.reverse();
         let order = if moved(&global, &backward) < moved(&global, &forward) {
             backward

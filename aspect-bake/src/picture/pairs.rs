@@ -173,11 +173,17 @@ impl<'a> Pieces<'a> {
         rest
     }
 
-    /// Every angle (radians, any turn) where the pair's overlap can appear, vanish or change
-    /// shape: a piece turning edge-on, a corner of one crossing an edge line of the other.
-    fn events(&self, i: usize, j: usize) -> Vec<f64> {
+    /// Every angle (radians, any turn) within `arcs` where the pair's overlap can appear,
+    /// vanish or change shape: a piece turning edge-on, a corner of one crossing an edge line
+    /// of the other. Functions that surely keep one sign over every arc are not solved (they
+    /// have no root there); others may give roots outside `arcs` too.
+    fn events_within(&self, i: usize, j: usize, arcs: &ArcSet) -> Vec<f64> {
+        let probes = arcs.probes();
         let mut out = Vec::new();
         let mut push = |f: &EventFn| {
+            if (0..probes.len()).all(|k| probes.one_sign_over(k, f)) {
+                return;
+            }
             if let Roots::Two { down, up } = f.roots() {
                 out.push(down);
                 out.push(up);
@@ -443,46 +449,55 @@ fn candidate_keys(pieces: &Pieces, bins: usize, max_pairs: usize) -> Result<Vec<
     // the budget stops before its keys cost more than the budget states.
     let limit = max_pairs.saturating_mul(4);
     let found = AtomicUsize::new(0);
-    let per_bin: Vec<Vec<u64>> = (0..bins)
+    // Each task takes a run of bins, so that a bin's boxes are made once for it and its
+    // neighbours.
+    let tasks = (2 * rayon::current_num_threads()).clamp(1, bins);
+    let per_task: Vec<Vec<u64>> = (0..tasks)
         .into_par_iter()
-        .map(|bin| {
-            let here = bin_boxes(pieces, bin, bins);
-            let before = bin_boxes(pieces, (bin + bins - 1) % bins, bins);
-            let after = bin_boxes(pieces, (bin + 1) % bins, bins);
-            let mut order: Vec<(ScreenBox, u32)> = here
-                .iter()
-                .zip(0..)
-                .filter(|(b, _)| b[0] <= b[2])
-                .map(|(b, i)| (*b, i))
-                .collect();
-            order.sort_unstable_by(|a, b| a.0[0].total_cmp(&b.0[0]));
+        .map(|task| {
+            let (first, last) = (task * bins / tasks, (task + 1) * bins / tasks);
             let mut keys = Vec::new();
-            'search: for (k, &(box_a, a)) in order.iter().enumerate() {
-                for &(box_b, b) in &order[k + 1..] {
-                    if box_b[0] > box_a[2] {
-                        break;
-                    }
-                    if box_b[1] > box_a[3] || box_a[1] > box_b[3] {
-                        continue;
-                    }
-                    let (i, j) = (a.min(b), a.max(b));
-                    let (iu, ju) = (i as usize, j as usize);
-                    let starts = !meet(&before[iu], &before[ju]);
-                    let ends = !meet(&after[iu], &after[ju]);
-                    let at_zero = bin == 0 && !starts;
-                    if !(starts || ends || at_zero) || pieces.relation(iu, ju) == Relation::Never {
-                        continue;
-                    }
-                    let marks = [(starts, RUN_START), (ends, RUN_END), (at_zero, AT_ZERO)];
-                    for (_, mark) in marks.into_iter().filter(|m| m.0) {
-                        keys.push(key(i, j, bin, mark));
-                        if keys.len() % KEY_BLOCK == 0
-                            && found.fetch_add(KEY_BLOCK, Ordering::Relaxed) + KEY_BLOCK > limit
+            let mut before = bin_boxes(pieces, (first + bins - 1) % bins, bins);
+            let mut here = bin_boxes(pieces, first, bins);
+            'bins: for bin in first..last {
+                let after = bin_boxes(pieces, (bin + 1) % bins, bins);
+                let mut order: Vec<(ScreenBox, u32)> = here
+                    .iter()
+                    .zip(0..)
+                    .filter(|(b, _)| b[0] <= b[2])
+                    .map(|(b, i)| (*b, i))
+                    .collect();
+                order.sort_unstable_by(|a, b| a.0[0].total_cmp(&b.0[0]));
+                for (k, &(box_a, a)) in order.iter().enumerate() {
+                    for &(box_b, b) in &order[k + 1..] {
+                        if box_b[0] > box_a[2] {
+                            break;
+                        }
+                        if box_b[1] > box_a[3] || box_a[1] > box_b[3] {
+                            continue;
+                        }
+                        let (i, j) = (a.min(b), a.max(b));
+                        let (iu, ju) = (i as usize, j as usize);
+                        let starts = !meet(&before[iu], &before[ju]);
+                        let ends = !meet(&after[iu], &after[ju]);
+                        let at_zero = bin == 0 && !starts;
+                        if !(starts || ends || at_zero)
+                            || pieces.relation(iu, ju) == Relation::Never
                         {
-                            break 'search;
+                            continue;
+                        }
+                        let marks = [(starts, RUN_START), (ends, RUN_END), (at_zero, AT_ZERO)];
+                        for (_, mark) in marks.into_iter().filter(|m| m.0) {
+                            keys.push(key(i, j, bin, mark));
+                            if keys.len() % KEY_BLOCK == 0
+                                && found.fetch_add(KEY_BLOCK, Ordering::Relaxed) + KEY_BLOCK > limit
+                            {
+                                break 'bins;
+                            }
                         }
                     }
                 }
+                before = std::mem::replace(&mut here, after);
             }
             found.fetch_add(keys.len() % KEY_BLOCK, Ordering::Relaxed);
             keys
@@ -495,7 +510,7 @@ fn candidate_keys(pieces: &Pieces, bins: usize, max_pairs: usize) -> Result<Vec<
             budget: max_pairs,
         });
     }
-    let mut keys: Vec<u64> = per_bin.into_iter().flatten().collect();
+    let mut keys: Vec<u64> = per_task.into_iter().flatten().collect();
     keys.par_sort_unstable();
     Ok(keys)
 }
@@ -574,8 +589,9 @@ pub(crate) fn constraints(
                     // Between two events of the pair the overlap neither vanishes nor splits,
                     // and pieces that do not cross keep one relation over a connected
                     // overlap: one direction per stretch between events.
-                    let events = pieces.events(iu, ju);
-                    for (start, length) in pieces.overlap(iu, ju, &bins).joined() {
+                    let overlap = pieces.overlap(iu, ju, &bins);
+                    let events = pieces.events_within(iu, ju, &overlap);
+                    for (start, length) in overlap.joined() {
                         let end = start + length;
                         let mut cuts: Vec<f64> = events
                             .iter()
@@ -585,14 +601,9 @@ pub(crate) fn constraints(
                         cuts.push(start);
                         cuts.push(end);
                         cuts.sort_by(f64::total_cmp);
-                        for w in cuts.windows(2) {
-                            let (a, b) = (w[0], w[1]);
-                            if b <= a {
-                                continue;
-                            }
-                            let Some(i_front) = pieces.in_front_at(iu, ju, 0.5 * (a + b)) else {
-                                continue;
-                            };
+                        // Neighbouring stretches of one direction make one constraint.
+                        let mut stretch: Option<(f64, f64, bool)> = None;
+                        let mut emit = |(a, b, i_front): (f64, f64, bool)| {
                             let (behind, front) = if i_front { (j, i) } else { (i, j) };
                             out.push(Constraint {
                                 behind,
@@ -600,6 +611,30 @@ pub(crate) fn constraints(
                                 arcs: ArcSet::arc(a - ARC_MARGIN_RAD, b - a + 2.0 * ARC_MARGIN_RAD),
                                 exact: true,
                             });
+                        };
+                        for w in cuts.windows(2) {
+                            let (a, b) = (w[0], w[1]);
+                            if b <= a {
+                                continue;
+                            }
+                            let Some(i_front) = pieces.in_front_at(iu, ju, 0.5 * (a + b)) else {
+                                if let Some(done) = stretch.take() {
+                                    emit(done);
+                                }
+                                continue;
+                            };
+                            stretch = match stretch {
+                                Some((lo, _, same)) if same == i_front => Some((lo, b, same)),
+                                other => {
+                                    if let Some(done) = other {
+                                        emit(done);
+                                    }
+                                    Some((a, b, i_front))
+                                }
+                            };
+                        }
+                        if let Some(done) = stretch {
+                            emit(done);
                         }
                     }
                 }

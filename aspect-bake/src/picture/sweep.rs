@@ -7,6 +7,7 @@ use std::collections::BinaryHeap;
 use std::f64::consts::TAU;
 
 use rayon::prelude::*;
+use smallvec::SmallVec;
 
 use super::cycles::{Acyclicity, CycleFinder};
 use super::pairs::Constraint;
@@ -196,7 +197,13 @@ impl Dag {
 
 /// The spans of constraint `c`'s arcs relative to `origin` (an arc through the origin is
 /// two spans).
-fn spans_of(c: &Constraint, constraint: u32, version: u32, origin: f64, out: &mut Vec<Span>) {
+fn spans_of(
+    c: &Constraint,
+    constraint: u32,
+    version: u32,
+    origin: f64,
+    out: &mut impl Extend<Span>,
+) {
     for (start, length) in c.arcs.joined() {
         let s = (start - origin).rem_euclid(TAU);
         let span = |start: f64, end: f64| Span {
@@ -208,12 +215,12 @@ fn spans_of(c: &Constraint, constraint: u32, version: u32, origin: f64, out: &mu
             front: c.front,
         };
         if length >= TAU {
-            out.push(span(0.0, TAU));
+            out.extend([span(0.0, TAU)]);
         } else if s + length > TAU {
-            out.push(span(0.0, s + length - TAU));
-            out.push(span(s, TAU));
+            out.extend([span(0.0, s + length - TAU)]);
+            out.extend([span(s, TAU)]);
         } else {
-            out.push(span(s, s + length));
+            out.extend([span(s, s + length)]);
         }
     }
 }
@@ -390,11 +397,16 @@ pub(crate) fn sweep(
         queue: Queue::default(),
         finder: CycleFinder::new(n),
     };
-    let mut spans = Vec::with_capacity(count + count / 4);
-    for (k, c) in state.constraints.iter().enumerate() {
-        spans_of(c, k as u32, 0, origin, &mut spans);
-    }
-    state.queue.sorted = spans;
+    state.queue.sorted = state
+        .constraints
+        .par_iter()
+        .enumerate()
+        .flat_map_iter(|(k, c)| {
+            let mut spans: SmallVec<[Span; 2]> = SmallVec::new();
+            spans_of(c, k as u32, 0, origin, &mut spans);
+            spans
+        })
+        .collect();
     state.queue.sorted.par_sort_unstable();
     let mut cells = Vec::new();
     let mut lo = 0.0;
