@@ -29,9 +29,9 @@
 //!    one is shrunk, by the rounding bound of its root plus a margin: the computed arcs
 //!    contain the true ones.
 //! 4. **Every pair that can overlap is tested.** Candidates come from angular bins; in each
-//!    bin a piece's screen box bounds the piece at every angle of the bin (its bounding sphere
-//!    grown by the farthest any of its points moves within the bin), so a pair whose boxes
-//!    never meet never overlaps.
+//!    bin a piece's screen box bounds the piece at every angle of the bin (the box of its
+//!    corners grown by the farthest any of its points moves within the bin, rounded outward
+//!    to f32), so a pair whose boxes never meet never overlaps.
 //! 5. **Cells.** A cell takes every constraint whose arc meets it; its order is a topological
 //!    order of them. It ends where one more constraint would close a cycle. So every pair
 //!    that needs an order anywhere in the cell has it.
