@@ -224,16 +224,23 @@ impl Probes {
     /// the most it can change over half the arc (`(|a| + |b|)·half`, above
     /// `hypot(a, b)·half`) plus its rounding, as in [`ArcSet::where_negative`].
     pub(crate) fn positive_over(&self, k: usize, f: &EventFn) -> bool {
-        let (cos, sin, half) = self.0[k];
-        let value = f.a * cos + f.b * sin + f.c;
-        value - ((f.a.abs() + f.b.abs()) * half * (1.0 + 1e-12) + ROUNDING * f.scale) > 0.0
+        let (value, reach) = self.middle_and_reach(k, f);
+        value - reach > 0.0
     }
 
     /// Whether `f` certainly keeps one sign all over arc `k` (so has no root there).
     pub(crate) fn one_sign_over(&self, k: usize, f: &EventFn) -> bool {
+        let (value, reach) = self.middle_and_reach(k, f);
+        value.abs() - reach > 0.0
+    }
+
+    /// `f` at the middle of arc `k`, and the most it can differ from that over the arc
+    /// (with its rounding).
+    fn middle_and_reach(&self, k: usize, f: &EventFn) -> (f64, f64) {
         let (cos, sin, half) = self.0[k];
         let value = f.a * cos + f.b * sin + f.c;
-        value.abs() - ((f.a.abs() + f.b.abs()) * half * (1.0 + 1e-12) + ROUNDING * f.scale) > 0.0
+        let reach = (f.a.abs() + f.b.abs()) * half * (1.0 + 1e-12) + ROUNDING * f.scale;
+        (value, reach)
     }
 
     /// How many arcs.
