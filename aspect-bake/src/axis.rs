@@ -101,8 +101,14 @@ impl Spin {
             Axis::Pitch { yaw, roll } => (euler(yaw, 0.0, 0.0), DVec3::X, euler(0.0, 0.0, roll)),
             Axis::Roll { yaw, pitch } => (euler(yaw, pitch, 0.0), DVec3::Z, DMat3::IDENTITY),
             Axis::Direction { axis, base } => {
-                let k = DVec3::from_array(axis)
-                    .try_normalize()
+                // Scaled by its largest component first: the squared length of an axis
+                // near the smallest f64 is subnormal, and normalising it directly leaves a
+                // vector measurably longer than 1 (1.0008 for a length of 3e-161).
+                let v = DVec3::from_array(axis);
+                let largest = v.abs().max_element();
+                let k = (largest.is_finite() && largest > 0.0)
+                    .then(|| (v / largest).try_normalize())
+                    .flatten()
                     .ok_or(BakeError::Spin { what: "axis" })?;
                 (DMat3::IDENTITY, k, DMat3::from_cols_array_2d(&base))
             }
@@ -286,6 +292,35 @@ mod tests {
             )
             .is_err()
         );
+    }
+
+    #[test]
+    fn axes_of_any_length_turn_by_a_rotation() {
+        // A fuzzed axis 3e-161 long once normalised to a length of 1.0008, so the bake's
+        // event functions and the live view (orthonormalised) disagreed by 1e-7 rad.
+        for axis in [
+            [-3.403e-161, 4.6e-246, 1.7e-308],
+            [2.8e-309, 8.0e-304, -1.5e-310],
+            [3.0e300, -4.0e300, 1.0e300],
+            [0.3, 5e-324, -0.2],
+        ] {
+            let spin = Spin::new(
+                template(),
+                Axis::Direction {
+                    axis,
+                    base: DMat3::IDENTITY.to_cols_array_2d(),
+                },
+            )
+            .unwrap();
+            let k = spin.factors().1;
+            assert!(
+                (k.length() - 1.0).abs() < 4.0 * f64::EPSILON,
+                "{axis:?}: {k}"
+            );
+            let r = spin.rotation_rad(1.0);
+            let error = (r.transpose() * r - DMat3::IDENTITY).abs().to_cols_array();
+            assert!(error.iter().all(|&e| e < 8.0 * f64::EPSILON), "{axis:?}");
+        }
     }
 
     #[test]

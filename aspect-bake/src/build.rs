@@ -206,6 +206,12 @@ impl Merger<'_> {
 /// Draw lists per block: bounded memory between budget checks (one- and two-axis bakes).
 pub(crate) const BLOCK: usize = 2048;
 
+/// Where inside an interval between events the exact bake runs the live sorter, as a
+/// fraction of its width: not the middle, because roots come in pairs about a tangency (a
+/// function that touches zero without changing sign, where the live sorter's decision
+/// follows rounding), so an interval is often symmetric about one.
+const SAMPLE_AT: f64 = std::f64::consts::SQRT_2 - 1.0;
+
 /// The exact bake: every sign change of the source's event functions in closed form, roots
 /// closer than [`SAME_ROOT_RAD`] merged, the live sorter run once inside each interval
 /// between consecutive roots (in parallel), equal neighbours merged.
@@ -272,7 +278,10 @@ pub fn bake(
     };
     let total = intervals.len();
     for (b, block) in intervals.chunks(BLOCK).enumerate() {
-        let mids: Vec<f64> = block.iter().map(|i| 0.5 * (i.0 + i.1)).collect();
+        let mids: Vec<f64> = block
+            .iter()
+            .map(|i| i.0 + SAMPLE_AT * (i.1 - i.0))
+            .collect();
         for (i, order) in block
             .iter()
             .zip(lists_at(source, &mids, |&t| spin.view_at_rad(t)))

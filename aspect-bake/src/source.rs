@@ -91,7 +91,9 @@ fn budget(events: usize, max_events: usize) -> Result<(), BakeError> {
 
 /// [`Bsp`]'s events: the eye side of every node plane and the facing of every piece (culling,
 /// and facing-away-first inside convex leaves). A coplanar piece's facing is its node's side,
-/// so those events coincide and merge. Nothing else enters [`Bsp`]'s sort.
+/// so those events coincide and merge. Nothing else enters [`Bsp`]'s sort. Its
+/// [`sorter`](EventSource::sorter) sorts the whole model: the live [`Bsp`] also skips subtrees
+/// outside the image of a zoomed-in view, which no event describes.
 #[derive(Clone, Debug)]
 pub struct BspSource {
     tree: Arc<BspTree>,
@@ -127,7 +129,7 @@ impl EventSource for BspSource {
     }
 
     fn sorter(&self) -> Box<dyn FaceSorter> {
-        Box::new(Bsp::from_tree(Arc::clone(&self.tree)))
+        Box::new(WholeModel(Bsp::from_tree(Arc::clone(&self.tree))))
     }
 
     fn events(
@@ -149,6 +151,26 @@ impl EventSource for BspSource {
         let rows = self.tree.node_rows().iter().chain(self.tree.piece_rows());
         out.extend(rows.map(|&r| Row::Facing(r)));
         budget(out.len(), max_events)
+    }
+}
+
+/// [`Bsp`] without its frustum culling: a view zoomed in far enough makes the live sort skip
+/// subtrees outside the image, a per-frame saving that no event function describes. A bake's
+/// lists hold the whole model, so that a realisation may pan and zoom (and the pieces outside
+/// the image paint nothing anyway).
+struct WholeModel(Bsp);
+
+impl FaceSorter for WholeModel {
+    fn name(&self) -> &'static str {
+        self.0.name()
+    }
+
+    fn sort(&mut self, view: &face_sort::View, out: &mut face_sort::DrawList) {
+        self.0.sort_culled(&view.cull_test(), out);
+    }
+
+    fn stats(&self) -> face_sort::SorterStats {
+        self.0.stats()
     }
 }
 
