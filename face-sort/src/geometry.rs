@@ -8,7 +8,7 @@ use crate::plane::{Plane, newell_normal};
 use crate::polygon_set::PolygonSet;
 use crate::tolerance::{
     CONVEXITY, DEGENERATE_AREA, MAX_EXTENT_ABS, MAX_IMAGE_EXTENT_PX, MIN_EXTENT_ABS,
-    MIN_IMAGE_EXTENT_PX, ON_PLANE, PLANARITY,
+    MIN_IMAGE_EXTENT_PX, ON_PLANE, PLANARITY, SAME_CORNER_ROUNDING,
 };
 use crate::{Bounds, MeshError, PolygonMesh};
 
@@ -149,6 +149,7 @@ impl Geometry {
         }
         let centre = bounds.centre();
         let on_plane = ON_PLANE * diagonal;
+        let same_corner = SAME_CORNER_ROUNDING * diagonal;
         let mut pieces = PolygonSet::new();
         let mut corners: Vec<DVec3> = Vec::new();
         let mut non_planar_faces = 0;
@@ -156,11 +157,12 @@ impl Geometry {
         for (face, list) in mesh.faces().enumerate() {
             corners.clear();
             corners.extend(list.iter().map(|&i| mesh.positions()[i as usize] - centre));
-            // A corner repeated next to itself adds an edge of no length, which every test on
-            // edges (separating lines, clipping) would have to treat apart: the piece keeps
-            // one of them.
-            corners.dedup();
-            while corners.len() > 1 && corners.first() == corners.last() {
+            // A corner repeated next to itself, or within rounding of it, adds an edge of no
+            // length (or of a direction only rounding decides), which every test on edges
+            // (separating lines, clipping) would have to treat apart: the piece keeps one.
+            let same = |a: &DVec3, b: &DVec3| a.distance(*b) <= same_corner;
+            corners.dedup_by(|a, b| same(a, b));
+            while corners.len() > 1 && same(&corners[0], &corners[corners.len() - 1]) {
                 corners.pop();
             }
             if corners.len() < 3 {

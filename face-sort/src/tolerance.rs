@@ -41,6 +41,11 @@ pub const PLANE_SIDE: f64 = 1e-12;
 /// magnify an off-plane corner `1 / sin θ` times); at `1e-14` it leaves none.
 pub const ON_PLANE: f64 = 1e-14;
 
+/// Relative to `L`: neighbouring corners of a face this close are one corner. An edge this
+/// short has a direction that only rounding decides, so every test on edges (separating
+/// lines, clipping) would read noise from it.
+pub const SAME_CORNER_ROUNDING: f64 = 1e-12;
+
 /// Order-violation depth tolerance: a later polygon must lie behind an earlier one by
 /// more than `ORACLE_DEPTH · L` in view depth to count (CONVENTIONS.md).
 pub const ORACLE_DEPTH: f64 = 1e-9;
