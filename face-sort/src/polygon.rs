@@ -4,6 +4,7 @@
 use glam::{DVec2, DVec3};
 
 use crate::plane::Plane;
+use crate::tolerance::AREA_ROUNDING;
 
 /// A polygon's edges: each corner with the next, the last with the first (no `%` per corner:
 /// an integer division costs tens of cycles).
@@ -86,9 +87,13 @@ pub(crate) fn separated_2d(a: &[DVec2], b: &[DVec2]) -> bool {
     by_edge_of(a) || by_edge_of(b)
 }
 
-/// Whether convex polygons `a` and `b` overlap by more than `min_area`: their exact convex
-/// intersection (left in `out`) has three corners or more and more than that area. The
-/// overlap test of Newell, the oracle and the fragment merge.
+/// Whether convex polygons `a` and `b` overlap by more than `min_area`, and by more than the
+/// rounding of the overlap's own computation: their convex intersection (left in `out`) has
+/// three corners or more and more area than both. The clipped corners carry errors of a
+/// few ulps of the largest coordinate `r`, and the area sums products of size `r²`, so an
+/// area within [`AREA_ROUNDING`]` · r²` cannot be told from none (a near-plane clipped
+/// projection, thousands of units across, makes such slivers where two pieces only touch).
+/// The overlap test of Newell, the oracle and the fragment merge.
 pub(crate) fn overlap_exceeds(
     a: &[DVec2],
     b: &[DVec2],
@@ -97,7 +102,15 @@ pub(crate) fn overlap_exceeds(
     scratch: &mut Vec<DVec2>,
 ) -> bool {
     clip_convex_2d(a, b, out, scratch);
-    out.len() >= 3 && signed_area_2d(out).abs() > min_area
+    if out.len() < 3 {
+        return false;
+    }
+    let reach = a
+        .iter()
+        .chain(b)
+        .fold(0.0_f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
+    let area = signed_area_2d(out).abs();
+    area > min_area && area > AREA_ROUNDING * reach * reach
 }
 
 /// Clips the convex polygon `subject` by the convex polygon `clip` (either winding),
@@ -198,6 +211,53 @@ impl Box2 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn an_overlap_within_the_rounding_of_its_coordinates_is_none() {
+        // Two near-plane clipped projections (view units) of pieces that only touch: Newell
+        // once read their 3e-11 of "overlap" as an order between them and cycled until its
+        // step budget ran out (fuzz/regressions/sorters/newell-sliver-overlap-near-eye-*).
+        let touching = [
+            DVec2::new(3498.360287825852, -116.98185199978042),
+            DVec2::new(3482.8153735750457, -227.74890751105482),
+            DVec2::new(2707.1296132837956, -2141.898520777107),
+        ];
+        let big = [
+            DVec2::new(-802.3356131486217, -430.11102815752406),
+            DVec2::new(4090.972794894092, 627.330596938173),
+            DVec2::new(4029.1307471246732, 326.98584604826436),
+            DVec2::new(421.28707683605467, -2690.8272615830833),
+        ];
+        let (mut out, mut scratch) = (Vec::new(), Vec::new());
+        clip_convex_2d(&touching, &big, &mut out, &mut scratch);
+        let sliver = signed_area_2d(&out).abs();
+        assert!(out.len() >= 3 && sliver > 0.0 && sliver < 1e-9, "{sliver}");
+        assert!(!overlap_exceeds(
+            &touching,
+            &big,
+            1e-12,
+            &mut out,
+            &mut scratch
+        ));
+        // A real overlap a millionth of a unit² at the same coordinates still counts.
+        let real = [
+            DVec2::new(4000.0, 0.0),
+            DVec2::new(4000.001, 0.0),
+            DVec2::new(4000.0, 0.002),
+        ];
+        let under = [
+            DVec2::new(3990.0, -10.0),
+            DVec2::new(4010.0, -10.0),
+            DVec2::new(4000.0, 10.0),
+        ];
+        assert!(overlap_exceeds(
+            &real,
+            &under,
+            1e-12,
+            &mut out,
+            &mut scratch
+        ));
+    }
 
     #[test]
     fn a_repeated_corner_separates_nothing() {

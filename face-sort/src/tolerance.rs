@@ -54,6 +54,11 @@ pub const ORACLE_DEPTH: f64 = 1e-9;
 /// `OVERLAP_AREA · L²` (in view units, resolution-free).
 pub const OVERLAP_AREA: f64 = 1e-14;
 
+/// Relative to the square of the largest coordinate involved: an overlap of two projected
+/// polygons with less area is rounding of its own computation (clipped corners within a few
+/// ulps, a shoelace sum of products that size), not an overlap.
+pub const AREA_ROUNDING: f64 = 64.0 * f64::EPSILON;
+
 /// Relative: how far a camera's matrices may be from exact before they are refused
 /// ([`Camera`](crate::Camera)): a view matrix's 3 × 3 part from orthonormal (`|MᵀM − I|`),
 /// the entries a projection must have zero (relative to its focal terms), and its last row
