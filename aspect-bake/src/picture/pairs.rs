@@ -389,9 +389,15 @@ const NO_BOX: ScreenBox = [
     f32::NEG_INFINITY,
 ];
 
-/// Whether two boxes meet.
+/// Whether a box holds nothing ([`NO_BOX`]).
+fn is_empty(a: &ScreenBox) -> bool {
+    !(a[0] <= a[2] && a[1] <= a[3])
+}
+
+/// Whether two boxes meet. [`NO_BOX`] meets nothing, not even an unbounded box (a piece
+/// reaching the eye's near plane), which its infinities alone would compare as meeting.
 fn meet(a: &ScreenBox, b: &ScreenBox) -> bool {
-    a[0] <= b[2] && b[0] <= a[2] && a[1] <= b[3] && b[1] <= a[3]
+    !is_empty(a) && !is_empty(b) && a[0] <= b[2] && b[0] <= a[2] && a[1] <= b[3] && b[1] <= a[3]
 }
 
 /// Every piece's box over bin `bin` of `bins` ([`NO_BOX`] where the piece is not drawn).
@@ -464,7 +470,7 @@ fn candidate_keys(pieces: &Pieces, bins: usize, max_pairs: usize) -> Result<Vec<
                 let mut order: Vec<(ScreenBox, u32)> = here
                     .iter()
                     .zip(0..)
-                    .filter(|(b, _)| b[0] <= b[2])
+                    .filter(|(b, _)| !is_empty(b))
                     .map(|(b, i)| (*b, i))
                     .collect();
                 order.sort_unstable_by(|a, b| a.0[0].total_cmp(&b.0[0]));
@@ -643,4 +649,30 @@ pub(crate) fn constraints(
         })
         .collect();
     Ok((found, pairs))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn no_box_meets_nothing_not_even_an_unbounded_box() {
+        // A fuzzed perspective bake lost a run of bins: in the bin before it one piece was
+        // not drawn (NO_BOX) and the other reached the near plane (unbounded), and
+        // `inf <= inf` made them "meet" there, so no run started (a cell then missed the
+        // pair's order: fuzz/regressions/bake/picture-unbounded-box-*).
+        let unbounded: ScreenBox = [
+            f32::NEG_INFINITY,
+            f32::NEG_INFINITY,
+            f32::INFINITY,
+            f32::INFINITY,
+        ];
+        let unit: ScreenBox = [0.0, 0.0, 1.0, 1.0];
+        assert!(!meet(&NO_BOX, &unbounded));
+        assert!(!meet(&unbounded, &NO_BOX));
+        assert!(!meet(&NO_BOX, &NO_BOX));
+        assert!(!meet(&NO_BOX, &unit));
+        assert!(meet(&unbounded, &unit));
+        assert!(meet(&unbounded, &unbounded));
+    }
 }
