@@ -101,6 +101,12 @@ impl EventFn {
         self.c.abs() <= zero && self.a.hypot(self.b) <= zero
     }
 
+    /// Whether the value at `theta` is zero within rounding (the same bound as
+    /// [`is_identically_zero`](Self::is_identically_zero), at one angle).
+    pub(crate) fn is_zero_at(&self, theta: f64) -> bool {
+        self.value(theta).abs() <= self.zero()
+    }
+
     /// How far a root may move for a rounding error of `ROOT_NOISE · scale` in the value:
     /// `ROOT_NOISE · scale / |f′|`, with `|f′| = sqrt(r² − c²)` at either root.
     #[must_use]

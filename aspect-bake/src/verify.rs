@@ -5,6 +5,7 @@ use rayon::prelude::*;
 
 use crate::axis::Spin;
 use crate::cells::Bake;
+use crate::event::EventFn;
 use crate::source::EventSource;
 use crate::tolerance::VERIFY_SIDE_RAD;
 use crate::two_axes::Row;
@@ -98,28 +99,26 @@ pub(crate) fn same_order(list: &DrawList, order: &[u32]) -> bool {
         .eq(order.iter().copied())
 }
 
-/// Whether the live list and a cell's order agree once the pieces marked in `edge_on`
-/// (pieces edge-on at every angle of the turn) are left out of both.
-fn same_order_but(list: &DrawList, order: &[u32], edge_on: &[bool]) -> bool {
-    let keep = |p: &u32| !edge_on.get(*p as usize).copied().unwrap_or(false);
+/// Whether the live list and a cell's order agree once the pieces `skip` names are left out
+/// of both.
+fn same_order_but(list: &DrawList, order: &[u32], skip: &impl Fn(u32) -> bool) -> bool {
     list.items()
         .iter()
         .map(|i| i.polygon)
-        .filter(keep)
-        .eq(order.iter().copied().filter(keep))
+        .filter(|&p| !skip(p))
+        .eq(order.iter().copied().filter(|&p| !skip(p)))
 }
 
-/// Whether the two lists hold the same polygons once those marked in `edge_on` are left
-/// out, in any order.
-fn same_items_but(list: &DrawList, order: &[u32], edge_on: &[bool]) -> bool {
-    let keep = |p: &u32| !edge_on.get(*p as usize).copied().unwrap_or(false);
+/// Whether the two lists hold the same polygons once those `skip` names are left out, in
+/// any order.
+fn same_items_but(list: &DrawList, order: &[u32], skip: &impl Fn(u32) -> bool) -> bool {
     let mut a: Vec<u32> = list
         .items()
         .iter()
         .map(|i| i.polygon)
-        .filter(keep)
+        .filter(|&p| !skip(p))
         .collect();
-    let mut b: Vec<u32> = order.iter().copied().filter(keep).collect();
+    let mut b: Vec<u32> = order.iter().copied().filter(|&p| !skip(p)).collect();
     a.sort_unstable();
     b.sort_unstable();
     a == b
@@ -141,18 +140,24 @@ fn rounding_decides(source: &dyn EventSource, spin: &Spin) -> bool {
         })
 }
 
-/// Per polygon of `polygons`: whether its facing along `spin` is zero at every angle within
-/// rounding (the same test that gives such a polygon no facing event). The live sorter
-/// draws or culls such a polygon as rounding falls, angle by angle; it covers no pixel at
-/// any of them.
-fn edge_on_throughout(polygons: &face_sort::PolygonSet, spin: &Spin) -> Vec<bool> {
+/// Per polygon of `polygons`: its facing along `spin`.
+fn facings(polygons: &face_sort::PolygonSet, spin: &Spin) -> Vec<EventFn> {
     (0..polygons.len())
         .map(|i| {
             let n = polygons.plane(i).normal();
             spin.facing_fn(&[n.x, n.y, n.z, n.dot(polygons.corners(i)[0])])
-                .is_identically_zero()
         })
         .collect()
+}
+
+/// Whether polygon `p` is edge-on at `theta` within rounding: its facing zero at every
+/// angle (the test that gives it no facing event), or zero at this one (a tangency that
+/// rounding dips below zero, or a root that the angle falls on). The live sorter draws or
+/// culls such a polygon as rounding falls; it covers no pixel either way.
+fn edge_on_at(facings: &[EventFn], p: u32, theta: f64) -> bool {
+    facings
+        .get(p as usize)
+        .is_some_and(|f| f.is_identically_zero() || f.is_zero_at(theta))
 }
 
 /// SplitMix64: a few random interior angles per cell, reproducible from a seed.
@@ -173,11 +178,14 @@ pub(crate) fn unit(state: &mut u64) -> f64 {
 /// A piece edge-on at every angle of the turn (its facing zero within rounding, e.g. a face
 /// whose normal lies along the turning axis while the viewer stays in its plane) has no
 /// facing event; the live sorter keeps or culls it as rounding falls, angle by angle, and it
-/// covers no pixel either way. Lists are compared without such pieces. Likewise, where some
-/// other condition of the sorter (a BSP's splitting plane) is zero at every angle within
-/// rounding, the live list there follows rounding between orders that paint the same
-/// picture; for such a spin a list that differs from the live one still passes when it
-/// holds the same pieces and the oracle finds no order violation in it at that angle.
+/// covers no pixel either way. The same holds for a piece whose facing is zero within
+/// rounding at the angle checked (a tangency that rounding dips below zero). Lists are
+/// compared without such pieces. Likewise, where some other condition of the sorter (a
+/// BSP's splitting plane) is zero at every angle within rounding, the live list there
+/// follows rounding between orders that paint the same picture; for such a spin a list that
+/// differs from the live one still passes when it holds the same pieces and the oracle
+/// finds no more order violations in it at that angle than in the live list (none, unless
+/// the live sorter itself is off there).
 ///
 /// # Errors
 /// The first disagreement found.
@@ -189,20 +197,23 @@ pub fn verify(
     seed: u64,
 ) -> Result<VerifyReport, VerifyError> {
     let n = bake.cells.len();
-    let edge_on = edge_on_throughout(source.polygons(), spin);
+    let facings = facings(source.polygons(), spin);
     let either_side = rounding_decides(source, spin);
-    // Whether the live list at `view` agrees with cell `k`'s.
-    let agrees = |live: &DrawList, view: &face_sort::View, k: usize, list: &mut DrawList| {
-        let order = &bake.cells[k].order;
-        if same_order_but(live, order, &edge_on) {
-            return true;
-        }
-        if !(either_side && same_items_but(live, order, &edge_on)) {
-            return false;
-        }
-        crate::picture::cell_list(bake, k, list);
-        face_sort::oracle::count_violations(view, list) == 0
-    };
+    // Whether the live list at `view` (angle `theta`, radians) agrees with cell `k`'s.
+    let agrees =
+        |live: &DrawList, view: &face_sort::View, theta: f64, k: usize, list: &mut DrawList| {
+            let order = &bake.cells[k].order;
+            let skip = |p: u32| edge_on_at(&facings, p, theta);
+            if same_order_but(live, order, &skip) {
+                return true;
+            }
+            if !(either_side && same_items_but(live, order, &skip)) {
+                return false;
+            }
+            let live_violations = face_sort::oracle::count_violations(view, live);
+            crate::picture::cell_list(bake, k, list);
+            face_sort::oracle::count_violations(view, list) <= live_violations
+        };
     let results: Vec<Result<usize, VerifyError>> = (0..n)
         .into_par_iter()
         .map_init(
@@ -213,7 +224,7 @@ pub fn verify(
                 let mut live_is = |degrees: f64| {
                     let view = spin.view_at(degrees);
                     sorter.sort(&view, list);
-                    agrees(list, &view, k, scratch)
+                    agrees(list, &view, degrees.to_radians(), k, scratch)
                 };
                 for _ in 0..per_cell {
                     let degrees = cell.range.lerp(inside(&mut state, INTERIOR_MARGIN));
@@ -273,7 +284,7 @@ pub fn verify(
                 let mut live_is = |theta: f64, k: usize| {
                     let view = spin.view_at_rad(theta);
                     sorter.sort(&view, list);
-                    agrees(list, &view, k, scratch)
+                    agrees(list, &view, theta, k, scratch)
                 };
                 if !live_is(t - side, left) {
                     return Err(fail(
