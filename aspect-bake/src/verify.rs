@@ -124,20 +124,30 @@ fn same_items_but(list: &DrawList, order: &[u32], skip: &impl Fn(u32) -> bool) -
     a == b
 }
 
-/// Whether a sign condition of `source` is zero at every angle of `spin` within rounding
-/// (for a BSP, a splitting plane the viewer stays in). The live sorter then takes either
-/// side as rounding falls, angle by angle: the two orders paint the same picture (the
-/// viewer in a plane sees nothing on one side of it overlap anything on the other), but
-/// the lists differ. Sources that cannot list their conditions within a small budget count
-/// as decided exactly.
-fn rounding_decides(source: &dyn EventSource, spin: &Spin) -> bool {
+/// The plane conditions of `source` along `spin` (for a BSP, its splitting planes and its
+/// pieces' facings), when it lists them within a small budget; none otherwise.
+fn plane_conditions(source: &dyn EventSource, spin: &Spin) -> Vec<EventFn> {
     let mut rows = Vec::new();
     let budget = 4 * source.polygons().len() + 64;
-    source.rows(budget, &mut rows).is_ok()
-        && rows.iter().any(|row| match row {
-            Row::Facing(r) => spin.facing_fn(r).is_identically_zero(),
-            Row::Depth(_) => false,
+    if source.rows(budget, &mut rows).is_err() {
+        return Vec::new();
+    }
+    rows.iter()
+        .filter_map(|row| match row {
+            Row::Facing(r) => Some(spin.facing_fn(r)),
+            Row::Depth(_) => None,
         })
+        .collect()
+}
+
+/// Whether a plane condition is zero within rounding at `theta`, or at every angle (for a
+/// BSP, a splitting plane the viewer lies in). The live sorter then takes either side as
+/// rounding falls: the two orders paint the same picture (the viewer in a plane sees
+/// nothing on one side of it overlap anything on the other), but the lists differ.
+fn rounding_decides_at(conditions: &[EventFn], theta: f64) -> bool {
+    conditions
+        .iter()
+        .any(|f| f.is_identically_zero() || f.is_zero_at(theta))
 }
 
 /// Per polygon of `polygons`: its facing along `spin`.
@@ -181,11 +191,11 @@ pub(crate) fn unit(state: &mut u64) -> f64 {
 /// covers no pixel either way. The same holds for a piece whose facing is zero within
 /// rounding at the angle checked (a tangency that rounding dips below zero). Lists are
 /// compared without such pieces. Likewise, where some other condition of the sorter (a
-/// BSP's splitting plane) is zero at every angle within rounding, the live list there
-/// follows rounding between orders that paint the same picture; for such a spin a list that
-/// differs from the live one still passes when it holds the same pieces and the oracle
-/// finds no more order violations in it at that angle than in the live list (none, unless
-/// the live sorter itself is off there).
+/// BSP's splitting plane) is zero within rounding at the angle checked or at every angle,
+/// the live list there follows rounding between orders that paint the same picture; there
+/// a list that differs from the live one still passes when it holds the same pieces and the
+/// oracle finds no more order violations in it than in the live list (none, unless the live
+/// sorter itself is off there).
 ///
 /// # Errors
 /// The first disagreement found.
@@ -198,7 +208,7 @@ pub fn verify(
 ) -> Result<VerifyReport, VerifyError> {
     let n = bake.cells.len();
     let facings = facings(source.polygons(), spin);
-    let either_side = rounding_decides(source, spin);
+    let conditions = plane_conditions(source, spin);
     // Whether the live list at `view` (angle `theta`, radians) agrees with cell `k`'s.
     let agrees =
         |live: &DrawList, view: &face_sort::View, theta: f64, k: usize, list: &mut DrawList| {
@@ -207,7 +217,7 @@ pub fn verify(
             if same_order_but(live, order, &skip) {
                 return true;
             }
-            if !(either_side && same_items_but(live, order, &skip)) {
+            if !(rounding_decides_at(&conditions, theta) && same_items_but(live, order, &skip)) {
                 return false;
             }
             let live_violations = face_sort::oracle::count_violations(view, live);
