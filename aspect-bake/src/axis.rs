@@ -206,6 +206,13 @@ impl Spin {
         }
     }
 
+    /// The facing of polygon `i` of `set`: [`facing_fn`](Self::facing_fn) of the row
+    /// `[n, n·v₀]`, its plane's normal and first corner (what the sorters cull by).
+    pub(crate) fn polygon_facing(&self, set: &face_sort::PolygonSet, i: usize) -> EventFn {
+        let n = set.plane(i).normal();
+        self.facing_fn(&[n.x, n.y, n.z, n.dot(set.corners(i)[0])])
+    }
+
     /// The facing value `n·point − w·offset` of a plane row `[nx, ny, nz, offset]` along the
     /// spin: the quantity whose sign is a BSP node's eye side and a piece's facing.
     #[must_use]

@@ -101,10 +101,11 @@ impl EventFn {
         self.c.abs() <= zero && self.a.hypot(self.b) <= zero
     }
 
-    /// Whether the value at `theta` is zero within rounding (the same bound as
-    /// [`is_identically_zero`](Self::is_identically_zero), at one angle).
+    /// Whether the function is zero within rounding at `theta`: its value there within the
+    /// bound of [`is_identically_zero`](Self::is_identically_zero), or the function zero at
+    /// every angle.
     pub(crate) fn is_zero_at(&self, theta: f64) -> bool {
-        self.value(theta).abs() <= self.zero()
+        self.is_identically_zero() || self.value(theta).abs() <= self.zero()
     }
 
     /// How far a root may move for a rounding error of `ROOT_NOISE · scale` in the value:

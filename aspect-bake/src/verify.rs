@@ -145,18 +145,13 @@ fn plane_conditions(source: &dyn EventSource, spin: &Spin) -> Vec<EventFn> {
 /// rounding falls: the two orders paint the same picture (the viewer in a plane sees
 /// nothing on one side of it overlap anything on the other), but the lists differ.
 fn rounding_decides_at(conditions: &[EventFn], theta: f64) -> bool {
-    conditions
-        .iter()
-        .any(|f| f.is_identically_zero() || f.is_zero_at(theta))
+    conditions.iter().any(|f| f.is_zero_at(theta))
 }
 
 /// Per polygon of `polygons`: its facing along `spin`.
 fn facings(polygons: &face_sort::PolygonSet, spin: &Spin) -> Vec<EventFn> {
     (0..polygons.len())
-        .map(|i| {
-            let n = polygons.plane(i).normal();
-            spin.facing_fn(&[n.x, n.y, n.z, n.dot(polygons.corners(i)[0])])
-        })
+        .map(|i| spin.polygon_facing(polygons, i))
         .collect()
 }
 
@@ -165,9 +160,7 @@ fn facings(polygons: &face_sort::PolygonSet, spin: &Spin) -> Vec<EventFn> {
 /// rounding dips below zero, or a root that the angle falls on). The live sorter draws or
 /// culls such a polygon as rounding falls; it covers no pixel either way.
 fn edge_on_at(facings: &[EventFn], p: u32, theta: f64) -> bool {
-    facings
-        .get(p as usize)
-        .is_some_and(|f| f.is_identically_zero() || f.is_zero_at(theta))
+    facings.get(p as usize).is_some_and(|f| f.is_zero_at(theta))
 }
 
 /// SplitMix64: a few random interior angles per cell, reproducible from a seed.

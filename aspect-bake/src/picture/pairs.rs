@@ -190,12 +190,7 @@ impl<'a> Pieces<'a> {
             }
         };
         for k in [i, j] {
-            let n = self.set.plane(k).normal();
-            push(
-                &self
-                    .spin
-                    .facing_fn(&[n.x, n.y, n.z, n.dot(self.set.corners(k)[0])]),
-            );
+            push(&self.spin.polygon_facing(self.set, k));
         }
         for (p, q) in [(i, j), (j, i)] {
             let (cp, cq) = (self.set.corners(p), self.set.corners(q));
