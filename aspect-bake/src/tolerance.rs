@@ -68,6 +68,12 @@ pub const PICTURE_SHORT_EDGE: f64 = 1e-12;
 /// starts a third's) overlap by twice this, which [`EVENT_GAP_RAD`] must absorb.
 pub const ARC_MARGIN_RAD: f64 = 1e-12;
 
+/// Picture bakes: the sight cone of a pair (the directions from the piece behind to the piece
+/// in front) is widened by this: its cosine lowered by this, the eye's least distance to its
+/// apex shortened by this fraction, and the front piece's radius grown by it. Far above the
+/// rounding of unit-vector products (about `1e-15`); too large only keeps arcs longer.
+pub const SIGHT_SLACK: f64 = 1e-9;
+
 /// Picture bakes in perspective: the orbiting eye must stay farther from the centre than
 /// every corner by this fraction of its distance (the near plane `w ≥ 1e-3`).
 pub const NEAR_EYE: f64 = 1e-3;

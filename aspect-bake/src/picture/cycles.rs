@@ -2,8 +2,8 @@
 //! them lie on cycles: Kahn's algorithm peels every node no cycle holds up, and Tarjan's
 //! strongly connected components of what is left are exactly the constraints on cycles.
 
-/// A label that no edge has.
-const UNSET: u32 = u32::MAX;
+/// A label that no edge has, and the component of a node on no cycle.
+pub(crate) const UNSET: u32 = u32::MAX;
 
 /// What [`CycleFinder::check`] found.
 pub(crate) enum Acyclicity {
@@ -113,6 +113,12 @@ impl CycleFinder {
             on_cycles,
             cycle: self.cycle_from(start),
         }
+    }
+
+    /// After a check that found cycles: per node, its strongly connected component (a label
+    /// shared by its members), or [`UNSET`] for a node on no cycle.
+    pub(crate) fn components_found(&self) -> &[u32] {
+        &self.component
     }
 
     /// Tarjan's components of the nodes Kahn's algorithm left (`indegree > 0`); a node's

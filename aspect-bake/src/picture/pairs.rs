@@ -17,7 +17,9 @@ use crate::BakeError;
 use crate::arcs::ArcSet;
 use crate::axis::Spin;
 use crate::event::{EventFn, Roots};
-use crate::tolerance::{ARC_MARGIN_RAD, BOX_SLACK, NEAR_EYE, PICTURE_SHORT_EDGE, PICTURE_SIDE};
+use crate::tolerance::{
+    ARC_MARGIN_RAD, BOX_SLACK, NEAR_EYE, PICTURE_SHORT_EDGE, PICTURE_SIDE, SIGHT_SLACK,
+};
 
 /// The pieces along a spin: everything the pair tests read.
 pub(crate) struct Pieces<'a> {
@@ -38,6 +40,8 @@ pub(crate) struct Pieces<'a> {
     across_axis: DVec3,
     /// Plane-side tolerance (model units).
     side_tolerance: f64,
+    /// Per piece, a ball holding it: centre and radius.
+    balls: Vec<(DVec3, f64)>,
     /// Edges no longer than this separate nothing (model units).
     short_edge: f64,
 }
@@ -75,6 +79,17 @@ impl<'a> Pieces<'a> {
                 .max(DVec3::ZERO)
                 .powf(0.5),
             side_tolerance: PICTURE_SIDE * diagonal,
+            balls: (0..set.len())
+                .map(|i| {
+                    let c = set.corners(i);
+                    let centre = c.iter().copied().sum::<DVec3>() / c.len() as f64;
+                    let radius = c.iter().map(|p| p.distance(centre)).fold(0.0, f64::max);
+                    (
+                        centre,
+                        radius * (1.0 + SIGHT_SLACK) + PICTURE_SIDE * diagonal,
+                    )
+                })
+                .collect(),
             short_edge: PICTURE_SHORT_EDGE * diagonal,
         }
     }
@@ -332,29 +347,94 @@ pub(crate) struct Constraint {
 }
 
 impl Pieces<'_> {
+    /// Where the viewer can see piece `front` in front of piece `behind` at all, as a
+    /// superset: their sight cone.
+    ///
+    /// Where `front` hides part of `behind`, a ray toward the viewer leaves a point `b` of
+    /// `behind` and passes a point `f` of `front`, so the viewer's direction (orthographic)
+    /// or the eye minus `f` (perspective) is a positive multiple of `f − b`. With each piece
+    /// inside a ball (centre `m`, radius `r`), every `f − b` lies in the ball about
+    /// `m_f − m_b` of radius `r_f + r_b`, so in the circular cone `C` about its direction
+    /// `ĉ` of half-angle `α`, `sin α = (r_f + r_b) / |m_f − m_b|`.
+    /// - Orthographic: `ĉ·v(θ) ≥ cos α` for the unit direction `v(θ)` toward the viewer.
+    /// - Perspective: the eye lies in the front piece's ball plus `C`, which is the cone `C`
+    ///   from the apex `A = m_f − ĉ·r_f / sin α`; so `ĉ·(E(θ) − A) ≥ cos α · |E(θ) − A|`.
+    ///   Along the eye's circle `|E(θ) − A|² = v₀ + v₁·cos θ + v₂·sin θ`, and the square
+    ///   root is at least its chord over the range of that, which is again of that form.
+    ///
+    /// Both are `a·cos θ + b·sin θ + c ≥ 0`. Every quantity is widened by [`SIGHT_SLACK`];
+    /// balls that meet, or a cone as wide as a half-space, give the whole turn.
+    pub(crate) fn sight(&self, behind: usize, front: usize) -> ArcSet {
+        let (mf, rf) = self.balls[front];
+        let (mb, rb) = self.balls[behind];
+        let between = mf - mb;
+        let distance = between.length();
+        let sin = (rf + rb) / distance * (1.0 + SIGHT_SLACK);
+        if sin.is_nan() || sin >= 1.0 {
+            return ArcSet::full();
+        }
+        let axis = between / distance;
+        let cos = (1.0 - sin * sin).sqrt() - SIGHT_SLACK;
+        if cos.is_nan() || cos <= 0.0 {
+            return ArcSet::full();
+        }
+        let p = &self.track.p;
+        let g = if self.track.w == 0.0 {
+            EventFn {
+                a: axis.dot(p[1]),
+                b: axis.dot(p[2]),
+                c: axis.dot(p[0]) - cos,
+                scale: self.track.reach + cos,
+            }
+        } else {
+            let apex = mf - axis * (rf / (1.0 - cos * cos).sqrt());
+            // |E(θ) − A|² = v₀ + v₁·cos θ + v₂·sin θ (p₁ ⟂ p₂, |p₁| = |p₂|): the distance
+            // is at least the chord of √v over the range of v, again of that form.
+            let from = p[0] - apex;
+            let radius2 = 0.5 * (p[1].length_squared() + p[2].length_squared());
+            let (v0, v1, v2) = (
+                from.length_squared() + radius2,
+                2.0 * from.dot(p[1]),
+                2.0 * from.dot(p[2]),
+            );
+            let reach = self.track.reach + apex.length();
+            let spread = v1.hypot(v2);
+            let rounding = SIGHT_SLACK * reach * reach;
+            let low = ((v0 - spread) * (1.0 - SIGHT_SLACK) - rounding).max(0.0);
+            let high = (v0 + spread) * (1.0 + SIGHT_SLACK) + rounding;
+            let (s_low, s_high) = (low.sqrt(), high.sqrt());
+            let slope = if high > low {
+                (s_high - s_low) / (high - low)
+            } else {
+                0.0
+            };
+            // cos α · (chord(v) · (1 − slack) − slack · reach), never above cos α · |E − A|.
+            let scaled = cos * (1.0 - SIGHT_SLACK);
+            EventFn {
+                a: axis.dot(p[1]) - scaled * slope * v1,
+                b: axis.dot(p[2]) - scaled * slope * v2,
+                c: axis.dot(from) - scaled * (s_low + slope * (v0 - low))
+                    + cos * SIGHT_SLACK * reach,
+                scale: 2.0 * reach,
+            }
+        };
+        ArcSet::where_sign(&g, true, margin(&g))
+    }
+
     /// The exact arcs of a constraint made by [`constraints`] (a fixed relation's pair).
     pub(crate) fn refine(&self, c: &Constraint) -> ArcSet {
         self.overlap(c.behind as usize, c.front as usize, &c.arcs)
     }
 }
 
-/// Bits of a candidate key: piece, piece, bin, mark ([`RUN_START`], [`RUN_END`], [`AT_ZERO`]).
+/// Bits of a piece index in a candidate key (two of them make the key).
 const PIECE_BITS: u32 = 24;
-const BIN_BITS: u32 = 14;
-const MARK_BITS: u32 = 2;
-
-/// A run of bins where a pair's boxes meet starts at the key's bin.
-const RUN_START: u64 = 0;
-/// Such a run ends at the key's bin.
-const RUN_END: u64 = 1;
-/// The boxes meet in bin 0 without a run starting there.
-const AT_ZERO: u64 = 2;
 
 /// The most pieces a picture bake takes (candidate keys hold two piece indices).
 pub(crate) const MAX_PIECES: usize = (1 << PIECE_BITS) - 1;
 
 /// The most angular bins.
-pub(crate) const MAX_BINS: usize = (1 << BIN_BITS) - 1;
+pub(crate) const MAX_BINS: usize = 16_383;
 
 /// Keys a bin's search counts at once toward the budget.
 const KEY_BLOCK: usize = 4096;
@@ -417,41 +497,52 @@ fn bin_boxes(pieces: &Pieces, bin: usize, bins: usize) -> Vec<ScreenBox> {
         .collect()
 }
 
-/// A candidate key.
-fn key(i: u32, j: u32, bin: usize, mark: u64) -> u64 {
-    (u64::from(i) << (PIECE_BITS + BIN_BITS + MARK_BITS))
-        | (u64::from(j) << (BIN_BITS + MARK_BITS))
-        | ((bin as u64) << MARK_BITS)
-        | mark
+/// Bits of a candidate key below its pair: how the pair relates.
+const RELATION_BITS: u32 = 2;
+
+/// A candidate key: the pair `i < j` and their relation (not [`Relation::Never`]), so that
+/// keys sort by pair and the relation is tested once.
+fn key(i: u32, j: u32, relation: Relation) -> u64 {
+    let code = match relation {
+        Relation::Never => unreachable!("never-related pairs are not keyed"),
+        Relation::Fixed { front, .. } if front == j => 0,
+        Relation::Fixed { .. } => 1,
+        Relation::Depth => 2,
+    };
+    (u64::from(i) << (PIECE_BITS + RELATION_BITS)) | (u64::from(j) << RELATION_BITS) | code
 }
 
-/// The pair of a candidate key.
-fn pair_of(key: u64) -> (u32, u32) {
+/// The pair of a candidate key, and their relation.
+fn pair_of(key: u64) -> (u32, u32, Relation) {
     let piece_mask = (1u64 << PIECE_BITS) - 1;
-    let pair = key >> (BIN_BITS + MARK_BITS);
-    (
-        ((pair >> PIECE_BITS) & piece_mask) as u32,
-        (pair & piece_mask) as u32,
-    )
+    let i = (key >> (PIECE_BITS + RELATION_BITS)) as u32;
+    let j = ((key >> RELATION_BITS) & piece_mask) as u32;
+    let relation = match key & ((1 << RELATION_BITS) - 1) {
+        0 => Relation::Fixed {
+            behind: i,
+            front: j,
+        },
+        1 => Relation::Fixed {
+            behind: j,
+            front: i,
+        },
+        _ => Relation::Depth,
+    };
+    (i, j, relation)
 }
 
-/// Whether two keys are of one pair.
-fn same_pair(a: &u64, b: &u64) -> bool {
-    a >> (BIN_BITS + MARK_BITS) == b >> (BIN_BITS + MARK_BITS)
-}
-
-/// Candidate pairs: pieces whose conservative screen boxes overlap in some angular bin
-/// while both may be drawn, and whose planes allow one to occlude the other. Each bin's
-/// search compares a pair's boxes in the bins either side, and keys only where a run of
-/// bins in which they meet starts or ends (or passes bin 0), so a pair costs one plane test
-/// per run and the keys stay few. Sorted (a pair's keys are consecutive).
+/// Candidate pairs: pieces whose conservative screen boxes meet in some angular bin while
+/// both may be drawn, and whose planes allow one to occlude the other. Each bin's search
+/// compares a pair's boxes in the bin before, and keys a pair only where a run of bins in
+/// which they meet starts (or at bin 0, for a pair whose boxes meet in every bin), so a pair
+/// costs one plane test per run and the keys stay few. Sorted and without repeats.
 fn candidate_keys(pieces: &Pieces, bins: usize, max_pairs: usize) -> Result<Vec<u64>, BakeError> {
     // Keys found so far over all bins, counted in blocks as they come, so that a search over
     // the budget stops before its keys cost more than the budget states.
     let limit = max_pairs.saturating_mul(4);
     let found = AtomicUsize::new(0);
     // Each task takes a run of bins, so that a bin's boxes are made once for it and its
-    // neighbours.
+    // neighbour.
     let tasks = (2 * rayon::current_num_threads()).clamp(1, bins);
     let per_task: Vec<Vec<u64>> = (0..tasks)
         .into_par_iter()
@@ -459,9 +550,8 @@ fn candidate_keys(pieces: &Pieces, bins: usize, max_pairs: usize) -> Result<Vec<
             let (first, last) = (task * bins / tasks, (task + 1) * bins / tasks);
             let mut keys = Vec::new();
             let mut before = bin_boxes(pieces, (first + bins - 1) % bins, bins);
-            let mut here = bin_boxes(pieces, first, bins);
             'bins: for bin in first..last {
-                let after = bin_boxes(pieces, (bin + 1) % bins, bins);
+                let here = bin_boxes(pieces, bin, bins);
                 let mut order: Vec<(ScreenBox, u32)> = here
                     .iter()
                     .zip(0..)
@@ -480,25 +570,22 @@ fn candidate_keys(pieces: &Pieces, bins: usize, max_pairs: usize) -> Result<Vec<
                         let (i, j) = (a.min(b), a.max(b));
                         let (iu, ju) = (i as usize, j as usize);
                         let starts = !meet(&before[iu], &before[ju]);
-                        let ends = !meet(&after[iu], &after[ju]);
-                        let at_zero = bin == 0 && !starts;
-                        if !(starts || ends || at_zero)
-                            || pieces.relation(iu, ju) == Relation::Never
-                        {
+                        if !(starts || bin == 0) {
                             continue;
                         }
-                        let marks = [(starts, RUN_START), (ends, RUN_END), (at_zero, AT_ZERO)];
-                        for (_, mark) in marks.into_iter().filter(|m| m.0) {
-                            keys.push(key(i, j, bin, mark));
-                            if keys.len() % KEY_BLOCK == 0
-                                && found.fetch_add(KEY_BLOCK, Ordering::Relaxed) + KEY_BLOCK > limit
-                            {
-                                break 'bins;
-                            }
+                        let relation = pieces.relation(iu, ju);
+                        if relation == Relation::Never {
+                            continue;
+                        }
+                        keys.push(key(i, j, relation));
+                        if keys.len() % KEY_BLOCK == 0
+                            && found.fetch_add(KEY_BLOCK, Ordering::Relaxed) + KEY_BLOCK > limit
+                        {
+                            break 'bins;
                         }
                     }
                 }
-                before = std::mem::replace(&mut here, after);
+                before = here;
             }
             found.fetch_add(keys.len() % KEY_BLOCK, Ordering::Relaxed);
             keys
@@ -511,53 +598,26 @@ fn candidate_keys(pieces: &Pieces, bins: usize, max_pairs: usize) -> Result<Vec<
             budget: max_pairs,
         });
     }
-    let mut keys: Vec<u64> = per_task.into_iter().flatten().collect();
+    let mut keys = Vec::with_capacity(total);
+    for task in per_task {
+        keys.extend_from_slice(&task);
+    }
     keys.par_sort_unstable();
+    keys.dedup();
     Ok(keys)
 }
 
-/// The bins where one pair's boxes meet (its keys, sorted), as arcs a hair wider than the
-/// bins (rounding of their ends): each run from its start to the next end round the circle,
-/// or the whole circle when the boxes meet in every bin (no run starts).
-fn bins_of(keys: &[u64], bins: usize) -> ArcSet {
-    let width = std::f64::consts::TAU / bins as f64;
-    let bin_mask = (1u64 << BIN_BITS) - 1;
-    let marked = |mark: u64| {
-        keys.iter()
-            .filter(move |&&k| k & 3 == mark)
-            .map(move |&k| ((k >> MARK_BITS) & bin_mask) as usize)
-    };
-    let ends: SmallVec<[usize; 4]> = marked(RUN_END).collect();
-    let mut arcs = ArcSet::empty();
-    let mut any = false;
-    for start in marked(RUN_START) {
-        any = true;
-        let end = ends
-            .iter()
-            .copied()
-            .find(|&e| e >= start)
-            .or_else(|| ends.first().copied())
-            .unwrap_or(start + bins - 1);
-        let length = (end + bins - start) % bins + 1;
-        arcs = arcs.union(&ArcSet::arc(
-            start as f64 * width - ARC_MARGIN_RAD,
-            length as f64 * width + 2.0 * ARC_MARGIN_RAD,
-        ));
-    }
-    if any { arcs } else { ArcSet::full() }
-}
-
 /// Every pair's constraint, with the number of candidate pairs. A pair of fixed relation
-/// gets the superset "both drawn while their boxes meet", to be refined only where it
-/// matters ([`Pieces::refine`]); a pair decided by depth gets its exact arcs at once (each arc
-/// has its own direction).
+/// gets the superset "both drawn and in sight" ([`Pieces::sight`]), to be refined only where
+/// it matters ([`Pieces::refine`]); a pair decided by depth gets its exact arcs at once
+/// (each arc has its own direction).
 pub(crate) fn constraints(
     pieces: &Pieces,
     bins: usize,
     max_pairs: usize,
 ) -> Result<(Vec<Constraint>, usize), BakeError> {
     let keys = candidate_keys(pieces, bins, max_pairs)?;
-    let pairs = keys.par_chunk_by(same_pair).count();
+    let pairs = keys.len();
     if pairs > max_pairs {
         return Err(BakeError::PairBudget {
             pairs,
@@ -565,18 +625,20 @@ pub(crate) fn constraints(
         });
     }
     let found: Vec<Constraint> = keys
-        .par_chunk_by(same_pair)
-        .flat_map_iter(|run| {
-            let (i, j) = pair_of(run[0]);
+        .par_iter()
+        .flat_map_iter(|&key| {
+            let (i, j, relation) = pair_of(key);
             let (iu, ju) = (i as usize, j as usize);
-            let bins = bins_of(run, bins);
             let mut out: SmallVec<[Constraint; 1]> = SmallVec::new();
-            match pieces.relation(iu, ju) {
+            match relation {
                 Relation::Never => {}
                 Relation::Fixed { behind, front } => {
-                    let arcs = pieces.drawn[iu]
-                        .intersect(&pieces.drawn[ju])
-                        .intersect(&bins);
+                    let arcs = pieces.drawn[iu].intersect(&pieces.drawn[ju]);
+                    let arcs = if arcs.is_empty() {
+                        arcs
+                    } else {
+                        arcs.intersect(&pieces.sight(behind as usize, front as usize))
+                    };
                     if !arcs.is_empty() {
                         out.push(Constraint {
                             behind,
@@ -590,7 +652,7 @@ pub(crate) fn constraints(
                     // Between two events of the pair the overlap neither vanishes nor splits,
                     // and pieces that do not cross keep one relation over a connected
                     // overlap: one direction per stretch between events.
-                    let overlap = pieces.overlap(iu, ju, &bins);
+                    let overlap = pieces.overlap(iu, ju, &ArcSet::full());
                     let events = pieces.events_within(iu, ju, &overlap);
                     for (start, length) in overlap.joined() {
                         let end = start + length;

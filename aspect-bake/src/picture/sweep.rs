@@ -7,9 +7,8 @@ use std::collections::BinaryHeap;
 use std::f64::consts::TAU;
 
 use rayon::prelude::*;
-use smallvec::SmallVec;
 
-use super::cycles::{Acyclicity, CycleFinder};
+use super::cycles::{Acyclicity, CycleFinder, UNSET};
 use super::pairs::Constraint;
 use crate::arcs::ArcSet;
 use crate::tolerance::EVENT_GAP_RAD;
@@ -204,16 +203,21 @@ fn spans_of(
     origin: f64,
     out: &mut impl Extend<Span>,
 ) {
+    let span = |start: f64, end: f64| Span {
+        start,
+        end,
+        constraint,
+        version,
+        behind: c.behind,
+        front: c.front,
+    };
+    if origin == 0.0 {
+        // The arcs as they are: one through the origin is already its two spans.
+        out.extend(c.arcs.as_slice().iter().map(|&(lo, hi)| span(lo, hi)));
+        return;
+    }
     for (start, length) in c.arcs.joined() {
         let s = (start - origin).rem_euclid(TAU);
-        let span = |start: f64, end: f64| Span {
-            start,
-            end,
-            constraint,
-            version,
-            behind: c.behind,
-            front: c.front,
-        };
         if length >= TAU {
             out.extend([span(0.0, TAU)]);
         } else if s + length > TAU {
@@ -269,6 +273,22 @@ pub(crate) type Refine<'a> = &'a (dyn Fn(&Constraint) -> ArcSet + Sync);
 /// it holds) checking the whole cell after each batch costs a constant factor.
 const MIN_BATCH: usize = 1024;
 
+/// A batch whose check finds more than this fraction (one in so many) of the window's spans
+/// to be loose constraints on cycles is taken back and tried at half its size: refining one
+/// costs about as much as checking forty spans, and a batch reaching far past where its cell
+/// ends gathers large cycles of constraints that are loose only there.
+const BACK_OFF_SHARE: usize = 32;
+
+/// What [`Sweep::settle`] found.
+enum Settle {
+    /// No cycle (after refining).
+    Acyclic,
+    /// A cycle of exact constraints.
+    Cycle(Settled),
+    /// More loose constraints on cycles than allowed, none refined.
+    TooLoose,
+}
+
 /// A cycle of exact constraints that [`Sweep::settle`] left, as indices into its spans.
 struct Settled {
     /// Every span on some cycle.
@@ -313,16 +333,27 @@ impl Sweep<'_> {
     /// Refines every constraint not exact yet that lies on a cycle of `spans`, until none
     /// does; returns a cycle of exact constraints that remains (indices into `spans`), if
     /// any. A refined constraint's spans leave `spans`; its new ones that start by `upto` and
-    /// end after `lo` join it, later ones go to the queue.
-    fn settle(&mut self, spans: &mut Vec<Span>, lo: f64, upto: f64) -> Option<Settled> {
+    /// end after `lo` join it, later ones go to the queue. When the first check finds more
+    /// than `max_loose` loose constraints on cycles it refines none ([`Settle::TooLoose`]).
+    fn settle(&mut self, spans: &mut Vec<Span>, lo: f64, upto: f64, max_loose: usize) -> Settle {
+        // After a refinement the edges are a subset of those checked (a refined constraint's
+        // exact arcs lie within its loose ones), so every cycle left lies inside a component
+        // of the last check: only edges inside one are checked again.
+        let mut within: Option<Vec<u32>> = None;
         loop {
             let edges = spans
                 .iter()
                 .enumerate()
+                .filter(|(_, s)| {
+                    within.as_ref().is_none_or(|c| {
+                        let part = c[s.behind as usize];
+                        part != UNSET && part == c[s.front as usize]
+                    })
+                })
                 .map(|(k, s)| (s.behind, s.front, k as u32));
             let ch = self.finder.check(edges);
             let Acyclicity::Cyclic { on_cycles, cycle } = ch else {
-                return None;
+                return Settle::Acyclic;
             };
             let mut loose: Vec<u32> = on_cycles
                 .iter()
@@ -330,10 +361,14 @@ impl Sweep<'_> {
                 .filter(|&k| !self.constraints[k as usize].exact)
                 .collect();
             if loose.is_empty() {
-                return Some(Settled { on_cycles, cycle });
+                return Settle::Cycle(Settled { on_cycles, cycle });
             }
             loose.sort_unstable();
             loose.dedup();
+            if within.is_none() && loose.len() > max_loose {
+                return Settle::TooLoose;
+            }
+            within = Some(self.finder.components_found().to_vec());
             self.refine_all(&loose, spans, lo, upto);
         }
     }
@@ -397,16 +432,11 @@ pub(crate) fn sweep(
         queue: Queue::default(),
         finder: CycleFinder::new(n),
     };
-    state.queue.sorted = state
-        .constraints
-        .par_iter()
-        .enumerate()
-        .flat_map_iter(|(k, c)| {
-            let mut spans: SmallVec<[Span; 2]> = SmallVec::new();
-            spans_of(c, k as u32, 0, origin, &mut spans);
-            spans
-        })
-        .collect();
+    let mut sorted = Vec::with_capacity(state.constraints.len() + state.constraints.len() / 4);
+    for (k, c) in state.constraints.iter().enumerate() {
+        spans_of(c, k as u32, 0, origin, &mut sorted);
+    }
+    state.queue.sorted = sorted;
     state.queue.sorted.par_sort_unstable();
     let mut cells = Vec::new();
     let mut lo = 0.0;
@@ -436,7 +466,9 @@ pub(crate) fn sweep(
             }
         }
         // A cycle among the constraints active at `lo`.
-        while let Some(Settled { cycle, .. }) = state.settle(&mut window, lo, lo) {
+        while let Settle::Cycle(Settled { cycle, .. }) =
+            state.settle(&mut window, lo, lo, usize::MAX)
+        {
             // Constraints that end within a rounding gap of `lo` end with the event that
             // starts the others (a fold turning edge-on ends two pairs' overlap as it starts
             // a third's): they leave this cell.
@@ -447,8 +479,10 @@ pub(crate) fn sweep(
             }
             window.retain(|s| !ending(s));
         }
+        // The most spans a batch may take after one had too many loose constraints on cycles.
+        let mut cap = usize::MAX;
         loop {
-            let size = (window.len() / 4).max(MIN_BATCH);
+            let size = (window.len() / 4).min(cap).max(MIN_BATCH);
             let accepted = window.len();
             let mut upto = lo;
             while window.len() < accepted + size {
@@ -470,8 +504,25 @@ pub(crate) fn sweep(
                 });
                 return Ok(cells);
             }
-            let Some(settled) = state.settle(&mut window, lo, upto) else {
-                continue;
+            let max_loose = if size > MIN_BATCH {
+                window.len() / BACK_OFF_SHARE
+            } else {
+                usize::MAX
+            };
+            let settled = match state.settle(&mut window, lo, upto, max_loose) {
+                Settle::Acyclic => {
+                    cap = cap.saturating_mul(2);
+                    continue;
+                }
+                Settle::TooLoose => {
+                    // Most of them lie beyond where the cell ends: take half as many.
+                    for s in window.drain(accepted..) {
+                        state.queue.push(s);
+                    }
+                    cap = size / 2;
+                    continue;
+                }
+                Settle::Cycle(settled) => settled,
             };
             // The span that closed the first cycle: every cycle of a prefix (by start) lies
             // among the spans on the cycles just settled, so the search runs over those
