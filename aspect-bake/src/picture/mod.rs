@@ -437,6 +437,7 @@ pub fn bake_picture(
         origin,
     } = best;
     let n = set.len();
+    let needed = constraints.iter().filter(|c| !c.arcs.is_empty()).count();
     let mut dag = Dag::new(n);
     let bytes = cells.len() * cell_bytes(n);
     if bytes > options.budget_bytes {
@@ -541,7 +542,7 @@ pub fn bake_picture(
         pieces: n,
         cuts,
         candidate_pairs,
-        constraints: constraints.len(),
+        constraints: needed,
         moved: moved_per_boundary,
     };
     Ok((
@@ -557,7 +558,7 @@ pub fn bake_picture(
             polygons: Arc::new(set),
             cells: baked,
             breakpoints,
-            events: constraints.len(),
+            events: needed,
             bake_ms: started.elapsed().as_secs_f64() * 1e3,
         },
         stats,

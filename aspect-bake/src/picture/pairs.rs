@@ -607,6 +607,91 @@ fn candidate_keys(pieces: &Pieces, bins: usize, max_pairs: usize) -> Result<Vec<
     Ok(keys)
 }
 
+/// The loose constraint of a candidate pair of fixed relation: where both are drawn and in
+/// sight ([`Pieces::sight`]). Empty arcs for a pair that needs none, or is decided by depth.
+fn loose_constraint(pieces: &Pieces, key: u64) -> Constraint {
+    let (i, j, relation) = pair_of(key);
+    let Relation::Fixed { behind, front } = relation else {
+        return Constraint {
+            behind: i,
+            front: j,
+            arcs: ArcSet::empty(),
+            exact: true,
+        };
+    };
+    let arcs = pieces.drawn[i as usize].intersect(&pieces.drawn[j as usize]);
+    let arcs = if arcs.is_empty() {
+        arcs
+    } else {
+        arcs.intersect(&pieces.sight(behind as usize, front as usize))
+    };
+    Constraint {
+        behind,
+        front,
+        arcs,
+        exact: false,
+    }
+}
+
+/// The exact constraints of a pair decided by depth: one per stretch of overlap in which
+/// the same piece is in front.
+fn depth_constraints(pieces: &Pieces, i: u32, j: u32) -> SmallVec<[Constraint; 2]> {
+    let (iu, ju) = (i as usize, j as usize);
+    let mut out = SmallVec::new();
+    // Between two events of the pair the overlap neither vanishes nor splits,
+    // and pieces that do not cross keep one relation over a connected
+    // overlap: one direction per stretch between events.
+    let overlap = pieces.overlap(iu, ju, &ArcSet::full());
+    let events = pieces.events_within(iu, ju, &overlap);
+    for (start, length) in overlap.joined() {
+        let end = start + length;
+        let mut cuts: Vec<f64> = events
+            .iter()
+            .map(|&e| start + (e - start).rem_euclid(std::f64::consts::TAU))
+            .filter(|&e| e < end)
+            .collect();
+        cuts.push(start);
+        cuts.push(end);
+        cuts.sort_by(f64::total_cmp);
+        // Neighbouring stretches of one direction make one constraint.
+        let mut stretch: Option<(f64, f64, bool)> = None;
+        let mut emit = |(a, b, i_front): (f64, f64, bool)| {
+            let (behind, front) = if i_front { (j, i) } else { (i, j) };
+            out.push(Constraint {
+                behind,
+                front,
+                arcs: ArcSet::arc(a - ARC_MARGIN_RAD, b - a + 2.0 * ARC_MARGIN_RAD),
+                exact: true,
+            });
+        };
+        for w in cuts.windows(2) {
+            let (a, b) = (w[0], w[1]);
+            if b <= a {
+                continue;
+            }
+            let Some(i_front) = pieces.in_front_at(iu, ju, 0.5 * (a + b)) else {
+                if let Some(done) = stretch.take() {
+                    emit(done);
+                }
+                continue;
+            };
+            stretch = match stretch {
+                Some((lo, _, same)) if same == i_front => Some((lo, b, same)),
+                other => {
+                    if let Some(done) = other {
+                        emit(done);
+                    }
+                    Some((a, b, i_front))
+                }
+            };
+        }
+        if let Some(done) = stretch {
+            emit(done);
+        }
+    }
+    out
+}
+
 /// Every pair's constraint, with the number of candidate pairs. A pair of fixed relation
 /// gets the superset "both drawn and in sight" ([`Pieces::sight`]), to be refined only where
 /// it matters ([`Pieces::refine`]); a pair decided by depth gets its exact arcs at once
@@ -624,87 +709,22 @@ pub(crate) fn constraints(
             budget: max_pairs,
         });
     }
-    let found: Vec<Constraint> = keys
+    // One slot per pair, written in place: a fixed pair's loose constraint (its arcs empty
+    // where it needs none, and for the other pairs); the arcs of pairs decided by depth
+    // follow.
+    let mut found: Vec<Constraint> = Vec::new();
+    keys.par_iter()
+        .map(|&key| loose_constraint(pieces, key))
+        .collect_into_vec(&mut found);
+    let by_depth: Vec<Constraint> = keys
         .par_iter()
+        .filter(|&&key| matches!(pair_of(key).2, Relation::Depth))
         .flat_map_iter(|&key| {
-            let (i, j, relation) = pair_of(key);
-            let (iu, ju) = (i as usize, j as usize);
-            let mut out: SmallVec<[Constraint; 1]> = SmallVec::new();
-            match relation {
-                Relation::Never => {}
-                Relation::Fixed { behind, front } => {
-                    let arcs = pieces.drawn[iu].intersect(&pieces.drawn[ju]);
-                    let arcs = if arcs.is_empty() {
-                        arcs
-                    } else {
-                        arcs.intersect(&pieces.sight(behind as usize, front as usize))
-                    };
-                    if !arcs.is_empty() {
-                        out.push(Constraint {
-                            behind,
-                            front,
-                            arcs,
-                            exact: false,
-                        });
-                    }
-                }
-                Relation::Depth => {
-                    // Between two events of the pair the overlap neither vanishes nor splits,
-                    // and pieces that do not cross keep one relation over a connected
-                    // overlap: one direction per stretch between events.
-                    let overlap = pieces.overlap(iu, ju, &ArcSet::full());
-                    let events = pieces.events_within(iu, ju, &overlap);
-                    for (start, length) in overlap.joined() {
-                        let end = start + length;
-                        let mut cuts: Vec<f64> = events
-                            .iter()
-                            .map(|&e| start + (e - start).rem_euclid(std::f64::consts::TAU))
-                            .filter(|&e| e < end)
-                            .collect();
-                        cuts.push(start);
-                        cuts.push(end);
-                        cuts.sort_by(f64::total_cmp);
-                        // Neighbouring stretches of one direction make one constraint.
-                        let mut stretch: Option<(f64, f64, bool)> = None;
-                        let mut emit = |(a, b, i_front): (f64, f64, bool)| {
-                            let (behind, front) = if i_front { (j, i) } else { (i, j) };
-                            out.push(Constraint {
-                                behind,
-                                front,
-                                arcs: ArcSet::arc(a - ARC_MARGIN_RAD, b - a + 2.0 * ARC_MARGIN_RAD),
-                                exact: true,
-                            });
-                        };
-                        for w in cuts.windows(2) {
-                            let (a, b) = (w[0], w[1]);
-                            if b <= a {
-                                continue;
-                            }
-                            let Some(i_front) = pieces.in_front_at(iu, ju, 0.5 * (a + b)) else {
-                                if let Some(done) = stretch.take() {
-                                    emit(done);
-                                }
-                                continue;
-                            };
-                            stretch = match stretch {
-                                Some((lo, _, same)) if same == i_front => Some((lo, b, same)),
-                                other => {
-                                    if let Some(done) = other {
-                                        emit(done);
-                                    }
-                                    Some((a, b, i_front))
-                                }
-                            };
-                        }
-                        if let Some(done) = stretch {
-                            emit(done);
-                        }
-                    }
-                }
-            }
-            out
+            let (i, j, _) = pair_of(key);
+            depth_constraints(pieces, i, j)
         })
         .collect();
+    found.extend(by_depth);
     Ok((found, pairs))
 }
 

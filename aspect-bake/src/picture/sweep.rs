@@ -43,6 +43,12 @@ impl Ord for Span {
     }
 }
 
+/// An integer that orders as `f64::total_cmp` orders `x`.
+fn total_order_key(x: f64) -> i64 {
+    let bits = x.to_bits() as i64;
+    bits ^ ((((bits >> 63) as u64) >> 1) as i64)
+}
+
 /// A cell of the sweep: `[lo, hi)` relative to the origin, and the edges that must hold.
 #[derive(Clone, Debug)]
 pub(crate) struct SweepCell {
@@ -436,8 +442,9 @@ pub(crate) fn sweep(
     for (k, c) in state.constraints.iter().enumerate() {
         spans_of(c, k as u32, 0, origin, &mut sorted);
     }
+    // In `Span`'s order: no two spans share a start and a constraint.
+    sorted.par_sort_unstable_by_key(|s| (total_order_key(s.start), s.constraint));
     state.queue.sorted = sorted;
-    state.queue.sorted.par_sort_unstable();
     let mut cells = Vec::new();
     let mut lo = 0.0;
     // The spans of the cell being built.
