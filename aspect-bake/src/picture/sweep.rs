@@ -14,7 +14,8 @@ use crate::arcs::ArcSet;
 use crate::tolerance::EVENT_GAP_RAD;
 
 /// One constraint's arc, in angles relative to the sweep's origin: `behind` before `front`
-/// over `(start, end)`, `0 ≤ start < end ≤ 2π`; valid while its constraint's `version` is.
+/// over `(start, end)`, `0 ≤ start < end ≤ 2π`; valid while its constraint's `version` is
+/// (0 as built, 1 once refined: a constraint is refined at most once).
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct Span {
     start: f64,
@@ -245,9 +246,27 @@ struct Queue {
     sorted: Vec<Span>,
     next: usize,
     extra: BinaryHeap<Reverse<Span>>,
+    /// Where [`Queue::rewind`] returns to: `next`, and the spans taken from the heap since.
+    mark: usize,
+    taken: Vec<Span>,
 }
 
 impl Queue {
+    /// Starts taking spans that [`Queue::rewind`] may put back.
+    fn begin(&mut self) {
+        self.mark = self.next;
+        self.taken.clear();
+    }
+
+    /// Puts back every span taken since [`Queue::begin`] (without re-sorting those that came
+    /// from the sorted spans).
+    fn rewind(&mut self) {
+        self.next = self.mark;
+        for s in self.taken.drain(..) {
+            self.extra.push(Reverse(s));
+        }
+    }
+
     fn push(&mut self, s: Span) {
         self.extra.push(Reverse(s));
     }
@@ -262,13 +281,18 @@ impl Queue {
     }
 
     fn pop(&mut self) -> Option<Span> {
-        let s = self.peek()?;
-        if self.sorted.get(self.next) == Some(&s) {
+        let from_sorted = match (self.sorted.get(self.next), self.extra.peek()) {
+            (Some(a), Some(b)) => a <= &b.0,
+            (a, _) => a.is_some(),
+        };
+        if from_sorted {
             self.next += 1;
+            Some(self.sorted[self.next - 1])
         } else {
-            self.extra.pop();
+            let s = self.extra.pop()?.0;
+            self.taken.push(s);
+            Some(s)
         }
-        Some(s)
     }
 }
 
@@ -306,7 +330,8 @@ struct Settled {
 /// The sweep's working state.
 struct Sweep<'a> {
     constraints: &'a mut [Constraint],
-    version: Vec<u32>,
+    /// Per constraint, one bit: whether it has been refined (its version is 1).
+    refined: Vec<u64>,
     origin: f64,
     refine: Refine<'a>,
     /// Spans not taken yet.
@@ -315,8 +340,14 @@ struct Sweep<'a> {
 }
 
 impl Sweep<'_> {
+    /// The current version of constraint `k`.
+    fn version(&self, k: u32) -> u32 {
+        let k = k as usize;
+        ((self.refined[k / 64] >> (k % 64)) & 1) as u32
+    }
+
     fn valid(&self, s: &Span) -> bool {
-        self.version[s.constraint as usize] == s.version
+        self.version(s.constraint) == s.version
     }
 
     /// The `(behind, front)` edges of spans.
@@ -397,13 +428,14 @@ impl Sweep<'_> {
         let mut fresh = Vec::new();
         for (&k, arcs) in ks.iter().zip(exact) {
             let ku = k as usize;
+            debug_assert_eq!(self.version(k), 0, "a constraint is refined once");
+            self.refined[ku / 64] |= 1 << (ku % 64);
             let c = &mut self.constraints[ku];
             c.arcs = arcs;
             c.exact = true;
-            self.version[ku] += 1;
-            spans_of(c, k, self.version[ku], self.origin, &mut fresh);
+            spans_of(c, k, 1, self.origin, &mut fresh);
         }
-        spans.retain(|s| self.version[s.constraint as usize] == s.version);
+        spans.retain(|s| self.version(s.constraint) == s.version);
         for s in fresh {
             if s.start > upto {
                 self.queue.push(s);
@@ -432,7 +464,7 @@ pub(crate) fn sweep(
     let count = constraints.len();
     let mut state = Sweep {
         constraints,
-        version: vec![0; count],
+        refined: vec![0; count.div_ceil(64)],
         origin,
         refine,
         queue: Queue::default(),
@@ -492,6 +524,7 @@ pub(crate) fn sweep(
             let size = (window.len() / 4).min(cap).max(MIN_BATCH);
             let accepted = window.len();
             let mut upto = lo;
+            state.queue.begin();
             while window.len() < accepted + size {
                 let Some(s) = state.queue.pop() else {
                     break;
@@ -523,9 +556,8 @@ pub(crate) fn sweep(
                 }
                 Settle::TooLoose => {
                     // Most of them lie beyond where the cell ends: take half as many.
-                    for s in window.drain(accepted..) {
-                        state.queue.push(s);
-                    }
+                    window.truncate(accepted);
+                    state.queue.rewind();
                     cap = size / 2;
                     continue;
                 }
