@@ -731,6 +731,87 @@ pub(crate) fn constraints(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::axis::Axis;
+    use face_sort::{Bounds, Plane};
+
+    /// Squares of random size and attitude in a box, from a fixed seed.
+    fn squares(count: usize, seed: u64) -> PolygonSet {
+        let mut state = seed;
+        let mut next = move || {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        let mut set = PolygonSet::new();
+        for k in 0..count {
+            let centre = DVec3::new(next(), next(), next());
+            let normal = DVec3::new(next(), next(), next()).normalize();
+            let u = normal.any_orthonormal_vector();
+            let v = normal.cross(u);
+            let size = 0.05 + 0.2 * (next() + 1.0);
+            let corners = [
+                centre - size * u - size * v,
+                centre + size * u - size * v,
+                centre + size * u + size * v,
+                centre - size * u + size * v,
+            ];
+            let plane = Plane::try_from_point_normal(centre, normal).expect("a plane");
+            set.push(&corners, k as u32, plane);
+        }
+        set
+    }
+
+    /// Every fixed pair's exact overlap (3,600 angles a turn) lies inside its sight cone, in
+    /// both projections; a cone that missed the chord or pointed the wrong way fails here.
+    #[test]
+    fn a_fixed_pair_overlaps_only_inside_its_sight_cone() {
+        let set = squares(40, 7);
+        let bounds = Bounds {
+            min: DVec3::splat(-1.5),
+            max: DVec3::splat(1.5),
+        };
+        for persp in [None, Some(256.0)] {
+            let mut view = View::fit(&bounds, 64, 64);
+            if let Some(d) = persp {
+                view = view.with_perspective(d);
+            }
+            let spin = Spin::new(
+                view,
+                Axis::Yaw {
+                    pitch: 20.0,
+                    roll: 0.0,
+                },
+            )
+            .expect("a spin");
+            let pieces = Pieces::new(&spin, &set, 1.0, bounds.diagonal());
+            let (mut overlapping, mut narrowed) = (0, 0);
+            for i in 0..set.len() {
+                for j in i + 1..set.len() {
+                    let Relation::Fixed { behind, front } = pieces.relation(i, j) else {
+                        continue;
+                    };
+                    let exact = pieces.overlap(i, j, &ArcSet::full());
+                    let sight = pieces.sight(behind as usize, front as usize);
+                    narrowed += usize::from(sight != ArcSet::full());
+                    for step in 0..3600 {
+                        let theta = std::f64::consts::TAU * f64::from(step) / 3600.0;
+                        if exact.contains(theta) {
+                            overlapping += 1;
+                            assert!(
+                                sight.contains(theta),
+                                "{persp:?}: pieces {behind} and {front} overlap at {theta} \
+                                 outside their sight cone {sight:?}"
+                            );
+                        }
+                    }
+                }
+            }
+            // Not vacuous: pairs overlap, and the cones narrow some of them.
+            assert!(overlapping > 1000, "{persp:?}: {overlapping}");
+            assert!(narrowed > 10, "{persp:?}: {narrowed}");
+        }
+    }
 
     #[test]
     fn no_box_meets_nothing_not_even_an_unbounded_box() {
