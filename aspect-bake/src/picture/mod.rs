@@ -23,7 +23,9 @@
 //!    area unless some edge line of one has every corner of the other on its outer side or
 //!    on it (the separating-axis theorem for convex polygons); the side of a corner `v`
 //!    relative to edge `(a, b)` is the sign of `((b − a) × (v − a))·(eye − a)` (perspective)
-//!    or `·d` (orthographic), again `a·cos θ + b·sin θ + c` along the turn. So the arcs where
+//!    or `·d` (orthographic), again `a·cos θ + b·sin θ + c` along the turn (a corner whose
+//!    side is zero within rounding all turn, the viewer level with it and the edge, keeps
+//!    that line from separating). So the arcs where
 //!    a pair needs an order are unions and intersections of arcs with closed-form ends. Every
 //!    arc where a condition that creates a need holds is widened, and every arc that removes
 //!    one is shrunk, by the rounding bound of its root plus a margin: the computed arcs

@@ -155,13 +155,25 @@ impl<'a> Pieces<'a> {
                 }
                 // The side of each corner of `q` relative to the edge's line.
                 lines.clear();
+                let mut level = false;
                 for &v in cq {
                     let m = (b - a).cross(v - a) * self.sigma;
+                    if m == DVec3::ZERO {
+                        continue; // on the edge's line itself (a shared corner)
+                    }
                     let f = self.track.event(m, m.dot(a));
-                    if m == DVec3::ZERO || f.is_identically_zero() {
-                        continue; // on the edge's line at every angle
+                    if f.is_identically_zero() {
+                        // The viewer stays level with the plane of the edge and this corner,
+                        // within rounding: the corner projects within a sliver of the line,
+                        // on a side that rounding decides. The line cannot be shown to
+                        // separate.
+                        level = true;
+                        break;
                     }
                     lines.push(f);
+                }
+                if level {
+                    continue;
                 }
                 // The line separates only where every corner is on its outer side: not over
                 // an arc where some corner surely stays inside.
