@@ -615,10 +615,15 @@ pub fn drawn_lists(bake: &Bake, spin: &Spin) -> Result<Vec<Vec<u32>>, BakeError>
 /// ([`DrawList::set_sink_culls`]): what every consumer paints or judges at any angle of
 /// the cell, skipping the pieces the view does not draw.
 pub fn cell_list(bake: &Bake, cell: usize, list: &mut DrawList) {
+    cell_list_where(bake, cell, list, |_| true);
+}
+
+/// Cell `cell`'s order, the pieces `keep` accepts, as a draw list whose sink culls.
+fn cell_list_where(bake: &Bake, cell: usize, list: &mut DrawList, keep: impl Fn(u32) -> bool) {
     let set = &bake.polygons;
     list.begin(set);
     list.set_sink_culls(true);
-    for &p in &bake.cells[cell].order {
+    for &p in bake.cells[cell].order.iter().filter(|&&p| keep(p)) {
         list.push(p, set.face(p as usize));
     }
 }
@@ -628,14 +633,7 @@ pub fn cell_list(bake: &Bake, cell: usize, list: &mut DrawList) {
 /// piece as rounding falls, and it covers no pixel either way, so no order can be judged on
 /// it. The bake gives a piece edge-on all turn (facing zero at every angle) no drawn arcs.
 fn judged_list(bake: &Bake, cell: usize, facings: &[EventFn], theta: f64, list: &mut DrawList) {
-    let set = &bake.polygons;
-    list.begin(set);
-    list.set_sink_culls(true);
-    for &p in &bake.cells[cell].order {
-        if !facings[p as usize].is_zero_at(theta) {
-            list.push(p, set.face(p as usize));
-        }
-    }
+    cell_list_where(bake, cell, list, |p| !facings[p as usize].is_zero_at(theta));
 }
 
 /// Checks a picture bake with the order-violation oracle: at `per_cell` random angles inside
