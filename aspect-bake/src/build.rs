@@ -206,6 +206,17 @@ impl Merger<'_> {
 /// Draw lists per block: bounded memory between budget checks (one- and two-axis bakes).
 pub(crate) const BLOCK: usize = 2048;
 
+/// Which group of roots a root joins while the exact bake groups them into breakpoints.
+#[derive(Clone, Copy)]
+enum Chain {
+    /// The group of candidate `k`.
+    Candidate(usize),
+    /// The group merged into the first candidate across the turn's end (periodic).
+    Wrap,
+    /// The group merged into the domain's start or end (a range).
+    End,
+}
+
 /// Where inside an interval between events the exact bake runs the live sorter, as a
 /// fraction of its width: not the middle, because roots come in pairs about a tangency (a
 /// function that touches zero without changing sign, where the live sorter's decision
@@ -229,11 +240,16 @@ pub fn bake(
     let mut events: Vec<Event> = Vec::new();
     source.events(spin, start, end, options.max_events, &mut events)?;
     events.sort_by(|a, b| a.theta.total_cmp(&b.theta));
-    // Breakpoint candidates: groups of roots within SAME_ROOT_RAD, the domain's ends apart.
-    // Chains of roots each within SAME_ROOT_RAD, or within the sum of the two roots'
-    // uncertainties, of the previous one are one candidate (the chain's first root).
-    let mut candidates: Vec<Event> = Vec::new();
-    let mut previous: Option<(f64, f64)> = None;
+    // Breakpoint candidates: chains of roots each within SAME_ROOT_RAD, or within the sum of
+    // the two roots' uncertainties, of the previous one are one candidate, the domain's ends
+    // apart. A chain's breakpoint is its best-determined root: near it every other function
+    // of the chain is zero within rounding (its value within `ROOT_NOISE · scale` across its
+    // uncertainty), so the live sorter follows the sharp one there. (A near-tangency's pair
+    // of roots is uncertain by far more than the roots are apart; taken as the breakpoint,
+    // it would move a sharp root beside it by as much.)
+    let mut candidates: Vec<(Event, f64)> = Vec::new();
+    let mut wrap_best: Option<(Event, f64)> = None;
+    let mut previous: Option<(f64, f64, Chain)> = None;
     let first_uncertainty = events
         .first()
         .map_or(0.0, |e| e.function.root_uncertainty());
@@ -241,16 +257,35 @@ pub fn bake(
         let mine = e.function.root_uncertainty();
         let near = |gap: f64, other: f64| gap < SAME_ROOT_RAD.max(mine + other);
         let near_end = !periodic && (near(e.theta - start, 0.0) || near(end - e.theta, 0.0));
-        let near_previous = previous.is_some_and(|(t, u)| near(e.theta - t, u));
         let near_wrap = periodic
             && candidates
                 .first()
-                .is_some_and(|c| near(c.theta + TAU - e.theta, first_uncertainty));
-        previous = Some((e.theta, mine));
-        if !(near_end || near_previous || near_wrap) {
-            candidates.push(*e);
+                .is_some_and(|c| near(c.0.theta + TAU - e.theta, first_uncertainty));
+        let chain = match previous {
+            _ if near_end => Chain::End,
+            Some((t, u, chain)) if near(e.theta - t, u) => chain,
+            _ if near_wrap => Chain::Wrap,
+            _ => {
+                candidates.push((*e, mine));
+                Chain::Candidate(candidates.len() - 1)
+            }
+        };
+        match chain {
+            Chain::Candidate(k) if mine < candidates[k].1 => candidates[k] = (*e, mine),
+            Chain::Wrap if wrap_best.is_none_or(|w| mine < w.1) => wrap_best = Some((*e, mine)),
+            _ => {}
         }
+        previous = Some((e.theta, mine, chain));
     }
+    // A chain that wraps round to the first one: its breakpoint moves to the turn's end
+    // when its root is the better determined.
+    if let Some(w) = wrap_best
+        && w.1 < candidates[0].1
+    {
+        candidates[0] = w;
+        candidates.rotate_left(1);
+    }
+    let candidates: Vec<Event> = candidates.into_iter().map(|c| c.0).collect();
     // Intervals [lo, hi) with the event at their start.
     let mut intervals: Vec<(f64, f64, Option<EventFn>)> = Vec::new();
     if periodic {

@@ -144,6 +144,56 @@ fn a_tie_at_the_start_of_a_period_is_a_breakpoint() {
     verify(&b, &source, &spin, 64, 3).unwrap();
 }
 
+/// A near-tangent pair of roots beside a sharp root (from the `bake` fuzz target): a spin
+/// about an axis `5.3e-6` rad off the view axis keeps two pieces nearly edge-on. One, tilted
+/// by about `1e-15` out of its plane `y = c`, has a facing that dips below zero between two
+/// roots `2e-5` rad either side of 0°, each uncertain to `9e-4` rad; the other's facing has
+/// one sharp root at `−4e-10` rad. The three roots are one breakpoint, which must be the
+/// sharp one: at the pair's root, the sharp piece would be culled by the live sorter yet
+/// kept by the cell for `2e-5` rad.
+#[test]
+fn a_near_tangent_pair_does_not_move_a_sharp_root_beside_it() {
+    let positions = [
+        [-3.0, 2.75, -3.0],
+        [-1.7500000000000002, -3.25, 2.625],
+        [
+            -0.12499999999999999,
+            -3.9999999999999982,
+            -3.9999999999999982,
+        ],
+        [-4.0, -3.9999999999999982 + 8.9e-16, -3.1249999999999982],
+        [3.2500000000000004, -3.9999999999999982, -3.2499999999999982],
+        [
+            -3.9999999999999982,
+            -3.9999999999999982,
+            -3.9999999999999982,
+        ],
+        [-4.0, -3.9999999999999982, -4.000000000000001],
+    ];
+    let mesh = face_sort::PolygonMesh::new(
+        positions.map(DVec3::from_array),
+        vec![vec![5u32, 6, 3, 4, 1], vec![0, 2, 5, 3]],
+    )
+    .unwrap();
+    let geometry = Geometry::new(&mesh).unwrap();
+    let spin = Spin::new(
+        View::fit(&geometry.bounds(), 8, 8),
+        Axis::Direction {
+            axis: [0.0, -7.678833066572323e-113, -1.4577344301875284e-107],
+            base: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+        },
+    )
+    .unwrap();
+    let source = BspSource::of(&geometry);
+    let baked = bake(&source, &spin, &BakeOptions::default()).unwrap();
+    let at = degrees(&baked);
+    assert!(
+        at.iter().any(|&d| (360.0 - d).abs() < 1e-6),
+        "no breakpoint at the sharp root: {at:?}"
+    );
+    verify(&baked, &source, &spin, 8, 1).unwrap();
+}
+
 #[test]
 fn budgets_stop_with_the_size_it_would_have() {
     let g = cube();

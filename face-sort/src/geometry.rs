@@ -8,14 +8,15 @@ use crate::plane::{Plane, newell_normal};
 use crate::polygon_set::PolygonSet;
 use crate::tolerance::{
     CONVEXITY, DEGENERATE_AREA, MAX_EXTENT_ABS, MAX_IMAGE_EXTENT_PX, MIN_EXTENT_ABS,
-    MIN_IMAGE_EXTENT_PX, ON_PLANE, PLANARITY, SAME_CORNER_ROUNDING,
+    MIN_IMAGE_EXTENT_PX, ON_PLANE, PLANARITY, SAME_CORNER_ROUNDING, SLIVER,
 };
 use crate::{Bounds, MeshError, PolygonMesh};
 
 /// A mesh cut into **pieces**, the units every sorter, the oracle and the truth work on
 /// (CONVENTIONS.md): a planar face is one piece; a non-planar face is the fan of triangles
 /// `(0, 1, 2), (0, 2, 3), …`, each a piece keeping the face's index. Pieces without area
-/// are dropped.
+/// are dropped, and so are slivers narrower than [`SLIVER`]` · D` (a millionth of their
+/// length), whose planes f64 does not know well enough to order them.
 ///
 /// Planar faces are snapped onto their fitted plane (a move of at most `1e-6 · D`), so that
 /// every piece is planar and its plane is the one the truth uses. Corners already within
@@ -179,7 +180,7 @@ impl Geometry {
             });
             match plane {
                 Some(plane) if planar => {
-                    if newell_normal(&corners).length() <= DEGENERATE_AREA * size * size {
+                    if newell_normal(&corners).length() <= SLIVER * size * size {
                         dropped_pieces += 1;
                         continue;
                     }
@@ -217,7 +218,7 @@ impl Geometry {
                         let tri_size = largest_distance(&tri);
                         let normal = newell_normal(&tri);
                         match Plane::try_from_polygon(&tri) {
-                            Some(p) if normal.length() > DEGENERATE_AREA * tri_size * tri_size => {
+                            Some(p) if normal.length() > SLIVER * tri_size * tri_size => {
                                 pieces.push(&tri, face as u32, p);
                             }
                             _ => dropped_pieces += 1,
@@ -280,7 +281,7 @@ impl Geometry {
         self.non_planar_faces
     }
 
-    /// Faces or fan triangles dropped for having no area.
+    /// Faces or fan triangles dropped for having no area or being slivers ([`SLIVER`]).
     #[must_use]
     pub fn dropped_pieces(&self) -> usize {
         self.dropped_pieces
@@ -396,4 +397,35 @@ fn is_convex(corners: &[DVec3], normal: DVec3, size: f64) -> bool {
         turning += turn.atan2(e1.dot(e2));
     }
     (turning - std::f64::consts::TAU).abs() < 0.5
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A unit triangle and a triangle `1e8` long and `width` wide, far along `x`.
+    fn with_sliver(width: f64) -> Geometry {
+        let mesh = PolygonMesh::new(
+            [
+                DVec3::ZERO,
+                DVec3::X,
+                DVec3::Y,
+                DVec3::new(0.0, 0.0, 1.0),
+                DVec3::new(0.0, width, 1.0),
+                DVec3::new(1e8, 0.0, 1.0),
+            ],
+            [[0u32, 1, 2], [3, 5, 4]],
+        )
+        .unwrap();
+        Geometry::new(&mesh).unwrap()
+    }
+
+    #[test]
+    fn a_sliver_is_dropped_and_counted() {
+        // Width over length `4e-7` and `4e-5`: one side of `SLIVER = 1e-6` each.
+        let thin = with_sliver(40.0);
+        assert_eq!((thin.pieces().len(), thin.dropped_pieces()), (1, 1));
+        let kept = with_sliver(4000.0);
+        assert_eq!((kept.pieces().len(), kept.dropped_pieces()), (2, 0));
+    }
 }

@@ -118,8 +118,12 @@ impl Plane {
 /// polygon). Counter-clockwise corners seen from the tip give a normal toward the viewer.
 #[must_use]
 pub fn newell_normal(corners: &[DVec3]) -> DVec3 {
+    // Relative to the first corner: the sums `a + b` then have the polygon's size, not the
+    // size of its distance from the origin, so a small face far out keeps its precision.
+    let origin = corners.first().copied().unwrap_or(DVec3::ZERO);
     let mut normal = DVec3::ZERO;
     for (a, b) in crate::polygon::edges(corners) {
+        let (a, b) = (a - origin, b - origin);
         normal.x += (a.y - b.y) * (a.z + b.z);
         normal.y += (a.z - b.z) * (a.x + b.x);
         normal.z += (a.x - b.x) * (a.y + b.y);
@@ -148,5 +152,22 @@ mod tests {
         );
         assert_eq!(plane.side_of_polygon(&sq, 1e-9), Side::On);
         assert!(Plane::try_from_polygon(&[DVec3::ZERO; 3]).is_none());
+    }
+
+    #[test]
+    fn a_small_face_far_from_the_origin_keeps_its_normal() {
+        // A triangle about 1 unit across, 1e8 units out: sums of coordinates that size cost
+        // its normal 1.8e-8 rad; relative to a corner, rounding. Its edges are differences
+        // of nearby numbers (exact), so their cross product is the reference.
+        let corners = [
+            DVec3::new(99999999.2687285, -29999999.305132527, 70000000.52754924),
+            DVec3::new(99999999.51013805, -30000000.009129826, 69999999.89898212),
+            DVec3::new(100000000.30318594, -29999999.422553297, 69999999.18771917),
+        ];
+        let exact = (corners[1] - corners[0])
+            .cross(corners[2] - corners[0])
+            .normalize();
+        let sine = newell_normal(&corners).normalize().cross(exact).length();
+        assert!(sine < 1e-15, "{sine}");
     }
 }

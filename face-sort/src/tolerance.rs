@@ -13,6 +13,16 @@ pub const PLANARITY: f64 = 1e-6;
 /// A piece whose Newell normal is shorter than `DEGENERATE_AREA · D²` has no area and is dropped.
 pub const DEGENERATE_AREA: f64 = 1e-12;
 
+/// A piece narrower than `SLIVER · D` across (its Newell normal, twice its area, shorter
+/// than `SLIVER · D²`, `D` its largest corner-to-corner distance) is dropped like one without
+/// area. Rounding tilts the plane computed for a piece of width `w` by about `ε · D / w` rad,
+/// which a point `L` away reads as up to `ε / SLIVER · L` of depth (about `2e-10 · L`), below
+/// the oracle's [`ORACLE_DEPTH`]. Slivers a hundred million times longer than wide, which
+/// the `sorters` fuzz target makes from one corner `5e8` units out, were misordered by `1e-9`
+/// to `1e-8 · L`. What is dropped is a strip at most `SLIVER · L` wide: a pixel's width only
+/// in images a million pixels across.
+pub const SLIVER: f64 = 1e-6;
+
 /// A planar face is convex when no corner turns the wrong way by more than
 /// `CONVEXITY · D²` (the cross product of its two edges along the face's normal) and its
 /// corners go round once. Ten times obj-quads' loader tolerance of the same name, so that
