@@ -2,8 +2,10 @@
 //! poppler's `pdftoppm` (PDF), with the flags of docs/CHROMIUM.md. Missing consumers skip a
 //! test with a notice, except under `CI`, where `.ci/run` installs them.
 
+use std::os::unix::process::CommandExt;
 use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
 
 /// Where Debian's `chromium` package puts the browser.
 pub const CHROMIUM: &str = "/usr/bin/chromium";
@@ -36,16 +38,33 @@ pub struct Screen {
     /// Anti-alias layer edges as a default browser does; off for ID pictures
     /// (`--disable-composited-antialiasing`).
     pub composited_antialiasing: bool,
+    /// Which compositor draws the layers.
+    pub compositor: Compositor,
 }
 
+/// The two ways Chromium composites a page's layers (docs/CHROMIUM.md).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Compositor {
+    /// The software compositor of a machine without a GPU (`--disable-gpu`).
+    Software,
+    /// GPU rasterisation and compositing, as on a machine with a GPU, run on the CPU by
+    /// SwiftShader (`--use-angle=swiftshader --enable-unsafe-swiftshader`).
+    SwiftShader,
+}
+
+/// How long one screenshot may take (a large page takes seconds) before the test fails
+/// instead of waiting for ever.
+pub const SCREENSHOT_DEADLINE: Duration = Duration::from_secs(180);
+
 /// Headless Chromium's screenshot of `page` (an HTML or SVG file) written to `shot`.
-/// Panics, with Chromium's messages, when no screenshot appears.
+/// Panics, with Chromium's messages, when no screenshot appears, or none within
+/// [`SCREENSHOT_DEADLINE`].
 pub fn chromium_screenshot(browser: &Path, page: &Path, shot: &Path, screen: Screen) {
     let profile = shot.with_extension("profile");
+    let log = shot.with_extension("log");
     let mut args = vec![
         "--headless".to_owned(),
         "--no-sandbox".into(),
-        "--disable-gpu".into(),
         "--disable-quic".into(),
         "--no-first-run".into(),
         "--disable-background-networking".into(),
@@ -55,27 +74,59 @@ pub fn chromium_screenshot(browser: &Path, page: &Path, shot: &Path, screen: Scr
         "--hide-scrollbars".into(),
         format!("--force-device-scale-factor={}", screen.zoom),
         "--force-color-profile=srgb".into(),
-        // Every layer rastered before the capture: without it, a large page's screenshot
-        // sometimes misses an element.
-        "--run-all-compositor-stages-before-draw".into(),
         format!("--screenshot={}", shot.display()),
         format!("--window-size={0},{0}", screen.size),
         format!("file://{}", page.display()),
     ];
+    match screen.compositor {
+        Compositor::Software => args.extend([
+            "--disable-gpu".into(),
+            // Every layer rastered before the capture: without it, a large page's
+            // screenshot sometimes misses an element.
+            "--run-all-compositor-stages-before-draw".into(),
+        ]),
+        // Without that flag: with it, about one screenshot in six never finishes here.
+        Compositor::SwiftShader => args.extend([
+            "--use-angle=swiftshader".into(),
+            "--enable-unsafe-swiftshader".into(),
+        ]),
+    }
     if !screen.composited_antialiasing {
         args.push("--disable-composited-antialiasing".into());
     }
     let _ = std::fs::remove_file(shot);
-    let output = Command::new(browser)
+    let messages = std::fs::File::create(&log).expect("chromium's log file");
+    let mut child = Command::new(browser)
         .args(&args)
-        .output()
+        .process_group(0)
+        .stdout(Stdio::null())
+        .stderr(messages)
+        .spawn()
         .expect("run chromium");
+    let started = Instant::now();
+    let finished = loop {
+        if child.try_wait().expect("wait for chromium").is_some() {
+            break true;
+        }
+        if started.elapsed() > SCREENSHOT_DEADLINE {
+            // The browser and every process it started.
+            let _ = Command::new("kill")
+                .args(["-KILL", &format!("-{}", child.id())])
+                .status();
+            let _ = child.wait();
+            break false;
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    };
+    let said = std::fs::read_to_string(&log).unwrap_or_default();
     let _ = std::fs::remove_dir_all(&profile);
+    let _ = std::fs::remove_file(&log);
     assert!(
-        shot.exists(),
-        "no screenshot; chromium said: {}",
-        String::from_utf8_lossy(&output.stderr)
+        finished,
+        "chromium did not finish within {SCREENSHOT_DEADLINE:?} ({:?}); it said: {said}",
+        screen.compositor
     );
+    assert!(shot.exists(), "no screenshot; chromium said: {said}");
 }
 
 /// Whether `pdftoppm` runs (a notice when it does not, outside CI; panics in CI).

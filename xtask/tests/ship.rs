@@ -134,6 +134,7 @@ fn rendered_files_travel_alone_and_match_the_png() {
                         size,
                         zoom: 1,
                         composited_antialiasing: true,
+                        compositor: test_support::consumers::Compositor::Software,
                     },
                 ),
             };
@@ -227,6 +228,7 @@ fn spot_pages_are_small_and_exact_in_id_mode_at_one_and_four_times() {
                     size: 512,
                     zoom,
                     composited_antialiasing: false,
+                    compositor: test_support::consumers::Compositor::Software,
                 },
             );
             let (w, h, pixels) = rgba(&shot);

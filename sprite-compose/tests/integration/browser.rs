@@ -6,6 +6,8 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
+use test_support::consumers::Compositor;
+
 use raster_sink::{IdImage, Truth, pixel_error, render_ids, truth};
 use sprite_compose::face_sort::SorterKind;
 use sprite_compose::face_sort::View;
@@ -33,6 +35,17 @@ pub(crate) fn screenshot(browser: &Path, html: &str, name: &str) -> Vec<u8> {
 
 /// Screenshots `html` at `size × size`.
 pub(crate) fn screenshot_at(browser: &Path, html: &str, name: &str, size: u32) -> Vec<u8> {
+    screenshot_with(browser, html, name, size, Compositor::Software)
+}
+
+/// [`screenshot_at`] through the given compositor.
+pub(crate) fn screenshot_with(
+    browser: &Path,
+    html: &str,
+    name: &str,
+    size: u32,
+    compositor: Compositor,
+) -> Vec<u8> {
     let dir = temp_dir(name);
     let page = dir.join("page.html");
     let shot = dir.join("shot.png");
@@ -45,6 +58,7 @@ pub(crate) fn screenshot_at(browser: &Path, html: &str, name: &str, size: u32) -
             size,
             zoom: 1,
             composited_antialiasing: false,
+            compositor,
         },
     );
     let pixmap = resvg::tiny_skia::Pixmap::load_png(&shot).expect("the screenshot");
