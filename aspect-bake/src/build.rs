@@ -224,7 +224,8 @@ enum Chain {
 const SAMPLE_AT: f64 = std::f64::consts::SQRT_2 - 1.0;
 
 /// The exact bake: every sign change of the source's event functions in closed form, roots
-/// closer than [`SAME_ROOT_RAD`] merged, the live sorter run once inside each interval
+/// closer than [`SAME_ROOT_RAD`] or than their rounding uncertainties merged into one
+/// breakpoint at the best-determined of them, the live sorter run once inside each interval
 /// between consecutive roots (in parallel), equal neighbours merged.
 ///
 /// # Errors
