@@ -67,37 +67,43 @@ pub(crate) fn piece_classes(
         let fill = fill(face);
         let corners = set.corners(p);
         let is_whole = whole.contains(&(face, bits(corners)));
+        let sources = sources_of.get(&face).map_or(&[][..], Vec::as_slice);
+        let grow_unless_outline = |a: DVec3, b: DVec3| {
+            seam_growth(
+                a,
+                b,
+                sources.iter().map(|&i| geometry.pieces().corners(i)),
+                edge_tolerance,
+            )
+        };
         if corners.len() == 3 && is_whole {
             let name = format!("p{p}");
+            let [a, b, c] = [corners[0], corners[1], corners[2]];
             triangle_rule(
                 page,
                 &name,
                 &fill,
-                [at(corners[0]), at(corners[1]), at(corners[2])],
-                [0.0; 3],
+                [at(a), at(b), at(c)],
+                [
+                    grow_unless_outline(a, b),
+                    grow_unless_outline(b, c),
+                    grow_unless_outline(c, a),
+                ],
                 oversize,
             );
             elements.push((name, 'b'));
             continue;
         }
         if !is_whole {
-            // A part of a cut piece: its fan of triangles, the edges where the truth has none
-            // (the cut, the fan's diagonals) grown by a seam's width so that no crack opens
-            // there; the piece's own edges stay.
-            let sources = sources_of.get(&face).map_or(&[][..], Vec::as_slice);
-            let original = |a: DVec3, b: DVec3| {
-                let m = 0.5 * (a + b);
-                sources
-                    .iter()
-                    .any(|&i| on_boundary(geometry.pieces().corners(i), m, edge_tolerance))
-            };
+            // A part of a cut piece: its fan of triangles, each edge but the face's outline
+            // grown.
             let n = corners.len();
             for k in 1..n - 1 {
                 let name = format!("p{p}_{k}");
                 let (a, b, c) = (corners[0], corners[k], corners[k + 1]);
                 let grow_if = |x: DVec3, y: DVec3, boundary: bool| {
-                    if boundary && original(x, y) {
-                        0.0
+                    if boundary {
+                        grow_unless_outline(x, y)
                     } else {
                         HTML_SEAM_PX
                     }
@@ -155,6 +161,23 @@ pub(crate) fn matrix(m: &DMat4) -> String {
         .map(|(k, &v)| crate::numbers::significant(v, if (8..12).contains(&k) { 2 } else { 5 }))
         .collect();
     format!("matrix3d({})", cols.join(","))
+}
+
+/// How far the edge `a`–`b` of an element of a face is grown: not at all when the truth has
+/// that edge, an edge of the face's outline (on the boundary of exactly one of the face's
+/// pieces `face_pieces`); [`HTML_SEAM_PX`] for any other edge (a cut, a fan's diagonal, the
+/// diagonal between the triangles of a non-planar face), so that no crack opens there.
+fn seam_growth<'a>(
+    a: DVec3,
+    b: DVec3,
+    face_pieces: impl Iterator<Item = &'a [DVec3]>,
+    tolerance: f64,
+) -> f64 {
+    let m = 0.5 * (a + b);
+    let on = face_pieces
+        .filter(|corners| on_boundary(corners, m, tolerance))
+        .count();
+    if on == 1 { 0.0 } else { HTML_SEAM_PX }
 }
 
 /// Whether point `m` lies on an edge of the polygon `corners` (within `tolerance`).
@@ -245,4 +268,29 @@ fn triangle_rule(
         matrix(&m),
         s = num(size),
     );
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_diagonal_between_a_non_planar_faces_triangles_is_grown_and_its_outline_is_not() {
+        // A quad folded along its diagonal a–c, as the two triangles its pieces are.
+        let [a, b, c, d] = [
+            DVec3::new(0.0, 0.0, 0.0),
+            DVec3::new(1.0, 0.0, 0.0),
+            DVec3::new(1.0, 1.0, 0.3),
+            DVec3::new(0.0, 1.0, 0.0),
+        ];
+        let pieces = [vec![a, b, c], vec![a, c, d]];
+        let growth = |x, y| seam_growth(x, y, pieces.iter().map(Vec::as_slice), 1e-9);
+        assert_eq!(growth(c, a), HTML_SEAM_PX);
+        assert_eq!(growth(a, c), HTML_SEAM_PX);
+        for (x, y) in [(a, b), (b, c), (c, d), (d, a)] {
+            assert_eq!(growth(x, y), 0.0);
+        }
+        // A part of a cut piece: its cut (inside the first triangle) is grown too.
+        assert_eq!(growth(a, 0.5 * (b + c)), HTML_SEAM_PX);
+    }
 }
