@@ -88,11 +88,21 @@ pub(crate) fn separated_2d(a: &[DVec2], b: &[DVec2]) -> bool {
 }
 
 /// Whether convex polygons `a` and `b` overlap by more than `min_area`, and by more than the
-/// rounding of the overlap's own computation: their convex intersection (left in `out`) has
-/// three corners or more and more area than both. The clipped corners carry errors of a
-/// few ulps of the largest coordinate `r`, and the area sums products of size `r²`, so an
-/// area within [`AREA_ROUNDING`]` · r²` cannot be told from none (a near-plane clipped
-/// projection, thousands of units across, makes such slivers where two pieces only touch).
+/// rounding of the overlap's own computation: their intersection (left in `out`) has three
+/// corners or more and more area than both.
+///
+/// - *Rounding.* Corners carry errors of a few ulps of their largest coordinate (`r_a`,
+///   `r_b`, far larger than the polygons where they lie far from the image centre, or come
+///   from a near-plane clip), so an intersection no wider than a band of
+///   [`AREA_ROUNDING`]` · (r_a + r_b)` along its boundary cannot be told from none: it needs
+///   more area than that band, `AREA_ROUNDING · (r_a + r_b) · perimeter`. Its area is summed
+///   from its first corner, so that the sum's own rounding scales with its size, not with
+///   its distance from the centre.
+/// - *Convexity.* Pieces are convex only to within [`CONVEXITY`](crate::tolerance::CONVEXITY):
+///   clipping by a polygon with a slightly reflex corner loses what lies beyond that corner's
+///   edges. The intersection is therefore clipped both ways (`a` by `b`, then `b` by `a`),
+///   which is exact when either is convex.
+///
 /// The overlap test of Newell, the oracle and the fragment merge.
 pub(crate) fn overlap_exceeds(
     a: &[DVec2],
@@ -101,16 +111,30 @@ pub(crate) fn overlap_exceeds(
     out: &mut Vec<DVec2>,
     scratch: &mut Vec<DVec2>,
 ) -> bool {
+    let reach = |p: &[DVec2]| {
+        p.iter()
+            .fold(0.0_f64, |m, p| m.max(p.x.abs()).max(p.y.abs()))
+    };
+    let band = AREA_ROUNDING * (reach(a) + reach(b));
+    let exceeds = |overlap: &[DVec2]| {
+        if overlap.len() < 3 {
+            return false;
+        }
+        let origin = overlap[0];
+        let area = edges(overlap)
+            .map(|(p, q)| (p - origin).perp_dot(q - origin))
+            .sum::<f64>()
+            .abs()
+            * 0.5;
+        let perimeter: f64 = edges(overlap).map(|(p, q)| p.distance(q)).sum();
+        area > min_area && area > band * perimeter
+    };
     clip_convex_2d(a, b, out, scratch);
-    if out.len() < 3 {
-        return false;
+    if exceeds(out) {
+        return true;
     }
-    let reach = a
-        .iter()
-        .chain(b)
-        .fold(0.0_f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
-    let area = signed_area_2d(out).abs();
-    area > min_area && area > AREA_ROUNDING * reach * reach
+    clip_convex_2d(b, a, out, scratch);
+    exceeds(out)
 }
 
 /// Clips the convex polygon `subject` by the convex polygon `clip` (either winding),
@@ -211,6 +235,57 @@ impl Box2 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_small_overlap_far_from_the_centre_counts() {
+        // Two pieces a few units across, 1e8 units from the image centre, overlapping by
+        // about 0.3 unit²: the rounding of their corners (ulps of 1e8, about 1e-8) is far
+        // below that. A floor of `AREA_ROUNDING · r²` (1.4e2 here) dismissed it, as it did
+        // the thin pieces of a model with one corner 2.7e8 units out
+        // (fuzz/regressions/sorters/far-corner-*), which Newell then misordered.
+        let far = 1e8;
+        let a = [
+            DVec2::new(far, far),
+            DVec2::new(far + 2.0, far),
+            DVec2::new(far, far + 2.0),
+        ];
+        let b = [
+            DVec2::new(far + 0.5, far + 0.5),
+            DVec2::new(far - 1.0, far + 0.5),
+            DVec2::new(far + 0.5, far - 1.0),
+        ];
+        let (mut out, mut scratch) = (Vec::new(), Vec::new());
+        assert!(overlap_exceeds(&a, &b, 1e-12, &mut out, &mut scratch));
+        assert!(overlap_exceeds(&b, &a, 1e-12, &mut out, &mut scratch));
+    }
+
+    #[test]
+    fn a_piece_convex_only_within_tolerance_is_clipped_both_ways() {
+        // From fuzz/regressions/sorters/far-corner-newell-3c3d7b7f925b (view units): a
+        // quad 5e8 long whose far end, 8,000 units across, turns the wrong way within
+        // `CONVEXITY`, and a triangle that overlaps that end. Clipped by the quad, the
+        // triangle loses everything (the quad's reflex corner cuts it away); the quad
+        // clipped by the triangle keeps the overlap, about 4,900 units².
+        let triangle = [
+            DVec2::new(502890181.4041221, 558713484.9986705),
+            DVec2::new(502898593.7474044, 558711992.2553277),
+            DVec2::new(502898599.4959889, 558711994.3722461),
+        ];
+        let quad = [
+            DVec2::new(400141931.88430625, 43307930.367754355),
+            DVec2::new(502890181.37957746, 558713485.1579843),
+            DVec2::new(502898594.9999259, 558711993.0477082),
+            DVec2::new(502898594.18908846, 558711993.4374819),
+        ];
+        let (mut out, mut scratch) = (Vec::new(), Vec::new());
+        clip_convex_2d(&triangle, &quad, &mut out, &mut scratch);
+        assert!(out.len() < 3, "{out:?}");
+        for (a, b) in [(&triangle[..], &quad[..]), (&quad[..], &triangle[..])] {
+            assert!(overlap_exceeds(a, b, 1.0, &mut out, &mut scratch));
+            let area = signed_area_2d(&out).abs();
+            assert!((4000.0..6000.0).contains(&area), "{area}");
+        }
+    }
 
     #[test]
     fn an_overlap_within_the_rounding_of_its_coordinates_is_none() {

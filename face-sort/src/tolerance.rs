@@ -64,9 +64,9 @@ pub const ORACLE_DEPTH: f64 = 1e-9;
 /// `OVERLAP_AREA · L²` (in view units, resolution-free).
 pub const OVERLAP_AREA: f64 = 1e-14;
 
-/// Relative to the square of the largest coordinate involved: an overlap of two projected
-/// polygons with less area is rounding of its own computation (clipped corners within a few
-/// ulps, a shoelace sum of products that size), not an overlap.
+/// Relative to the largest coordinate of each of two projected polygons (`r_a`, `r_b`): their
+/// corners are known to within a few ulps of it, so an intersection with less area than a
+/// band `AREA_ROUNDING · (r_a + r_b)` wide along its boundary is rounding, not an overlap.
 pub const AREA_ROUNDING: f64 = 64.0 * f64::EPSILON;
 
 /// Relative: how far a camera's matrices may be from exact before they are refused
