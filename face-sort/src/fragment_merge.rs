@@ -244,6 +244,7 @@ impl FragmentMerge {
                     polygon(jq),
                     polygon(j as usize),
                     min_area,
+                    1.0,
                     clip_out,
                     clip_scratch,
                 );

@@ -263,6 +263,7 @@ impl Newell {
             a,
             b,
             self.min_area,
+            1.0,
             &mut self.clip_out,
             &mut self.clip_scratch,
         )

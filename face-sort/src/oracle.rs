@@ -5,7 +5,8 @@
 //! than `1e-9 · L` in view depth. Everything is computed in f64 from the polygons' planes; a
 //! depth gap counts only beyond the rounding bound of the two depths
 //! ([`PixelRays::depth_error`](crate::PixelRays::depth_error)), which is negligible except for
-//! a piece seen almost edge-on, whose depth along a ray f64 cannot tell.
+//! a piece seen almost edge-on, whose depth along a ray f64 cannot tell, and next to the near
+//! plane, where projecting rounds up to a thousand times worse ([`View::rounding_gain`]).
 
 use glam::{DVec2, DVec3};
 
@@ -51,6 +52,9 @@ struct Projected {
     boxes: Vec<Box2>,
     /// View-space plane per item: normal and offset.
     planes: Vec<(DVec3, f64)>,
+    /// Per item, how much worse than a few ulps its projection rounds
+    /// ([`View::rounding_gain`]).
+    gains: Vec<f64>,
 }
 
 fn project_all(view: &View, list: &DrawList) -> Projected {
@@ -59,11 +63,13 @@ fn project_all(view: &View, list: &DrawList) -> Projected {
         starts: vec![0],
         boxes: Vec::new(),
         planes: Vec::new(),
+        gains: Vec::new(),
     };
     let mut out = Vec::new();
     let mut scratch = ProjectionScratch::default();
     let test = view.cull_test();
     for &item in list.items() {
+        p.gains.push(view.rounding_gain(list.corners(item)));
         if list.paints(item, &test) {
             view.project_polygon(list.corners(item), &mut out, &mut scratch);
         } else {
@@ -111,7 +117,8 @@ fn for_each_violation(view: &View, list: &DrawList, mut report: impl FnMut(Viola
             if !box_a.overlaps(&box_b) {
                 continue;
             }
-            if !overlap_exceeds(poly(a), poly(b), min_area, &mut overlap, &mut scratch) {
+            let gain = projected.gains[a].max(projected.gains[b]);
+            if !overlap_exceeds(poly(a), poly(b), min_area, gain, &mut overlap, &mut scratch) {
                 continue;
             }
             let (earlier, later) = if a < b { (a, b) } else { (b, a) };
@@ -126,8 +133,8 @@ fn for_each_violation(view: &View, list: &DrawList, mut report: impl FnMut(Viola
                 // can tell (see `PixelRays::depth_error`).
                 let gap = rays.depth(point, ne, ke)
                     - rays.depth(point, nl, kl)
-                    - rays.depth_error(point, ne, ke)
-                    - rays.depth_error(point, nl, kl);
+                    - rays.depth_error(point, ne, ke, gain)
+                    - rays.depth_error(point, nl, kl, gain);
                 if gap.is_finite() {
                     worst = worst.max(gap);
                 }

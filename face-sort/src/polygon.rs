@@ -93,9 +93,12 @@ pub(crate) fn separated_2d(a: &[DVec2], b: &[DVec2]) -> bool {
 ///
 /// - *Rounding.* Corners carry errors of a few ulps of their largest coordinate (`r_a`,
 ///   `r_b`, far larger than the polygons where they lie far from the image centre, or come
-///   from a near-plane clip), so an intersection no wider than a band of
-///   [`AREA_ROUNDING`]` · (r_a + r_b)` along its boundary cannot be told from none: it needs
-///   more area than that band, `AREA_ROUNDING · (r_a + r_b) · perimeter`. Its area is summed
+///   from a near-plane clip), times `gain` where the projection itself rounds worse (the
+///   oracle passes [`View::rounding_gain`](crate::View::rounding_gain), up to 1,000 next to
+///   the near plane; the sorters pass 1, so they order every overlap the oracle could see).
+///   An intersection no wider than a band of [`AREA_ROUNDING`]` · (r_a + r_b) · gain` along
+///   its boundary cannot be told from none: it needs more area than that band times its
+///   perimeter. Its area is summed
 ///   from its first corner, so that the sum's own rounding scales with its size, not with
 ///   its distance from the centre.
 /// - *Convexity.* Pieces are convex only to within [`CONVEXITY`](crate::tolerance::CONVEXITY):
@@ -108,6 +111,7 @@ pub(crate) fn overlap_exceeds(
     a: &[DVec2],
     b: &[DVec2],
     min_area: f64,
+    gain: f64,
     out: &mut Vec<DVec2>,
     scratch: &mut Vec<DVec2>,
 ) -> bool {
@@ -115,7 +119,7 @@ pub(crate) fn overlap_exceeds(
         p.iter()
             .fold(0.0_f64, |m, p| m.max(p.x.abs()).max(p.y.abs()))
     };
-    let band = AREA_ROUNDING * (reach(a) + reach(b));
+    let band = AREA_ROUNDING * (reach(a) + reach(b)) * gain;
     let exceeds = |overlap: &[DVec2]| {
         if overlap.len() < 3 {
             return false;
@@ -255,8 +259,8 @@ mod tests {
             DVec2::new(far + 0.5, far - 1.0),
         ];
         let (mut out, mut scratch) = (Vec::new(), Vec::new());
-        assert!(overlap_exceeds(&a, &b, 1e-12, &mut out, &mut scratch));
-        assert!(overlap_exceeds(&b, &a, 1e-12, &mut out, &mut scratch));
+        assert!(overlap_exceeds(&a, &b, 1e-12, 1.0, &mut out, &mut scratch));
+        assert!(overlap_exceeds(&b, &a, 1e-12, 1.0, &mut out, &mut scratch));
     }
 
     #[test]
@@ -281,7 +285,7 @@ mod tests {
         clip_convex_2d(&triangle, &quad, &mut out, &mut scratch);
         assert!(out.len() < 3, "{out:?}");
         for (a, b) in [(&triangle[..], &quad[..]), (&quad[..], &triangle[..])] {
-            assert!(overlap_exceeds(a, b, 1.0, &mut out, &mut scratch));
+            assert!(overlap_exceeds(a, b, 1.0, 1.0, &mut out, &mut scratch));
             let area = signed_area_2d(&out).abs();
             assert!((4000.0..6000.0).contains(&area), "{area}");
         }
@@ -311,6 +315,7 @@ mod tests {
             &touching,
             &big,
             1e-12,
+            1.0,
             &mut out,
             &mut scratch
         ));
@@ -329,6 +334,7 @@ mod tests {
             &real,
             &under,
             1e-12,
+            1.0,
             &mut out,
             &mut scratch
         ));

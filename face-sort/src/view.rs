@@ -441,6 +441,25 @@ impl View {
         }
     }
 
+    /// How many times the rounding of a projected polygon's pixel coordinates exceeds a few
+    /// ulps of their size: `1 / w` for the smallest `w` among `corners` (centred model space),
+    /// clamped to the near plane's `w ≥ 1e-3` as [`project_polygon`](Self::project_polygon)
+    /// clamps it; 1 in orthographic.
+    ///
+    /// Projection divides by `w = 1 − z·s/d`. Near the eye that is a difference of two numbers
+    /// close to 1, known only to about `ε`, so its relative error `ε / w` passes to every pixel
+    /// coordinate: up to a thousand times more than far from the eye.
+    #[must_use]
+    pub fn rounding_gain(&self, corners: &[DVec3]) -> f64 {
+        match self.projection {
+            Projection::Orthographic => 1.0,
+            Projection::Perspective { .. } => corners
+                .iter()
+                .map(|&p| 1.0 / self.w_of_view_point(self.to_view(p)).max(NEAR_W))
+                .fold(1.0, f64::max),
+        }
+    }
+
     /// Whether a piece with this plane and first corner (centred model space) is drawn under
     /// the view's cull mode, front winding and margin (CONVENTIONS.md).
     #[inline]
@@ -653,17 +672,18 @@ impl PixelRays {
 
     /// A bound on the rounding error of [`depth`](Self::depth) at the same arguments: the
     /// magnitudes of the terms it sums, [`DEPTH_ROUNDING`] relative, over its divisor; plus
-    /// how far the depth moves when `p` itself moves by [`DEPTH_ROUNDING`] of its coordinates
-    /// (a point computed by clipping lies that close to where it should). Small except where
-    /// the plane is nearly parallel to the ray (a piece seen edge-on), where no f64
-    /// evaluation can tell its depth better.
+    /// how far the depth moves when `p` itself moves by `gain ·` [`DEPTH_ROUNDING`] of its
+    /// coordinates (a point computed by projecting and clipping lies that close to where it
+    /// should; `gain` is [`View::rounding_gain`] of the polygons it came from). Small except
+    /// where the plane is nearly parallel to the ray (a piece seen edge-on), where no f64
+    /// evaluation can tell its depth better, or next to the near plane.
     #[inline]
     #[must_use]
-    pub fn depth_error(&self, p: DVec2, n: DVec3, offset: f64) -> f64 {
+    pub fn depth_error(&self, p: DVec2, n: DVec3, offset: f64, gain: f64) -> f64 {
         let a = self.base(p);
         let across = (n.x * a.x).abs() + (n.y * a.y).abs();
         // The point's own rounding, in view units, and the depth's slope across the screen.
-        let moved = DEPTH_ROUNDING * (p.x.abs() + p.y.abs()) * self.inverse_scale;
+        let moved = DEPTH_ROUNDING * gain * (p.x.abs() + p.y.abs()) * self.inverse_scale;
         let tilt = n.x.abs() + n.y.abs();
         match self.eye {
             None => DEPTH_ROUNDING * (offset.abs() + across) / n.z.abs() + moved * tilt / n.z.abs(),

@@ -40,3 +40,49 @@ fn a_sliver_seen_edge_on_is_judged_within_the_rounding_of_its_position() {
     assert_eq!(wrong.len(), 1);
     assert!(wrong[0].depth_gap > 1.0, "{wrong:?}");
 }
+
+/// Two squares next to the near plane (`w` 0.002 and 0.004), one behind the other: projecting
+/// there rounds 500 times worse than far from the eye, and the oracle allows for it
+/// (`View::rounding_gain`), yet the pair drawn front first is still a violation, by the full
+/// unit between them.
+#[test]
+fn a_misorder_next_to_the_near_plane_still_counts() {
+    let square = |z: f64| {
+        [
+            [-1.0, -1.0, z],
+            [1.0, -1.0, z],
+            [1.0, 1.0, z],
+            [-1.0, 1.0, z],
+        ]
+    };
+    let positions = square(0.5)
+        .into_iter()
+        .chain(square(-0.5))
+        .map(glam::DVec3::from);
+    let mesh = face_sort::PolygonMesh::new(positions, [[0u32, 1, 2, 3], [4, 5, 6, 7]]).unwrap();
+    let g = Geometry::new(&mesh).unwrap();
+    let fitted = View::fit(&g.bounds(), 64, 64);
+    // The eye at `d/s` in view units; the front square's w = 0.002 and the back one's 0.004.
+    let distance = fitted.scale() / 0.002;
+    let eye = distance / fitted.scale();
+    let view = fitted
+        .with_perspective(distance)
+        .with_view_offset(glam::DVec3::new(0.0, 0.0, 0.998 * eye - 0.5));
+    g.check_view(&view).unwrap();
+    let gain = |i: usize| view.rounding_gain(g.pieces().corners(i));
+    assert!((gain(0) - 500.0).abs() < 1e-6, "{}", gain(0));
+    assert!((gain(1) - 250.0).abs() < 1e-6, "{}", gain(1));
+    let mut list = DrawList::new();
+    let mut judge = |order: [u32; 2]| {
+        list.begin(g.pieces());
+        for i in order {
+            list.push(i, g.pieces().face(i as usize));
+        }
+        oracle::find_violations(&view, &list, 1)
+    };
+    let right = judge([1, 0]);
+    assert!(right.is_empty(), "{right:?}");
+    let wrong = judge([0, 1]);
+    assert_eq!(wrong.len(), 1, "{wrong:?}");
+    assert!(wrong[0].depth_gap > 0.99, "{wrong:?}");
+}
