@@ -7,6 +7,16 @@ use face_sort::{DrawList, Geometry, View, oracle};
 
 mod common;
 
+/// The oracle's first violation, if any, of two pieces of `g` drawn in `order`.
+fn violations_in_order(g: &Geometry, view: &View, order: [u32; 2]) -> Vec<oracle::Violation> {
+    let mut list = DrawList::new();
+    list.begin(g.pieces());
+    for i in order {
+        list.push(i, g.pieces().face(i as usize));
+    }
+    oracle::find_violations(view, &list, 1)
+}
+
 use common::{asset, read_obj};
 
 #[test]
@@ -24,14 +34,7 @@ fn a_sliver_seen_edge_on_is_judged_within_the_rounding_of_its_position() {
         "{}",
         facing(floor)
     );
-    let mut list = DrawList::new();
-    let mut judge = |order: [u32; 2]| {
-        list.begin(g.pieces());
-        for i in order {
-            list.push(i, g.pieces().face(i as usize));
-        }
-        oracle::find_violations(&view, &list, 1)
-    };
+    let judge = |order: [u32; 2]| violations_in_order(&g, &view, order);
     // The floor first, then the face: right.
     let right = judge([floor, face]);
     assert!(right.is_empty(), "{right:?}");
@@ -72,14 +75,7 @@ fn a_misorder_next_to_the_near_plane_still_counts() {
     let gain = |i: usize| view.rounding_gain(g.pieces().corners(i));
     assert!((gain(0) - 500.0).abs() < 1e-6, "{}", gain(0));
     assert!((gain(1) - 250.0).abs() < 1e-6, "{}", gain(1));
-    let mut list = DrawList::new();
-    let mut judge = |order: [u32; 2]| {
-        list.begin(g.pieces());
-        for i in order {
-            list.push(i, g.pieces().face(i as usize));
-        }
-        oracle::find_violations(&view, &list, 1)
-    };
+    let judge = |order: [u32; 2]| violations_in_order(&g, &view, order);
     let right = judge([1, 0]);
     assert!(right.is_empty(), "{right:?}");
     let wrong = judge([0, 1]);

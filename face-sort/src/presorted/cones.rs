@@ -70,19 +70,21 @@ pub(crate) fn hull(generators: &[DVec3], centre: DVec3, out: &mut Vec<DVec3>) ->
     let turns_left =
         |o: usize, a: usize, b: usize| (flat[a] - flat[o]).perp_dot(flat[b] - flat[o]) > 0.0;
     let mut chain: Vec<usize> = Vec::with_capacity(2 * order.len());
-    for &i in &order {
-        while chain.len() >= 2 && !turns_left(chain[chain.len() - 2], chain[chain.len() - 1], i) {
-            chain.pop();
-        }
-        chain.push(i);
-    }
-    let lower = chain.len() + 1;
-    for &i in order.iter().rev().skip(1) {
-        while chain.len() >= lower && !turns_left(chain[chain.len() - 2], chain[chain.len() - 1], i)
+    // Appends `i`, first dropping ends that would not turn left, down to `floor` kept ones.
+    let append = |chain: &mut Vec<usize>, i: usize, floor: usize| {
+        while chain.len() >= floor.max(2)
+            && !turns_left(chain[chain.len() - 2], chain[chain.len() - 1], i)
         {
             chain.pop();
         }
         chain.push(i);
+    };
+    for &i in &order {
+        append(&mut chain, i, 2);
+    }
+    let lower = chain.len() + 1;
+    for &i in order.iter().rev().skip(1) {
+        append(&mut chain, i, lower);
     }
     // The chain ends where it began.
     chain.pop();
