@@ -235,8 +235,10 @@ impl<'a> Pieces<'a> {
     }
 
     /// For a pair that spans each other's planes without crossing, which one is in front at
-    /// `theta`: `Some(true)` for `i`, `None` when the projections do not overlap there.
-    fn in_front_at(&self, i: usize, j: usize, theta: f64) -> Option<bool> {
+    /// `theta`, judged at the centroid of the overlap of their projections: the overlap's
+    /// area (view units²) and `true` when `i` is in front; `None` when the projections do not
+    /// overlap there at all.
+    fn front_sample(&self, i: usize, j: usize, theta: f64) -> Option<FrontSample> {
         let view = self.spin.view_at_rad(theta);
         let mut scratch = ProjectionScratch::default();
         let (mut pi, mut pj) = (Vec::new(), Vec::new());
@@ -244,11 +246,7 @@ impl<'a> Pieces<'a> {
         view.project_polygon(self.set.corners(j), &mut pj, &mut scratch);
         let (mut overlap, mut clip_scratch) = (Vec::new(), Vec::new());
         clip_convex_2d(&pi, &pj, &mut overlap, &mut clip_scratch);
-        let extent = self.box_floor / PICTURE_SIDE * view.scale();
-        if overlap.len() < 3
-            || signed_area_2d(&overlap).abs()
-                <= face_sort::tolerance::OVERLAP_AREA * extent * extent
-        {
+        if overlap.len() < 3 {
             return None;
         }
         let centroid = overlap.iter().copied().sum::<DVec2>() / overlap.len() as f64;
@@ -258,7 +256,17 @@ impl<'a> Pieces<'a> {
             let (n, offset) = view.plane_to_view(plane.normal(), plane.offset());
             rays.depth(centroid, n, offset)
         };
-        Some(depth(i) > depth(j))
+        Some(FrontSample {
+            area: signed_area_2d(&overlap).abs(),
+            i_front: depth(i) > depth(j),
+        })
+    }
+
+    /// The overlap area (view units²) above which one [`Self::front_sample`] decides its
+    /// stretch by itself: `OVERLAP_AREA · L²` at the view's scale.
+    fn decisive_area(&self) -> f64 {
+        let extent = self.box_floor / PICTURE_SIDE * self.spin.view_at_rad(0.0).scale();
+        face_sort::tolerance::OVERLAP_AREA * extent * extent
     }
 
     /// A box around piece `i`'s projection at every angle of the bin `[mid − half, mid + half]`,
@@ -333,6 +341,15 @@ impl Track {
             scale: n.length() * self.reach + self.w * offset.abs(),
         }
     }
+}
+
+/// Which of two pieces is in front where their projections overlap, at one angle.
+#[derive(Clone, Copy, Debug)]
+struct FrontSample {
+    /// The overlap's area (view units²).
+    area: f64,
+    /// Whether the first piece is in front.
+    i_front: bool,
 }
 
 /// How two pieces' depths relate where both are drawn and overlap.
@@ -650,11 +667,12 @@ fn loose_constraint(pieces: &Pieces, key: u64) -> Constraint {
 fn depth_constraints(pieces: &Pieces, i: u32, j: u32) -> SmallVec<[Constraint; 2]> {
     let (iu, ju) = (i as usize, j as usize);
     let mut out = SmallVec::new();
-    // Between two events of the pair the overlap neither vanishes nor splits,
-    // and pieces that do not cross keep one relation over a connected
-    // overlap: one direction per stretch between events.
+    // Between two events of the pair the overlap neither vanishes nor splits, and pieces
+    // that do not cross keep one relation over a connected overlap: one direction per
+    // stretch between events, judged at its middle.
     let overlap = pieces.overlap(iu, ju, &ArcSet::full());
     let events = pieces.events_within(iu, ju, &overlap);
+    let decisive = pieces.decisive_area();
     for (start, length) in overlap.joined() {
         let end = start + length;
         let mut cuts: Vec<f64> = events
@@ -665,6 +683,24 @@ fn depth_constraints(pieces: &Pieces, i: u32, j: u32) -> SmallVec<[Constraint; 2
         cuts.push(start);
         cuts.push(end);
         cuts.sort_by(f64::total_cmp);
+        let stretches: Vec<(f64, f64)> = cuts
+            .windows(2)
+            .map(|w| (w[0], w[1]))
+            .filter(|&(a, b)| b > a)
+            .collect();
+        let samples: Vec<Option<FrontSample>> = stretches
+            .iter()
+            .map(|&(a, b)| pieces.front_sample(iu, ju, 0.5 * (a + b)))
+            .collect();
+        // Within one arc of overlap the same piece is in front throughout (module docs,
+        // point 2). A stretch whose own overlap is too small to judge at its middle (one
+        // that just starts: docs/ROBUSTNESS.md, finding 27) takes the direction of the
+        // arc's largest overlap, instead of no order at all.
+        let largest = samples
+            .iter()
+            .flatten()
+            .max_by(|x, y| x.area.total_cmp(&y.area))
+            .map(|s| s.i_front);
         // Neighbouring stretches of one direction make one constraint.
         let mut stretch: Option<(f64, f64, bool)> = None;
         let mut emit = |(a, b, i_front): (f64, f64, bool)| {
@@ -676,12 +712,9 @@ fn depth_constraints(pieces: &Pieces, i: u32, j: u32) -> SmallVec<[Constraint; 2
                 exact: true,
             });
         };
-        for w in cuts.windows(2) {
-            let (a, b) = (w[0], w[1]);
-            if b <= a {
-                continue;
-            }
-            let Some(i_front) = pieces.in_front_at(iu, ju, 0.5 * (a + b)) else {
+        for (&(a, b), sample) in stretches.iter().zip(&samples) {
+            let own = sample.filter(|s| s.area > decisive).map(|s| s.i_front);
+            let Some(i_front) = own.or(largest) else {
                 if let Some(done) = stretch.take() {
                     emit(done);
                 }
