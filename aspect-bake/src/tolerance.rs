@@ -85,12 +85,12 @@ pub const PICTURE_BOUNDARY_DEG: f64 = 1e-6;
 /// than the distance a point can move within a bin (rounding of the rotation).
 pub const BOX_SLACK: f64 = 1e-9;
 
-/// Picture bakes: constraints whose arcs end within this many radians after a cell's start
-/// end with the event that starts the cell (their computed ends and the new constraint's
-/// start are one event, rounded and widened apart), so they leave the cell. A cell is thus
-/// exact except within this of its start (about `2e-10°`); four times [`ARC_MARGIN_RAD`],
-/// far below the `1e-6°` at which `verify_picture` probes cell ends. A cell no longer than
-/// this is dropped and the next starts in its place (exact except within twice this of its
-/// start): a zero-length cell's list held only at its one angle, and there it was wrong
-/// (found by fuzzing).
+/// Picture bakes: constraints whose arcs end within this many radians after the start of the
+/// span that opens a cell end with the event that opens it (their computed ends and the new
+/// constraint's start are one event, rounded and widened apart), so they leave the cell. The
+/// cell begins at the event itself, that span's start plus [`ARC_MARGIN_RAD`], where they
+/// have ended (beginning at the widened start instead left them out while they still held:
+/// found by fuzzing). Four times [`ARC_MARGIN_RAD`]. A cell no longer than this is dropped
+/// and the next starts in its place (exact except within this of its start): a zero-length
+/// cell's list held only at its one angle, and there it was wrong (found by fuzzing).
 pub const EVENT_GAP_RAD: f64 = 4.0 * ARC_MARGIN_RAD;

@@ -520,6 +520,46 @@ fn an_overlap_that_starts_small_is_ordered_from_its_start() {
     assert!(report.breakpoint_checks > 0, "{report:?}");
 }
 
+/// A face of two planes turns edge-on: one event ends the overlap of two pieces (4.7 units
+/// apart in depth) and starts other constraints. The cell after it must begin at the event,
+/// not at the new constraints' widened start, where it left the ending pair unordered while
+/// it still overlapped (found by fuzzing: a cell 4.6e-12 rad long, wrong in its first
+/// 4.3e-14 rad).
+#[test]
+fn a_cell_begins_at_its_event_not_before_it() {
+    use aspect_bake::{PictureOptions, bake_picture, verify_picture};
+    use face_sort::PolygonMesh;
+    let positions = vec![
+        DVec3::new(-1.375, 3.375, 0.375),
+        DVec3::new(-2.499_999_999_999_998_7, -2.75, 2.250_000_000_000_000_4),
+        DVec3::new(3.875, 0.375, 3.625),
+        DVec3::new(1.25, -1.875, 2.625),
+        DVec3::new(-3.125, -3.75, 0.250_000_000_000_000_2),
+        DVec3::new(-4.0, 2.875, 3.499_999_999_999_998_2),
+        DVec3::new(-3.999_999_999_999_998_2, -1.875, 0.749_999_999_999_999_8),
+    ];
+    let faces = vec![
+        vec![4, 3, 0, 5, 5],
+        vec![3, 5, 6, 1],
+        vec![4, 3, 5],
+        vec![6, 4, 0, 1],
+    ];
+    let g = Geometry::new(&PolygonMesh::new(positions, faces).unwrap()).unwrap();
+    let axis = Axis::Direction {
+        axis: [9.4e-323, -691_892_387_840.0, -3.0],
+        base: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+    };
+    let spin = Spin::new(View::fit(&g.bounds(), 11, 11), axis).unwrap();
+    let options = PictureOptions {
+        bins: 16,
+        ..PictureOptions::DEFAULT
+    };
+    let (baked, _) = bake_picture(&g, &spin, &options).unwrap();
+    assert!(baked.cells().len() >= 3, "{:?}", baked.cells());
+    let report = verify_picture(&baked, &spin, 2, 1).unwrap();
+    assert!(report.interior_checks > 0, "{report:?}");
+}
+
 #[test]
 fn picture_bakes_refuse_what_they_cannot_serve() {
     use aspect_bake::{BakeError, PictureOptions, bake_picture};

@@ -39,8 +39,11 @@
 //!    that superset and are narrowed to the exact ones (point 3) wherever a cell could end on
 //!    them.
 //! 5. **Cells.** A cell takes every constraint whose arc meets it; its order is a topological
-//!    order of them. It ends where one more constraint would close a cycle. So every pair
-//!    that needs an order anywhere in the cell has it.
+//!    order of them. It ends where one more constraint would close a cycle, at that
+//!    constraint's event (its widened start plus the margin). So every pair that needs an
+//!    order anywhere in the cell has it. Constraints that end with the event that opens a
+//!    cell (their widened ends reach past it) are left out of that cell; they have ended
+//!    where it begins.
 //!
 //! [`verify_picture`] checks this independently of the construction, with the order-violation
 //! oracle on the drawn pieces at random angles inside every cell and within `1e-6°` of both

@@ -703,12 +703,16 @@ fn depth_constraints(pieces: &Pieces, i: u32, j: u32) -> SmallVec<[Constraint; 2
             .map(|s| s.i_front);
         // Neighbouring stretches of one direction make one constraint.
         let mut stretch: Option<(f64, f64, bool)> = None;
+        // The overlap's ends are already widened by the margin; events between them are
+        // roots as computed, widened here.
         let mut emit = |(a, b, i_front): (f64, f64, bool)| {
             let (behind, front) = if i_front { (j, i) } else { (i, j) };
+            let a = if a > start { a - ARC_MARGIN_RAD } else { a };
+            let b = if b < end { b + ARC_MARGIN_RAD } else { b };
             out.push(Constraint {
                 behind,
                 front,
-                arcs: ArcSet::arc(a - ARC_MARGIN_RAD, b - a + 2.0 * ARC_MARGIN_RAD),
+                arcs: ArcSet::arc(a, b - a),
                 exact: true,
             });
         };

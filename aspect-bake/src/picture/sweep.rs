@@ -11,7 +11,7 @@ use rayon::prelude::*;
 use super::cycles::{Acyclicity, CycleFinder, UNSET};
 use super::pairs::Constraint;
 use crate::arcs::ArcSet;
-use crate::tolerance::EVENT_GAP_RAD;
+use crate::tolerance::{ARC_MARGIN_RAD, EVENT_GAP_RAD};
 
 /// One constraint's arc, in angles relative to the sweep's origin: `behind` before `front`
 /// over `(start, end)`, `0 ≤ start < end ≤ 2π`; valid while its constraint's `version` is
@@ -479,6 +479,9 @@ pub(crate) fn sweep(
     state.queue.sorted = sorted;
     let mut cells = Vec::new();
     let mut lo = 0.0;
+    // Where the cell being built begins: the event that ended the previous one, which is
+    // `lo` (the start of the span that closed a cycle) plus that span's margin.
+    let mut boundary = 0.0;
     // The spans of the cell being built.
     let mut window: Vec<Span> = Vec::new();
     'cells: loop {
@@ -537,7 +540,7 @@ pub(crate) fn sweep(
             if window.len() == accepted {
                 let edges = Sweep::edges(window.iter());
                 cells.push(SweepCell {
-                    lo,
+                    lo: boundary,
                     hi: TAU,
                     edges,
                     closing: Vec::new(),
@@ -591,13 +594,18 @@ pub(crate) fn sweep(
                 .expect("the prefix has a cycle");
             let closing = Sweep::edges(cycle.iter().map(|&l| &on_cycles[l as usize]));
             let edges = Sweep::edges(window.iter().filter(|s| s.start < hi));
+            // The closing span is exact (refined if it was not), so its start is its event
+            // less the margin: the cell holds until the event itself. There, constraints
+            // that end with the same event (within `EVENT_GAP_RAD`, below) have truly ended.
+            let event = (hi + ARC_MARGIN_RAD).min(TAU);
             cells.push(SweepCell {
-                lo,
-                hi,
+                lo: boundary,
+                hi: event,
                 edges,
                 closing,
             });
             lo = hi;
+            boundary = event;
             continue 'cells;
         }
     }
@@ -645,7 +653,9 @@ mod tests {
         let mut constraints = vec![c(0, 1, 1.0, 1.0), c(1, 0, 3.0, 1.0)];
         let cells = sweep(&mut constraints, 0.0, 2, &exact).unwrap();
         assert_eq!(cells.len(), 2);
-        assert!((cells[0].hi - 3.0).abs() < 1e-12);
+        // At the event: the closing span's start plus its margin.
+        assert_eq!(cells[0].hi, 3.0 + ARC_MARGIN_RAD);
+        assert_eq!(cells[1].lo, cells[0].hi);
         // Without the conflict: one cell.
         let cells = sweep(&mut constraints[..1], 0.0, 2, &exact).unwrap();
         assert_eq!(cells.len(), 1);
@@ -666,7 +676,7 @@ mod tests {
         let cells = sweep(&mut loose, 0.0, 2, &shrink).unwrap();
         assert_eq!(cells.len(), 2);
         assert!(loose[1].exact);
-        assert!((cells[0].hi - 3.0).abs() < 1e-12);
+        assert_eq!(cells[0].hi, 3.0 + ARC_MARGIN_RAD);
     }
 
     #[test]
