@@ -248,12 +248,16 @@ pub fn bake(
     // uncertainty), so the live sorter follows the sharp one there. (A near-tangency's pair
     // of roots is uncertain by far more than the roots are apart; taken as the breakpoint,
     // it would move a sharp root beside it by as much.)
+    //
+    // A root joins a chain when it is near the chain's best-determined root so far, not merely
+    // near the last root: a root uncertain by tens of degrees (a face nearly along the
+    // turning axis, its facing a near-tangency of amplitude 1e-9) would otherwise chain
+    // sharp roots degrees apart into one breakpoint, and the cells between them would be
+    // lost (found by fuzzing).
     let mut candidates: Vec<(Event, f64)> = Vec::new();
     let mut wrap_best: Option<(Event, f64)> = None;
+    // The current chain, and its best root so far: where, and how uncertain.
     let mut previous: Option<(f64, f64, Chain)> = None;
-    let first_uncertainty = events
-        .first()
-        .map_or(0.0, |e| e.function.root_uncertainty());
     for e in &events {
         let mine = e.function.root_uncertainty();
         let near = |gap: f64, other: f64| gap < SAME_ROOT_RAD.max(mine + other);
@@ -261,7 +265,7 @@ pub fn bake(
         let near_wrap = periodic
             && candidates
                 .first()
-                .is_some_and(|c| near(c.0.theta + TAU - e.theta, first_uncertainty));
+                .is_some_and(|c| near(c.0.theta + TAU - e.theta, c.1));
         let chain = match previous {
             _ if near_end => Chain::End,
             Some((t, u, chain)) if near(e.theta - t, u) => chain,
@@ -271,12 +275,22 @@ pub fn bake(
                 Chain::Candidate(candidates.len() - 1)
             }
         };
-        match chain {
-            Chain::Candidate(k) if mine < candidates[k].1 => candidates[k] = (*e, mine),
-            Chain::Wrap if wrap_best.is_none_or(|w| mine < w.1) => wrap_best = Some((*e, mine)),
-            _ => {}
-        }
-        previous = Some((e.theta, mine, chain));
+        let best = match chain {
+            Chain::Candidate(k) => {
+                if mine < candidates[k].1 {
+                    candidates[k] = (*e, mine);
+                }
+                (candidates[k].0.theta, candidates[k].1)
+            }
+            Chain::Wrap => {
+                if wrap_best.is_none_or(|w| mine < w.1) {
+                    wrap_best = Some((*e, mine));
+                }
+                wrap_best.map_or((e.theta, mine), |w| (w.0.theta, w.1))
+            }
+            Chain::End => (e.theta, mine),
+        };
+        previous = Some((best.0, best.1, chain));
     }
     // A chain that wraps round to the first one: its breakpoint moves to the turn's end
     // when its root is the better determined.

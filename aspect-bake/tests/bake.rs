@@ -560,6 +560,51 @@ fn a_cell_begins_at_its_event_not_before_it() {
     assert!(report.interior_checks > 0, "{report:?}");
 }
 
+/// A face nearly along the turning axis has a facing of amplitude 1e-9, a near-tangency whose
+/// roots are uncertain by 31°. Its roots must not chain sharp roots degrees apart into one
+/// breakpoint (found by fuzzing: the flips of two faces at 0° and 5° were lost, and one cell
+/// spanned them).
+#[test]
+fn an_uncertain_root_does_not_chain_sharp_roots_together() {
+    use face_sort::PolygonMesh;
+    let positions = vec![
+        DVec3::new(-2.5, 0.374_999_999_999_999_94, 2.25),
+        DVec3::new(0.0, -3.999_999_999_999_998_7, -3.999_999_999_999_998_2),
+        DVec3::new(2.25, -3.999_999_999_999_998_2, -3.499_999_999_999_998_2),
+        DVec3::new(-4.0, -3.999_999_999_999_998_2, 3.375),
+        DVec3::new(-3.999_999_999_999_998_2, -3.999_999_999_999_999, 3.625),
+        DVec3::new(3.5, -2.625, -4.0),
+        DVec3::new(-4.0, 2.25, -1.374_999_999_999_999_3),
+    ];
+    let faces = vec![
+        vec![3, 6, 0, 5],
+        vec![3, 4, 5, 6],
+        vec![1, 4, 3, 0, 6],
+        vec![2, 4, 1, 6, 0],
+    ];
+    let g = Geometry::new(&PolygonMesh::new(positions, faces).unwrap()).unwrap();
+    let axis = Axis::Direction {
+        axis: [-1.207_503_382_110_343e-121, 1_289_385_904.672_528_5, 2.125],
+        base: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+    };
+    let spin = Spin::new(View::fit(&g.bounds(), 8, 8), axis).unwrap();
+    let source = BspSource::of(&g);
+    let baked = bake(&source, &spin, &BakeOptions::default()).unwrap();
+    // Both flips are breakpoints of their own.
+    for at in [0.0, 5.027_739_726] {
+        assert!(
+            baked.breakpoints().iter().any(|b| {
+                let d = (b.degrees - at).rem_euclid(360.0);
+                d.min(360.0 - d) < 1e-6
+            }),
+            "no breakpoint at {at}°: {:?}",
+            degrees(&baked)
+        );
+    }
+    let report = verify(&baked, &source, &spin, 2, 1).unwrap();
+    assert!(report.breakpoint_checks > 0, "{report:?}");
+}
+
 #[test]
 fn picture_bakes_refuse_what_they_cannot_serve() {
     use aspect_bake::{BakeError, PictureOptions, bake_picture};
