@@ -242,18 +242,17 @@ pub fn bake(
     source.events(spin, start, end, options.max_events, &mut events)?;
     events.sort_by(|a, b| a.theta.total_cmp(&b.theta));
     // Breakpoint candidates: chains of roots each within SAME_ROOT_RAD, or within the sum of
-    // the two roots' uncertainties, of the previous one are one candidate, the domain's ends
-    // apart. A chain's breakpoint is its best-determined root: near it every other function
-    // of the chain is zero within rounding (its value within `ROOT_NOISE · scale` across its
-    // uncertainty), so the live sorter follows the sharp one there. (A near-tangency's pair
-    // of roots is uncertain by far more than the roots are apart; taken as the breakpoint,
-    // it would move a sharp root beside it by as much.)
+    // the two roots' uncertainties, of the chain's best-determined root so far are one
+    // candidate, the domain's ends apart. A chain's breakpoint is its best-determined root:
+    // near it every other function of the chain is zero within rounding (its value within
+    // `ROOT_NOISE · scale` across its uncertainty), so the live sorter follows the sharp one
+    // there. (A near-tangency's pair of roots is uncertain by far more than the roots are
+    // apart; taken as the breakpoint, it would move a sharp root beside it by as much.)
     //
-    // A root joins a chain when it is near the chain's best-determined root so far, not merely
-    // near the last root: a root uncertain by tens of degrees (a face nearly along the
-    // turning axis, its facing a near-tangency of amplitude 1e-9) would otherwise chain
-    // sharp roots degrees apart into one breakpoint, and the cells between them would be
-    // lost (found by fuzzing).
+    // Near the best root, not merely near the last one: a root uncertain by tens of degrees
+    // (a face nearly along the turning axis, its facing a near-tangency of amplitude 1e-9)
+    // would otherwise chain sharp roots degrees apart into one breakpoint, and the cells
+    // between them would be lost (found by fuzzing).
     let mut candidates: Vec<(Event, f64)> = Vec::new();
     let mut wrap_best: Option<(Event, f64)> = None;
     // The current chain, and its best root so far: where, and how uncertain.
