@@ -482,14 +482,27 @@ fn suzanne_bakes_in_at_most_sixteen_verified_cells() {
 
 /// A picture bake refuses views it cannot serve: no culling, a cull margin, an eye inside
 /// the model.
+/// A fuzzed soup's geometry (faces may repeat a corner, as the fuzzer's do).
+fn soup(positions: Vec<DVec3>, faces: Vec<Vec<u32>>) -> Geometry {
+    Geometry::new(&face_sort::PolygonMesh::new(positions, faces).unwrap()).unwrap()
+}
+
+/// A picture bake with the `bake` fuzz target's 16 bins.
+fn fuzz_picture_bake(g: &Geometry, spin: &Spin) -> Bake {
+    let options = aspect_bake::PictureOptions {
+        bins: 16,
+        ..aspect_bake::PictureOptions::DEFAULT
+    };
+    aspect_bake::bake_picture(g, spin, &options).unwrap().0
+}
+
 /// Two pieces decided by depth whose overlap starts between two of the pair's events and
 /// stays too small to judge at that stretch's middle: the stretch still gets the order of
 /// the rest of the arc (found by fuzzing; before, the cell before it drew the two pieces,
 /// 4.7 units apart in depth, in the wrong order for 2.6e-5° before its end).
 #[test]
 fn an_overlap_that_starts_small_is_ordered_from_its_start() {
-    use aspect_bake::{PictureOptions, bake_picture, verify_picture};
-    use face_sort::PolygonMesh;
+    use aspect_bake::verify_picture;
     let positions = vec![
         DVec3::new(3.75, -2.875, 1.125),
         DVec3::new(1.625, -3.25, -2.375_000_000_000_001_8),
@@ -505,17 +518,13 @@ fn an_overlap_that_starts_small_is_ordered_from_its_start() {
         vec![1, 4, 2, 0, 6],
         vec![1, 6, 6, 4],
     ];
-    let g = Geometry::new(&PolygonMesh::new(positions, faces).unwrap()).unwrap();
+    let g = soup(positions, faces);
     let axis = Axis::Yaw {
         pitch: 29.707_031_25,
         roll: 84.726_562_5,
     };
     let spin = Spin::new(View::fit(&g.bounds(), 48, 48), axis).unwrap();
-    let options = PictureOptions {
-        bins: 16,
-        ..PictureOptions::DEFAULT
-    };
-    let (baked, _) = bake_picture(&g, &spin, &options).unwrap();
+    let baked = fuzz_picture_bake(&g, &spin);
     let report = verify_picture(&baked, &spin, 2, 1).unwrap();
     assert!(report.breakpoint_checks > 0, "{report:?}");
 }
@@ -527,8 +536,7 @@ fn an_overlap_that_starts_small_is_ordered_from_its_start() {
 /// 4.3e-14 rad).
 #[test]
 fn a_cell_begins_at_its_event_not_before_it() {
-    use aspect_bake::{PictureOptions, bake_picture, verify_picture};
-    use face_sort::PolygonMesh;
+    use aspect_bake::verify_picture;
     let positions = vec![
         DVec3::new(-1.375, 3.375, 0.375),
         DVec3::new(-2.499_999_999_999_998_7, -2.75, 2.250_000_000_000_000_4),
@@ -544,17 +552,13 @@ fn a_cell_begins_at_its_event_not_before_it() {
         vec![4, 3, 5],
         vec![6, 4, 0, 1],
     ];
-    let g = Geometry::new(&PolygonMesh::new(positions, faces).unwrap()).unwrap();
+    let g = soup(positions, faces);
     let axis = Axis::Direction {
         axis: [9.4e-323, -691_892_387_840.0, -3.0],
         base: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
     };
     let spin = Spin::new(View::fit(&g.bounds(), 11, 11), axis).unwrap();
-    let options = PictureOptions {
-        bins: 16,
-        ..PictureOptions::DEFAULT
-    };
-    let (baked, _) = bake_picture(&g, &spin, &options).unwrap();
+    let baked = fuzz_picture_bake(&g, &spin);
     assert!(baked.cells().len() >= 3, "{:?}", baked.cells());
     let report = verify_picture(&baked, &spin, 2, 1).unwrap();
     assert!(report.interior_checks > 0, "{report:?}");
@@ -566,7 +570,6 @@ fn a_cell_begins_at_its_event_not_before_it() {
 /// spanned them).
 #[test]
 fn an_uncertain_root_does_not_chain_sharp_roots_together() {
-    use face_sort::PolygonMesh;
     let positions = vec![
         DVec3::new(-2.5, 0.374_999_999_999_999_94, 2.25),
         DVec3::new(0.0, -3.999_999_999_999_998_7, -3.999_999_999_999_998_2),
@@ -582,7 +585,7 @@ fn an_uncertain_root_does_not_chain_sharp_roots_together() {
         vec![1, 4, 3, 0, 6],
         vec![2, 4, 1, 6, 0],
     ];
-    let g = Geometry::new(&PolygonMesh::new(positions, faces).unwrap()).unwrap();
+    let g = soup(positions, faces);
     let axis = Axis::Direction {
         axis: [-1.207_503_382_110_343e-121, 1_289_385_904.672_528_5, 2.125],
         base: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
