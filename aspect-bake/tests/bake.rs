@@ -480,8 +480,6 @@ fn suzanne_bakes_in_at_most_sixteen_verified_cells() {
     }
 }
 
-/// A picture bake refuses views it cannot serve: no culling, a cull margin, an eye inside
-/// the model.
 /// A fuzzed soup's geometry (faces may repeat a corner, as the fuzzer's do).
 fn soup(positions: Vec<DVec3>, faces: Vec<Vec<u32>>) -> Geometry {
     Geometry::new(&face_sort::PolygonMesh::new(positions, faces).unwrap()).unwrap()
@@ -608,6 +606,8 @@ fn an_uncertain_root_does_not_chain_sharp_roots_together() {
     assert!(report.breakpoint_checks > 0, "{report:?}");
 }
 
+/// A picture bake refuses views it cannot serve: no culling, a cull margin, an eye inside
+/// the model.
 #[test]
 fn picture_bakes_refuse_what_they_cannot_serve() {
     use aspect_bake::{BakeError, PictureOptions, bake_picture};
