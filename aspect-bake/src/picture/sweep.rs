@@ -240,7 +240,8 @@ fn spans_of(
 const PARALLEL_REFINES: usize = 256;
 
 /// Spans not taken yet, by start: the initial spans sorted once, and a heap for those added
-/// later (refined constraints, spans put back when a cell is redone).
+/// later (refined constraints, spans put back when a cell is redone). Spans that a new cell
+/// puts back return in front of the sorted ones where they fit ([`Queue::put_back`]).
 #[derive(Default)]
 struct Queue {
     sorted: Vec<Span>,
@@ -269,6 +270,25 @@ impl Queue {
 
     fn push(&mut self, s: Span) {
         self.extra.push(Reverse(s));
+    }
+
+    /// Puts back spans taken earlier: in front of the sorted spans not taken yet, in place of
+    /// spans already taken, when they all come before those (as spans taken earlier do);
+    /// else onto the heap.
+    fn put_back(&mut self, mut spans: Vec<Span>) {
+        spans.sort_unstable();
+        let fits = spans.len() <= self.next
+            && spans
+                .last()
+                .zip(self.sorted.get(self.next))
+                .is_none_or(|(last, first)| last <= first);
+        if fits {
+            let start = self.next - spans.len();
+            self.sorted[start..self.next].copy_from_slice(&spans);
+            self.next = start;
+        } else {
+            self.extra.extend(spans.into_iter().map(Reverse));
+        }
     }
 
     fn peek(&self) -> Option<Span> {
@@ -327,6 +347,68 @@ struct Settled {
     cycle: Vec<u32>,
 }
 
+/// The spans of the cell being built, with their edges `(behind, front)` also kept apart in
+/// a compact array: the cycle checks read only the edges, many times over.
+#[derive(Default)]
+struct Window {
+    spans: Vec<Span>,
+    edges: Vec<(u32, u32)>,
+}
+
+impl Window {
+    fn len(&self) -> usize {
+        self.spans.len()
+    }
+
+    fn push(&mut self, s: Span) {
+        self.spans.push(s);
+        self.edges.push((s.behind, s.front));
+    }
+
+    fn iter(&self) -> std::slice::Iter<'_, Span> {
+        self.spans.iter()
+    }
+
+    fn truncate(&mut self, len: usize) {
+        self.spans.truncate(len);
+        self.edges.truncate(len);
+    }
+
+    fn retain(&mut self, mut keep: impl FnMut(&Span) -> bool) {
+        let mut kept = 0;
+        for k in 0..self.spans.len() {
+            if keep(&self.spans[k]) {
+                self.spans[kept] = self.spans[k];
+                self.edges[kept] = self.edges[k];
+                kept += 1;
+            }
+        }
+        self.truncate(kept);
+    }
+
+    /// Empties the window, returning its spans.
+    fn take(&mut self) -> Vec<Span> {
+        self.edges.clear();
+        std::mem::take(&mut self.spans)
+    }
+
+    /// The edges labelled by their index.
+    fn labelled(&self) -> impl Iterator<Item = (u32, u32, u32)> + Clone + '_ {
+        self.edges
+            .iter()
+            .zip(0..)
+            .map(|(&(behind, front), k)| (behind, front, k))
+    }
+}
+
+impl std::ops::Index<usize> for Window {
+    type Output = Span;
+
+    fn index(&self, k: usize) -> &Span {
+        &self.spans[k]
+    }
+}
+
 /// The sweep's working state.
 struct Sweep<'a> {
     constraints: &'a mut [Constraint],
@@ -372,22 +454,18 @@ impl Sweep<'_> {
     /// any. A refined constraint's spans leave `spans`; its new ones that start by `upto` and
     /// end after `lo` join it, later ones go to the queue. When the first check finds more
     /// than `max_loose` loose constraints on cycles it refines none ([`Settle::TooLoose`]).
-    fn settle(&mut self, spans: &mut Vec<Span>, lo: f64, upto: f64, max_loose: usize) -> Settle {
+    fn settle(&mut self, spans: &mut Window, lo: f64, upto: f64, max_loose: usize) -> Settle {
         // After a refinement the edges are a subset of those checked (a refined constraint's
         // exact arcs lie within its loose ones), so every cycle left lies inside a component
         // of the last check: only edges inside one are checked again.
         let mut within: Option<Vec<u32>> = None;
         loop {
-            let edges = spans
-                .iter()
-                .enumerate()
-                .filter(|(_, s)| {
-                    within.as_ref().is_none_or(|c| {
-                        let part = c[s.behind as usize];
-                        part != UNSET && part == c[s.front as usize]
-                    })
+            let edges = spans.labelled().filter(|&(behind, front, _)| {
+                within.as_ref().is_none_or(|c| {
+                    let part = c[behind as usize];
+                    part != UNSET && part == c[front as usize]
                 })
-                .map(|(k, s)| (s.behind, s.front, k as u32));
+            });
             let ch = self.finder.check(edges);
             let Acyclicity::Cyclic { on_cycles, cycle } = ch else {
                 return Settle::Acyclic;
@@ -412,7 +490,7 @@ impl Sweep<'_> {
 
     /// Replaces the arcs of constraints `ks` by their exact arcs (in parallel), as
     /// [`Sweep::settle`] describes.
-    fn refine_all(&mut self, ks: &[u32], spans: &mut Vec<Span>, lo: f64, upto: f64) {
+    fn refine_all(&mut self, ks: &[u32], spans: &mut Window, lo: f64, upto: f64) {
         let refine = self.refine;
         let constraints = &*self.constraints;
         // Threads only pay for large batches.
@@ -483,21 +561,21 @@ pub(crate) fn sweep(
     // `lo` (the start of the span that closed a cycle) plus that span's margin.
     let mut boundary = 0.0;
     // The spans of the cell being built.
-    let mut window: Vec<Span> = Vec::new();
+    let mut window = Window::default();
     'cells: loop {
         // The spans active at `lo` stay; those that start later go back to the queue.
-        let mut kept = Vec::with_capacity(window.len());
-        for s in window.drain(..) {
+        let mut later = Vec::new();
+        for s in window.take() {
             if !state.valid(&s) || s.end <= lo {
                 continue;
             }
             if s.start > lo {
-                state.queue.push(s);
+                later.push(s);
             } else {
-                kept.push(s);
+                window.push(s);
             }
         }
-        window = kept;
+        state.queue.put_back(later);
         while let Some(s) = state.queue.peek() {
             if s.start > lo {
                 break;
