@@ -270,45 +270,60 @@ impl<'a> Pieces<'a> {
     }
 
     /// A box around piece `i`'s projection at every angle of the bin `[mid − half, mid + half]`,
-    /// in the view at `mid` (view units; perspective: divided by `w`). Within the bin a point
-    /// moves by at most its distance `ρ` from the turning axis times `half`, perpendicular to
-    /// the axis's view direction `a`, so by at most `ρ · half · √(1 − aₑ²)` along view axis
-    /// `e`; so the view-space box of the corners grown by that
-    /// much holds the piece throughout, and so does the projection of that box's corners
-    /// (`x / w` is extreme at a corner). Unbounded when the box reaches the eye's near plane.
+    /// in the view at `mid` (view units; perspective: divided by `w`). Turning by `φ` moves a
+    /// corner about the axis by `r·(cos φ − 1) + t·sin φ`, where `r` is its offset from the
+    /// axis and `t` the axis crossed with `r`; so along view axis `e` it moves by at most
+    /// `|rₑ|·(1 − cos h) + |tₑ|·sin h` (`h = half`, the sine capped at 1). A corner moving
+    /// toward the viewer barely moves across the screen, and one moving across it barely
+    /// changes depth: per-corner bounds keep perspective boxes tight. The view-space box of
+    /// each corner grown by that much holds the corner throughout, and so does the projection
+    /// of that box's corners (`x / w` is extreme at a corner); the projection of the piece
+    /// (their convex hull) lies in the box of them all. Unbounded when a box reaches the eye's
+    /// near plane.
     fn swept_box(&self, view: &View, i: usize, half: f64) -> (DVec2, DVec2) {
         let corners = self.set.corners(i);
-        let (mut lo, mut hi) = (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY));
-        let mut reach: f64 = 0.0;
+        let origin = view.to_view(DVec3::ZERO);
+        // |sin φ| ≤ sin h and 1 − cos φ ≤ 1 − cos h for |φ| ≤ h ≤ π/2 (|sin φ| ≤ 1 beyond).
+        let sin = if half < std::f64::consts::FRAC_PI_2 {
+            half.sin()
+        } else {
+            1.0
+        };
+        let versine = 1.0 - half.cos();
+        let (mut a, mut b) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
+        let eye = view.eye_in_view();
         for &c in corners {
             let v = view.to_view(c);
-            lo = lo.min(v);
-            hi = hi.max(v);
-            reach = reach.max(c.reject_from_normalized(self.axis_model).length());
-        }
-        let grow = self.across_axis * (reach * half * (1.0 + BOX_SLACK)) + self.box_floor;
-        let (lo, hi) = (lo - grow, hi + grow);
-        match view.eye_in_view() {
-            None => (lo.truncate(), hi.truncate()),
-            Some(eye) => {
-                let near = eye.z * (1.0 - NEAR_EYE);
-                if hi.z >= near {
-                    return (DVec2::splat(f64::NEG_INFINITY), DVec2::splat(f64::INFINITY));
+            let radial = c.reject_from_normalized(self.axis_model);
+            let tangent = self.axis_model.cross(radial);
+            let r = (view.to_view(radial) - origin).abs();
+            let t = (view.to_view(tangent) - origin).abs();
+            let grow = (t * sin + r * versine) * (1.0 + BOX_SLACK) + DVec3::splat(self.box_floor);
+            let (lo, hi) = (v - grow, v + grow);
+            match eye {
+                None => {
+                    a = a.min(lo.truncate());
+                    b = b.max(hi.truncate());
                 }
-                let (mut a, mut b) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
-                for z in [lo.z, hi.z] {
-                    let w = 1.0 - z / eye.z;
-                    for x in [lo.x, hi.x] {
-                        for y in [lo.y, hi.y] {
-                            let p = DVec2::new(x, y) / w;
-                            a = a.min(p);
-                            b = b.max(p);
+                Some(eye) => {
+                    let near = eye.z * (1.0 - NEAR_EYE);
+                    if hi.z >= near {
+                        return (DVec2::splat(f64::NEG_INFINITY), DVec2::splat(f64::INFINITY));
+                    }
+                    for z in [lo.z, hi.z] {
+                        let w = 1.0 - z / eye.z;
+                        for x in [lo.x, hi.x] {
+                            for y in [lo.y, hi.y] {
+                                let p = DVec2::new(x, y) / w;
+                                a = a.min(p);
+                                b = b.max(p);
+                            }
                         }
                     }
                 }
-                (a, b)
             }
         }
+        (a, b)
     }
 }
 
@@ -859,6 +874,58 @@ mod tests {
             // Not vacuous: pairs overlap, and the cones narrow some of them.
             assert!(overlapping > 1000, "{persp:?}: {overlapping}");
             assert!(narrowed > 10, "{persp:?}: {narrowed}");
+        }
+    }
+
+    /// Every corner of every piece, at angles all over a bin (its ends included), projects
+    /// inside the piece's swept box of that bin, in both projections and for bins wider and
+    /// narrower than a quarter turn (and the boxes are bounded).
+    #[test]
+    fn a_swept_box_holds_its_piece_all_over_the_bin() {
+        let set = squares(40, 11);
+        let bounds = Bounds {
+            min: DVec3::splat(-1.5),
+            max: DVec3::splat(1.5),
+        };
+        for persp in [None, Some(256.0)] {
+            let mut view = View::fit(&bounds, 64, 64);
+            if let Some(d) = persp {
+                view = view.with_perspective(d);
+            }
+            let spin = Spin::new(
+                view,
+                Axis::Yaw {
+                    pitch: 20.0,
+                    roll: 0.0,
+                },
+            )
+            .expect("a spin");
+            let pieces = Pieces::new(&spin, &set, 1.0, bounds.diagonal());
+            for bins in [1, 3, 32] {
+                let width = std::f64::consts::TAU / bins as f64;
+                for bin in 0..bins {
+                    let (lo, hi) = (bin as f64 * width, (bin + 1) as f64 * width);
+                    let mid_view = spin.view_at_rad(0.5 * (lo + hi));
+                    for i in 0..set.len() {
+                        let (min, max) = pieces.swept_box(&mid_view, i, 0.5 * width);
+                        assert!(min.is_finite() && max.is_finite(), "{persp:?}: unbounded");
+                        for step in 0..=64 {
+                            let theta = lo + width * f64::from(step) / 64.0;
+                            let view = spin.view_at_rad(theta);
+                            for &c in set.corners(i) {
+                                let v = view.to_view(c);
+                                let w = view.eye_in_view().map_or(1.0, |eye| 1.0 - v.z / eye.z);
+                                let p = DVec2::new(v.x, v.y) / w;
+                                assert!(
+                                    p.cmpge(min).all() && p.cmple(max).all(),
+                                    "{persp:?}, {bins} bins: piece {i} at {theta} projects to \
+                                     {p} outside its box {min}..{max}"
+                                );
+                            }
+                        }
+                    }
+                }
+            }
         }
     }
 
