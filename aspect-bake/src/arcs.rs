@@ -142,6 +142,11 @@ impl ArcSet {
         self.arcs.iter().any(|&(a, b)| a <= hi && b >= lo)
     }
 
+    /// The total length of the arcs (radians).
+    pub(crate) fn total_length(&self) -> f64 {
+        self.arcs.iter().map(|&(lo, hi)| hi - lo).sum()
+    }
+
     /// Whether `theta` (in `[0, 2π)`) lies in the set.
     #[cfg(test)]
     pub(crate) fn contains(&self, theta: f64) -> bool {

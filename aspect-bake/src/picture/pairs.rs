@@ -651,8 +651,14 @@ fn candidate_keys(pieces: &Pieces, bins: usize, max_pairs: usize) -> Result<Vec<
     Ok(keys)
 }
 
-/// The loose constraint of a candidate pair of fixed relation: where both are drawn and in
-/// sight ([`Pieces::sight`]). Empty arcs for a pair that needs none, or is decided by depth.
+/// Loose arcs longer than this (radians) are refined at once. They belong to near
+/// neighbours, whose sight cone is most of the turn: left loose, each sits in the window of
+/// every batch along its arcs and closes cycles that the sweep must refine anyway.
+const REFINE_AT_ONCE: f64 = 45.0 * std::f64::consts::PI / 180.0;
+
+/// The constraint of a candidate pair of fixed relation: loose, where both are drawn and in
+/// sight ([`Pieces::sight`]), or exact where that is longer than [`REFINE_AT_ONCE`]. Empty
+/// arcs for a pair that needs none, or is decided by depth.
 fn loose_constraint(pieces: &Pieces, key: u64) -> Constraint {
     let (i, j, relation) = pair_of(key);
     let Relation::Fixed { behind, front } = relation else {
@@ -669,11 +675,20 @@ fn loose_constraint(pieces: &Pieces, key: u64) -> Constraint {
     } else {
         arcs.intersect(&pieces.sight(behind as usize, front as usize))
     };
-    Constraint {
+    let loose = Constraint {
         behind,
         front,
         arcs,
         exact: false,
+    };
+    if loose.arcs.total_length() > REFINE_AT_ONCE {
+        Constraint {
+            arcs: pieces.refine(&loose),
+            exact: true,
+            ..loose
+        }
+    } else {
+        loose
     }
 }
 
