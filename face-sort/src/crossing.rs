@@ -75,17 +75,24 @@ fn cross(a: &Piece, b: &Piece, tolerance: f64) -> bool {
 
 /// For each piece, one other piece that it passes through (the first found), if any.
 fn first_crossings(pieces: &[Piece], tolerance: f64) -> Vec<Option<usize>> {
-    let boxes: Vec<(DVec3, DVec3)> = pieces.iter().map(|p| bounds(&p.corners)).collect();
-    let mut by_x: Vec<usize> = (0..pieces.len()).collect();
-    by_x.sort_unstable_by(|&i, &j| boxes[i].0.x.total_cmp(&boxes[j].0.x));
+    // Boxes sorted by their low x (ties by index), stored in that order, so that the sweep
+    // along x reads them one after another.
+    let mut boxes: Vec<(DVec3, DVec3, usize)> = pieces
+        .iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let (lo, hi) = bounds(&p.corners);
+            (lo, hi, i)
+        })
+        .collect();
+    boxes.sort_unstable_by(|a, b| a.0.x.total_cmp(&b.0.x).then(a.2.cmp(&b.2)));
     let mut partner = vec![None; pieces.len()];
-    for (k, &i) in by_x.iter().enumerate() {
-        for &j in &by_x[k + 1..] {
-            if boxes[j].0.x > boxes[i].1.x + tolerance {
+    for (k, &(lo_i, hi_i, i)) in boxes.iter().enumerate() {
+        for &(lo_j, hi_j, j) in &boxes[k + 1..] {
+            if lo_j.x > hi_i.x + tolerance {
                 break;
             }
-            let overlap = boxes[i].0.cmple(boxes[j].1 + tolerance).all()
-                && boxes[j].0.cmple(boxes[i].1 + tolerance).all();
+            let overlap = lo_i.cmple(hi_j + tolerance).all() && lo_j.cmple(hi_i + tolerance).all();
             if overlap && cross(&pieces[i], &pieces[j], tolerance) {
                 partner[i].get_or_insert(j);
                 partner[j].get_or_insert(i);
