@@ -238,14 +238,24 @@ impl<'a> Pieces<'a> {
     /// `theta`, judged at the centroid of the overlap of their projections: the overlap's
     /// area (view units²) and `true` when `i` is in front; `None` when the projections do not
     /// overlap there at all.
-    fn front_sample(&self, i: usize, j: usize, theta: f64) -> Option<FrontSample> {
+    fn front_sample(
+        &self,
+        i: usize,
+        j: usize,
+        theta: f64,
+        scratch: &mut SampleScratch,
+    ) -> Option<FrontSample> {
         let view = self.spin.view_at_rad(theta);
-        let mut scratch = ProjectionScratch::default();
-        let (mut pi, mut pj) = (Vec::new(), Vec::new());
-        view.project_polygon(self.set.corners(i), &mut pi, &mut scratch);
-        view.project_polygon(self.set.corners(j), &mut pj, &mut scratch);
-        let (mut overlap, mut clip_scratch) = (Vec::new(), Vec::new());
-        clip_convex_2d(&pi, &pj, &mut overlap, &mut clip_scratch);
+        let SampleScratch {
+            projection,
+            pi,
+            pj,
+            overlap,
+            clip,
+        } = scratch;
+        view.project_polygon(self.set.corners(i), pi, projection);
+        view.project_polygon(self.set.corners(j), pj, projection);
+        clip_convex_2d(pi, pj, overlap, clip);
         if overlap.len() < 3 {
             return None;
         }
@@ -257,7 +267,7 @@ impl<'a> Pieces<'a> {
             rays.depth(centroid, n, offset)
         };
         Some(FrontSample {
-            area: signed_area_2d(&overlap).abs(),
+            area: signed_area_2d(overlap).abs(),
             i_front: depth(i) > depth(j),
         })
     }
@@ -356,6 +366,16 @@ impl Track {
             scale: n.length() * self.reach + self.w * offset.abs(),
         }
     }
+}
+
+/// Buffers that [`Pieces::front_sample`] reuses from one sample to the next.
+#[derive(Default)]
+struct SampleScratch {
+    projection: ProjectionScratch,
+    pi: Vec<DVec2>,
+    pj: Vec<DVec2>,
+    overlap: Vec<DVec2>,
+    clip: Vec<DVec2>,
 }
 
 /// Which of two pieces is in front where their projections overlap, at one angle.
@@ -694,7 +714,12 @@ fn loose_constraint(pieces: &Pieces, key: u64) -> Constraint {
 
 /// The exact constraints of a pair decided by depth: one per stretch of overlap in which
 /// the same piece is in front.
-fn depth_constraints(pieces: &Pieces, i: u32, j: u32) -> SmallVec<[Constraint; 2]> {
+fn depth_constraints(
+    pieces: &Pieces,
+    i: u32,
+    j: u32,
+    scratch: &mut SampleScratch,
+) -> SmallVec<[Constraint; 2]> {
     let (iu, ju) = (i as usize, j as usize);
     let mut out = SmallVec::new();
     // Between two events of the pair the overlap neither vanishes nor splits, and pieces
@@ -720,7 +745,7 @@ fn depth_constraints(pieces: &Pieces, i: u32, j: u32) -> SmallVec<[Constraint; 2
             .collect();
         let samples: Vec<Option<FrontSample>> = stretches
             .iter()
-            .map(|&(a, b)| pieces.front_sample(iu, ju, 0.5 * (a + b)))
+            .map(|&(a, b)| pieces.front_sample(iu, ju, 0.5 * (a + b), scratch))
             .collect();
         // Within one arc of overlap the same piece is in front throughout (module docs,
         // point 2). A stretch whose own overlap is too small to judge at its middle (one
@@ -798,10 +823,11 @@ pub(crate) fn constraints(
     let by_depth: Vec<Constraint> = keys
         .par_iter()
         .filter(|&&key| matches!(pair_of(key).2, Relation::Depth))
-        .flat_map_iter(|&key| {
+        .map_init(SampleScratch::default, |scratch, &key| {
             let (i, j, _) = pair_of(key);
-            depth_constraints(pieces, i, j)
+            depth_constraints(pieces, i, j, scratch)
         })
+        .flat_map_iter(|found| found)
         .collect();
     found.extend(by_depth);
     Ok((found, pairs))
