@@ -62,7 +62,7 @@ impl EventFn {
     /// At `φ + α` the derivative `−r·sin α` is negative (a down-crossing), at `φ − α` positive.
     #[must_use]
     pub fn roots(&self) -> Roots {
-        let r = self.a.hypot(self.b);
+        let r = magnitude(self.a, self.b);
         let zero = self.zero();
         if r <= zero {
             return if self.c.abs() <= zero {
@@ -98,7 +98,7 @@ impl EventFn {
     #[must_use]
     pub fn is_identically_zero(&self) -> bool {
         let zero = self.zero();
-        self.c.abs() <= zero && self.a.hypot(self.b) <= zero
+        self.c.abs() <= zero && magnitude(self.a, self.b) <= zero
     }
 
     /// Whether the function is zero within rounding at `theta`: its value there within the
@@ -112,9 +112,23 @@ impl EventFn {
     /// `ROOT_NOISE · scale / |f′|`, with `|f′| = sqrt(r² − c²)` at either root.
     #[must_use]
     pub fn root_uncertainty(&self) -> f64 {
-        let r = self.a.hypot(self.b);
+        let r = magnitude(self.a, self.b);
         let slope = ((r - self.c).abs() * (r + self.c).abs()).sqrt();
         ROOT_NOISE * self.scale / slope.max(f64::MIN_POSITIVE)
+    }
+}
+
+/// `√(a² + b²)`: the plain formula where the sum of squares is a normal float (so neither
+/// overflowed nor lost to underflow; then within two ulps of `hypot`, far inside
+/// [`ROOT_NOISE`]), else `hypot`, which costs several times as much.
+#[inline]
+#[must_use]
+pub(crate) fn magnitude(a: f64, b: f64) -> f64 {
+    let sum = a * a + b * b;
+    if sum.is_normal() && sum < f64::MAX {
+        sum.sqrt()
+    } else {
+        a.hypot(b)
     }
 }
 
@@ -142,6 +156,24 @@ mod tests {
     use super::*;
 
     use super::test_fn as f;
+
+    #[test]
+    fn magnitude_matches_hypot_at_every_scale() {
+        let scales = [
+            0.0, 1e-310, 1e-200, 1e-160, 1e-5, 1.0, 3e7, 1e150, 1e160, 1e200, 1e308,
+        ];
+        for &x in &scales {
+            for &y in &scales {
+                for (a, b) in [(x, y), (-x, y), (x * 0.3, -y * 0.7)] {
+                    let (fast, exact) = (magnitude(a, b), a.hypot(b));
+                    assert!(
+                        (fast - exact).abs() <= 4.0 * f64::EPSILON * exact,
+                        "magnitude({a}, {b}) = {fast}, hypot {exact}"
+                    );
+                }
+            }
+        }
+    }
 
     #[test]
     fn two_roots_have_the_stated_crossing_directions() {

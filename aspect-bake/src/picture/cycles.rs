@@ -65,8 +65,12 @@ impl CycleFinder {
         for k in 1..=n {
             self.offsets[k] += self.offsets[k - 1];
         }
-        self.targets.clear();
-        self.targets.resize(self.offsets[n] as usize, (0, 0));
+        // Every slot below `offsets[n]` is written before it is read: only grow the buffer
+        // (zeroing it wrote the whole buffer once more per check).
+        let total = self.offsets[n] as usize;
+        if self.targets.len() < total {
+            self.targets.resize(total, (0, 0));
+        }
         // Fill from the back of each group, so that `offsets` ends where it began.
         let mut end = self.offsets[1..].to_vec();
         for (a, b, label) in edges {

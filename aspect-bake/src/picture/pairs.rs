@@ -16,7 +16,7 @@ use smallvec::SmallVec;
 use crate::BakeError;
 use crate::arcs::ArcSet;
 use crate::axis::Spin;
-use crate::event::{EventFn, Roots};
+use crate::event::{EventFn, Roots, magnitude};
 use crate::tolerance::{
     ARC_MARGIN_RAD, BOX_SLACK, NEAR_EYE, PICTURE_SHORT_EDGE, PICTURE_SIDE, SIGHT_SLACK,
 };
@@ -462,7 +462,7 @@ impl Pieces<'_> {
                 2.0 * from.dot(p[2]),
             );
             let reach = self.track.reach + apex.length();
-            let spread = v1.hypot(v2);
+            let spread = magnitude(v1, v2);
             let rounding = SIGHT_SLACK * reach * reach;
             let low = ((v0 - spread) * (1.0 - SIGHT_SLACK) - rounding).max(0.0);
             let high = (v0 + spread) * (1.0 + SIGHT_SLACK) + rounding;

@@ -99,8 +99,10 @@ impl Dag {
             self.offsets[k] += self.offsets[k - 1];
         }
         let total = self.offsets[self.offsets.len() - 1] as usize;
-        self.targets.clear();
-        self.targets.resize(total, 0);
+        // Every slot below `total` is written before it is read: only grow the buffer.
+        if self.targets.len() < total {
+            self.targets.resize(total, 0);
+        }
         let mut fill = self.offsets.clone();
         for (a, b) in edges {
             self.targets[fill[a as usize] as usize] = b;
