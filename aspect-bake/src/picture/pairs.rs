@@ -606,8 +606,8 @@ fn candidate_keys(pieces: &Pieces, bins: usize, max_pairs: usize) -> Result<Vec<
     let limit = max_pairs.saturating_mul(4);
     let found = AtomicUsize::new(0);
     // Each task takes a run of bins, so that a bin's boxes are made once for it and its
-    // neighbour.
-    let tasks = (2 * rayon::current_num_threads()).clamp(1, bins);
+    // neighbour; four tasks per thread even out the bins' uneven work.
+    let tasks = (4 * rayon::current_num_threads()).clamp(1, bins);
     let per_task: Vec<Vec<u64>> = (0..tasks)
         .into_par_iter()
         .map(|task| {
