@@ -33,11 +33,11 @@
 //! 4. **Every pair that can overlap is tested.** Candidates come from angular bins; in each
 //!    bin a piece's screen box bounds the piece at every angle of the bin (the box of its
 //!    corners, each grown by how far it can move along each view axis within the bin,
-//!    rounded outward to f32), so a pair whose boxes never meet never overlaps. A pair of fixed relation
-//!    overlaps only where the viewer sees the front piece in front of the other, inside the
-//!    closed-form sight cone of their corner differences (`Pieces::sight`); its arcs start as
-//!    that superset and are narrowed to the exact ones (point 3) wherever a cell could end on
-//!    them, or at once where the superset is long.
+//!    rounded outward to f32), so a pair whose boxes never meet never overlaps. A pair of
+//!    fixed relation overlaps only where the viewer sees the front piece in front of the
+//!    other, inside the closed-form sight cone of their corner differences
+//!    (`Pieces::sight`); its arcs start as that superset and are narrowed to the exact ones
+//!    (point 3) wherever a cell could end on them, or at once where the superset is long.
 //! 5. **Cells.** A cell takes every constraint whose arc meets it; its order is a topological
 //!    order of them. It ends where one more constraint would close a cycle, at that
 //!    constraint's event (its widened start plus the margin). So every pair that needs an
