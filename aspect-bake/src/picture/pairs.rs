@@ -867,29 +867,35 @@ mod tests {
         set
     }
 
+    /// The box [`squares`] places its squares in, with room for their size.
+    const SQUARES_BOUNDS: Bounds = Bounds {
+        min: DVec3::splat(-1.5),
+        max: DVec3::splat(1.5),
+    };
+
+    /// Yaw spins at pitch 20° around [`SQUARES_BOUNDS`] at 64 × 64, orthographic and in
+    /// perspective (the eye 256 px away), with that perspective distance.
+    fn yaw_spins() -> impl Iterator<Item = (Option<f64>, Spin)> {
+        [None, Some(256.0)].into_iter().map(|persp| {
+            let mut view = View::fit(&SQUARES_BOUNDS, 64, 64);
+            if let Some(d) = persp {
+                view = view.with_perspective(d);
+            }
+            let axis = Axis::Yaw {
+                pitch: 20.0,
+                roll: 0.0,
+            };
+            (persp, Spin::new(view, axis).expect("a spin"))
+        })
+    }
+
     /// Every fixed pair's exact overlap (3,600 angles a turn) lies inside its sight cone, in
     /// both projections; a cone that missed the chord or pointed the wrong way fails here.
     #[test]
     fn a_fixed_pair_overlaps_only_inside_its_sight_cone() {
         let set = squares(40, 7);
-        let bounds = Bounds {
-            min: DVec3::splat(-1.5),
-            max: DVec3::splat(1.5),
-        };
-        for persp in [None, Some(256.0)] {
-            let mut view = View::fit(&bounds, 64, 64);
-            if let Some(d) = persp {
-                view = view.with_perspective(d);
-            }
-            let spin = Spin::new(
-                view,
-                Axis::Yaw {
-                    pitch: 20.0,
-                    roll: 0.0,
-                },
-            )
-            .expect("a spin");
-            let pieces = Pieces::new(&spin, &set, 1.0, bounds.diagonal());
+        for (persp, spin) in yaw_spins() {
+            let pieces = Pieces::new(&spin, &set, 1.0, SQUARES_BOUNDS.diagonal());
             let (mut overlapping, mut narrowed) = (0, 0);
             for i in 0..set.len() {
                 for j in i + 1..set.len() {
@@ -924,24 +930,8 @@ mod tests {
     #[test]
     fn a_swept_box_holds_its_piece_all_over_the_bin() {
         let set = squares(40, 11);
-        let bounds = Bounds {
-            min: DVec3::splat(-1.5),
-            max: DVec3::splat(1.5),
-        };
-        for persp in [None, Some(256.0)] {
-            let mut view = View::fit(&bounds, 64, 64);
-            if let Some(d) = persp {
-                view = view.with_perspective(d);
-            }
-            let spin = Spin::new(
-                view,
-                Axis::Yaw {
-                    pitch: 20.0,
-                    roll: 0.0,
-                },
-            )
-            .expect("a spin");
-            let pieces = Pieces::new(&spin, &set, 1.0, bounds.diagonal());
+        for (persp, spin) in yaw_spins() {
+            let pieces = Pieces::new(&spin, &set, 1.0, SQUARES_BOUNDS.diagonal());
             for bins in [1, 3, 32] {
                 let width = std::f64::consts::TAU / bins as f64;
                 for bin in 0..bins {
