@@ -208,6 +208,10 @@ pub fn write_culled_spin_html(
             place,
             place_point,
             scale: view.scale(),
+            turning: crate::page_pieces::Turning::Spin {
+                axis: axis.normalize(),
+                distance,
+            },
         },
         &crate::page_pieces::face_fill(options.ids, colour),
         options.oversize,

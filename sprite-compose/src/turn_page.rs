@@ -148,6 +148,7 @@ pub fn write_turn_html(
             place: DMat4::from_translation(-origin),
             place_point: flip,
             scale: rest.scale(),
+            turning: crate::page_pieces::Turning::Free,
         },
         &crate::page_pieces::face_fill(options.ids, colour),
         options.oversize,

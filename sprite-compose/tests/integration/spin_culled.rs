@@ -1,10 +1,11 @@
 //! The spinning page of a picture bake (back faces culled by the browser) in headless
 //! Chromium, paused at random times and a millisecond either side of every breakpoint, compared with
-//! raster-sink's truth at the same angle. Through Chromium's software compositor the bar is
-//! that of the other Chromium page tests (at most 0.2 % wrong unambiguous pixels; every
-//! frame's count is printed): among thousands of layers it shows a stray pixel of a far
-//! layer now and then (docs/CHROMIUM.md). The full spot's page is also shown through GPU
-//! compositing (SwiftShader), which must show none.
+//! raster-sink's truth at the same angle. The full spot's page must show no wrong pixel,
+//! through Chromium's software compositor and through GPU compositing (SwiftShader). Spot's
+//! control mesh, with large faces, is held to the bar of the other Chromium page tests
+//! through the software compositor (at most 0.2 % wrong unambiguous pixels; every frame's
+//! count is printed): single pixels one ID step off just outside an anti-aliased join
+//! (docs/CHROMIUM.md).
 
 use raster_sink::{pixel_error, truth};
 use sprite_compose::aspect_bake::{Axis, PictureOptions, Spin, bake_picture, drawn_lists};
@@ -19,7 +20,16 @@ use crate::writers::{SIZE, ids_of_rgba};
 
 const PERIOD_S: f64 = 8.0;
 
-fn check(name: &str, g: &Geometry, view: View, random: usize, compositors: &[Compositor]) {
+/// Shows the page at `random` times and either side of every breakpoint through each of
+/// `compositors`; `exact`: every frame must show no wrong pixel, else at most 0.2 %.
+fn check(
+    name: &str,
+    g: &Geometry,
+    view: View,
+    random: usize,
+    compositors: &[Compositor],
+    exact: bool,
+) {
     let size = view.width();
     let Some(browser) = chromium() else {
         return;
@@ -77,7 +87,7 @@ fn check(name: &str, g: &Geometry, view: View, random: usize, compositors: &[Com
                 "{name} at {degrees}°: too few pixels to judge"
             );
             assert!(e.error <= 2e-3, "{name} at {degrees}°: {e:?}");
-            if compositor == Compositor::SwiftShader {
+            if exact {
                 assert_eq!(e.wrong, 0, "{name} at {degrees}° through {compositor:?}");
             }
         }
@@ -96,22 +106,24 @@ fn culled_spinning_pages_in_chromium_are_exact() {
         let g = Geometry::with_exact_corners(&mesh).expect("a model");
         let base = View::fit(&g.bounds(), SIZE, SIZE);
         let software = [Compositor::Software];
-        check(&format!("{name}-ortho"), &g, base, 2, &software);
+        check(&format!("{name}-ortho"), &g, base, 2, &software, false);
         check(
             &format!("{name}-persp"),
             &g,
             base.with_perspective(f64::from(SIZE)),
             2,
             &software,
+            false,
         );
     }
 }
 
 /// The full spot (5,856 pieces, a 1.3 MB page) at 512 × 512, orthographic and perspective:
-/// 22 frames, each through both compositors. GPU compositing must show no wrong pixel; the
-/// software compositor showed one of 16,747 in one frame at every run so far.
+/// 22 frames, each through both compositors, none of which may show a wrong pixel.
 /// Before the screenshots waited for every compositor stage, a frame now and then missed a
-/// whole element (background where a piece is: 49 and 100 wrong pixels in two runs).
+/// whole element (background where a piece is: 49 and 100 wrong pixels in two runs). Before
+/// border triangles chose their shape, the software compositor showed one stray pixel beyond
+/// a nearly edge-on triangle (docs/CHROMIUM.md).
 #[test]
 #[ignore = "the full spot page: five minutes in release; run with --release --ignored"]
 fn the_full_spot_culled_page_in_chromium() {
@@ -119,12 +131,13 @@ fn the_full_spot_culled_page_in_chromium() {
     let g = Geometry::with_exact_corners(&mesh).expect("a model");
     let base = View::fit(&g.bounds(), 512, 512);
     let both = [Compositor::Software, Compositor::SwiftShader];
-    check("spot-full-ortho", &g, base, 3, &both);
+    check("spot-full-ortho", &g, base, 3, &both, true);
     check(
         "spot-full-persp",
         &g,
         base.with_perspective(1024.0),
         3,
         &both,
+        true,
     );
 }
