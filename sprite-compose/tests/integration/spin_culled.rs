@@ -7,7 +7,7 @@
 //! count is printed): single pixels one ID step off just outside an anti-aliased join
 //! (docs/CHROMIUM.md).
 
-use raster_sink::{pixel_error, truth};
+use raster_sink::{PixelError, pixel_error, truth};
 use sprite_compose::aspect_bake::{Axis, PictureOptions, Spin, bake_picture, drawn_lists};
 use sprite_compose::face_sort::{Geometry, View};
 use sprite_compose::{SpinOptions, write_culled_spin_html};
@@ -65,15 +65,33 @@ fn check(
         let degrees = baked.domain().lo + 360.0 * t / PERIOD_S;
         let t_img = truth(&spin.view_at(degrees), g);
         for &compositor in compositors {
-            let rgba = screenshot_with(
-                browser,
-                &page,
-                &format!("spin-culled-{name}-{t}"),
-                size,
-                compositor,
-            );
+            let show = || {
+                let rgba = screenshot_with(
+                    browser,
+                    &page,
+                    &format!("spin-culled-{name}-{t}"),
+                    size,
+                    compositor,
+                );
+                let e = pixel_error(&ids_of_rgba(size, size, &rgba), &t_img);
+                (rgba, e)
+            };
+            let fails = |e: &PixelError| e.error > 2e-3 || (exact && e.wrong > 0);
+            let (mut rgba, mut e) = show();
+            if fails(&e) {
+                // Shown again: a second screenshot of the same page that differs from the
+                // first is Chromium's flake (docs/CHROMIUM.md), and the second is judged; an
+                // identical one stands.
+                let (again, e_again) = show();
+                if again != rgba {
+                    println!(
+                        "notice: {name} at {t:.4} s through {compositor:?}: {} wrong, then {} in a second screenshot of the same page, which is judged",
+                        e.wrong, e_again.wrong
+                    );
+                    (rgba, e) = (again, e_again);
+                }
+            }
             let shot = ids_of_rgba(size, size, &rgba);
-            let e = pixel_error(&shot, &t_img);
             print_wrong_pixels(&shot, &t_img, &rgba);
             println!(
                 "culled spin {name} at {t:.4} s = {degrees:.3}° ({} cells, page {} B), {compositor:?}: {}/{}",
