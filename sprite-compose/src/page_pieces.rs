@@ -331,6 +331,15 @@ impl BorderShape {
         lean: 0.0,
     };
 
+    /// The box's two corners beyond the triangle `v`: the apex moved back along the base by
+    /// the lean, and forward by the rest.
+    fn box_corners(self, v: [DVec3; 3]) -> [DVec3; 2] {
+        let k = self.first;
+        let (v0, apex, v2) = (v[k], v[(k + 1) % 3], v[(k + 2) % 3]);
+        let base = v2 - v0;
+        [apex - base * self.lean, apex + base * (1.0 - self.lean)]
+    }
+
     /// Whether edge `k` (from corner `k` to `k + 1`) is a sharp side of the box.
     fn is_sharp(self, k: usize) -> bool {
         k == (self.first + 2) % 3 || (k == self.first && self.lean == 0.0)
@@ -391,14 +400,11 @@ pub(crate) fn border_shape(v: [DVec3; 3], seams: [bool; 3], turning: Turning) ->
         Turning::Spin { axis, distance } => {
             let turns = edge_on_turns(v, axis, distance);
             let reach = |shape: BorderShape| {
-                let k = shape.first;
-                let (v0, apex, v2) = (v[k], v[(k + 1) % 3], v[(k + 2) % 3]);
-                let base = v2 - v0;
-                let box_corners = [apex - base * shape.lean, apex + base * (1.0 - shape.lean)];
+                let corners = shape.box_corners(v);
                 turns
                     .iter()
                     .flatten()
-                    .flat_map(|&turn| box_corners.map(|q| overshoot(v, q, turn, distance)))
+                    .flat_map(|&turn| corners.map(|q| overshoot(v, q, turn, distance)))
                     .fold(0.0, f64::max)
             };
             let better = |best: Option<(BorderShape, f64)>, shape: BorderShape| {
@@ -488,13 +494,6 @@ fn overshoot(v: [DVec3; 3], q: DVec3, turn: DMat3, distance: f64) -> f64 {
 mod tests {
     use super::*;
 
-    fn box_corners(v: [DVec3; 3], shape: BorderShape) -> [DVec3; 2] {
-        let k = shape.first;
-        let (v0, apex, v2) = (v[k], v[(k + 1) % 3], v[(k + 2) % 3]);
-        let base = v2 - v0;
-        [apex - base * shape.lean, apex + base * (1.0 - shape.lean)]
-    }
-
     #[test]
     fn an_orthographic_spin_puts_the_right_angle_at_the_corner_seen_between_the_others() {
         // In the plane x = 0, spun about y: seen edge-on along ±z, onto the y axis, where
@@ -520,17 +519,11 @@ mod tests {
         let turns = edge_on_turns(v, DVec3::Y, distance);
         assert_eq!(turns.iter().flatten().count(), 2);
         for turn in turns.into_iter().flatten() {
-            for q in box_corners(v, shape) {
+            for q in shape.box_corners(v) {
                 assert!(overshoot(v, q, turn, distance) <= 1e-6);
             }
             // The right angle at corner 0 reaches 5 pixels beyond, to y = 15.
-            let q = box_corners(
-                v,
-                BorderShape {
-                    first: 0,
-                    lean: 0.0,
-                },
-            )[1];
+            let q = BorderShape::PLAIN.box_corners(v)[1];
             assert!((overshoot(v, q, turn, distance) - 5.0).abs() <= 1e-6);
         }
         // Never edge-on (spun about z, the eye stays on the axis, facing the plane z = 0): the
@@ -544,13 +537,7 @@ mod tests {
             axis: DVec3::Z,
             distance: 1e3,
         };
-        assert_eq!(
-            border_shape(flat, [false; 3], around_z),
-            BorderShape {
-                first: 0,
-                lean: 0.0
-            }
-        );
+        assert_eq!(border_shape(flat, [false; 3], around_z), BorderShape::PLAIN);
     }
 
     #[test]
@@ -573,7 +560,7 @@ mod tests {
             }
         );
         for turn in edge_on_turns(v, axis, distance).into_iter().flatten() {
-            for q in box_corners(v, shape) {
+            for q in shape.box_corners(v) {
                 assert!(overshoot(v, q, turn, distance) <= 1e-6);
             }
         }
@@ -680,15 +667,13 @@ mod tests {
                     "edge-on turns {turns:?}, found {found:?}"
                 );
                 let reach = |shape: BorderShape| {
-                    box_corners(v, shape)
+                    shape
+                        .box_corners(v)
                         .map(|q| overshoot(v, q, *turn, distance))
                         .into_iter()
                         .fold(0.0, f64::max)
                 };
-                worst_plain = worst_plain.max(reach(BorderShape {
-                    first: 0,
-                    lean: 0.0,
-                }));
+                worst_plain = worst_plain.max(reach(BorderShape::PLAIN));
                 worst_chosen = worst_chosen.max(reach(shape));
             }
         }
