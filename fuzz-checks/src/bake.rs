@@ -1,7 +1,9 @@
 //! The bake target: a small mesh and a spin (yaw, pitch, roll or a free axis; orthographic
 //! or perspective) give a typed error, or bakes that their `verify` passes: the picture bake
 //! ([`aspect_bake::bake_picture`], checked by [`aspect_bake::verify_picture`]) and the exact
-//! BSP-signature bake ([`aspect_bake::bake`], checked by [`aspect_bake::verify`]).
+//! BSP-signature bake ([`aspect_bake::bake`], checked by [`aspect_bake::verify`]). A picture
+//! bake's spinning page ([`sprite_compose::write_culled_spin_html`]) parses as HTML (the
+//! writers target's check), and every number in its elements' rules is finite.
 //!
 //! Coordinates have a modest dynamic range ([`crate::input`]'s `modest`): the bakes'
 //! guarantee, like the error metric's, holds for features above `1e-6 · L`, and any bits
@@ -62,15 +64,103 @@ pub fn bake(data: &[u8]) {
     let Ok(Some(spin)) = spin(&mut u, &geometry) else {
         return;
     };
-    if let Ok((baked, _)) = aspect_bake::bake_picture(&geometry, &spin, &PICTURE)
-        && let Err(e) = aspect_bake::verify_picture(&baked, &spin, 2, 1)
-    {
-        panic!("picture bake: {e}; mesh {mesh:?}; spin {spin:?}");
+    if let Ok((baked, _)) = aspect_bake::bake_picture(&geometry, &spin, &PICTURE) {
+        if let Err(e) = aspect_bake::verify_picture(&baked, &spin, 2, 1) {
+            panic!("picture bake: {e}; mesh {mesh:?}; spin {spin:?}");
+        }
+        if let Ok(lists) = aspect_bake::drawn_lists(&baked, &spin) {
+            let page = sprite_compose::write_culled_spin_html(
+                &baked,
+                &lists,
+                &spin,
+                &geometry,
+                &|face| [face as u8, 0, 0, 255],
+                &sprite_compose::SpinOptions::DEFAULT,
+            );
+            crate::writers::check_html(&page);
+            check_numbers(&page);
+        }
     }
     let source = BspSource::of(&geometry);
     if let Ok(baked) = aspect_bake::bake(&source, &spin, &EXACT)
         && let Err(e) = aspect_bake::verify(&baked, &source, &spin, 2, 1)
     {
         panic!("BSP bake: {e}; mesh {mesh:?}; spin {spin:?}");
+    }
+}
+
+/// Every number in the page's element rules (`.p…{…}`: border widths and `matrix3d`) is
+/// finite.
+fn check_numbers(page: &str) {
+    for rule in page.lines().filter(|l| l.starts_with(".p")) {
+        let body = rule
+            .split_once('{')
+            .map_or("", |(_, b)| b)
+            .trim_end_matches('}');
+        for declaration in body.split(';') {
+            let (name, value) = declaration.split_once(':').unwrap_or((declaration, ""));
+            let numbers: Vec<&str> = match name {
+                "border-width" | "width" | "height" => value
+                    .split_whitespace()
+                    .map(|t| t.trim_end_matches("px"))
+                    .collect(),
+                "transform" => value
+                    .trim_start_matches("matrix3d(")
+                    .trim_end_matches(')')
+                    .split(',')
+                    .collect(),
+                _ => continue,
+            };
+            for t in numbers {
+                let x: f64 = t
+                    .parse()
+                    .unwrap_or_else(|_| panic!("not a number: {t:?} in {rule}"));
+                assert!(x.is_finite(), "{t} in {rule}");
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn page() -> String {
+        let mesh = test_support::models::uv_sphere(8, 4);
+        let geometry = Geometry::new(&mesh).expect("a sphere");
+        let view = View::fit(&geometry.bounds(), 64, 64).with_perspective(128.0);
+        let spin = Spin::new(
+            view,
+            Axis::Yaw {
+                pitch: 20.0,
+                roll: 0.0,
+            },
+        )
+        .expect("a spin");
+        let (baked, _) = aspect_bake::bake_picture(&geometry, &spin, &PICTURE).expect("a bake");
+        let lists = aspect_bake::drawn_lists(&baked, &spin).expect("lists");
+        sprite_compose::write_culled_spin_html(
+            &baked,
+            &lists,
+            &spin,
+            &geometry,
+            &|_| [200, 100, 50, 255],
+            &sprite_compose::SpinOptions::DEFAULT,
+        )
+    }
+
+    #[test]
+    fn a_spinning_page_passes_the_checks() {
+        let page = page();
+        assert!(page.lines().filter(|l| l.starts_with(".p")).count() > 10);
+        crate::writers::check_html(&page);
+        check_numbers(&page);
+    }
+
+    #[test]
+    #[should_panic(expected = "NaN")]
+    fn a_rule_with_a_nan_fails_the_number_check() {
+        let page = page().replacen("matrix3d(", "matrix3d(NaN,", 1);
+        check_numbers(&page);
     }
 }

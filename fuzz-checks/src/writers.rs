@@ -215,7 +215,7 @@ fn xml_carries(name: &str) -> String {
 }
 
 /// The page parses by the HTML algorithm without a parse error, with one style sheet.
-fn check_html(html: &str) {
+pub(crate) fn check_html(html: &str) {
     use html5ever::tendril::TendrilSink;
     let dom = html5ever::parse_document(markup5ever_rcdom::RcDom::default(), Default::default())
         .one(html);
