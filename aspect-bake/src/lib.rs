@@ -38,7 +38,7 @@
 //! coincide); [`CentroidSource`] the piece facings and a kinetic sorted list of centroid depths
 //! that watches only adjacent pairs. Between consecutive roots the draw list is constant; the
 //! bake runs the live sorter once inside each interval (on all cores), merges neighbours with
-//! equal lists, and [`verify`] checks the result against the live sorter at random interior
+//! equal lists, and [`verify()`] checks the result against the live sorter at random interior
 //! angles and on both sides of every breakpoint.
 //!
 //! # Two axes
@@ -46,7 +46,7 @@
 //! `n·d = c` on the sphere of view directions, and the cells are a slab decomposition of the
 //! arrangement of their curves in the `(yaw, pitch)` chart, with every critical pitch in
 //! closed form (the derivation is in [`bake_two_axes`]'s module, `two_axes.rs`).
-//! [`verify_two_axes`] checks such a bake like [`verify`].
+//! [`verify_two_axes`] checks such a bake like [`verify()`].
 //!
 //! # Feature flags
 //! - `serde`: [`Bake`] (and its parts) serialise and deserialise, so a bake saves and

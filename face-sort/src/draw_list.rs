@@ -53,7 +53,7 @@ impl DrawList {
     /// Declares that the sink hides back faces itself: the list may then hold pieces that
     /// the view does not draw (an order baked for many views, e.g. aspect-bake's picture
     /// cells), and every consumer skips them (raster-sink while painting, the oracle, the
-    /// writers). Kept across [`begin`](Self::begin).
+    /// writers). A sorter's next run into the list keeps it.
     pub fn set_sink_culls(&mut self, culls: bool) {
         self.sink_culls = culls;
         self.seal = 0;

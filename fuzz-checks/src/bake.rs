@@ -5,7 +5,7 @@
 //! bake's spinning page ([`sprite_compose::write_culled_spin_html`]) parses as HTML (the
 //! writers target's check), and every number in its elements' rules is finite.
 //!
-//! Coordinates have a modest dynamic range ([`crate::input`]'s `modest`): the bakes'
+//! Coordinates have a modest dynamic range (the `input` module's `modest`): the bakes'
 //! guarantee, like the error metric's, holds for features above `1e-6 · L`, and any bits
 //! make slivers a billionth of the model wide (docs/ROBUSTNESS.md). The spin's free axis
 //! still takes any numbers.

@@ -2,7 +2,7 @@
 //! tiny values, degenerate and near-singular faces), give a typed error, or a draw list
 //! that the order-violation oracle passes from every exact sorter.
 //!
-//! The errors come from where a caller's numbers enter: [`PolygonMesh::new`],
+//! The errors come from where a caller's numbers enter: [`face_sort::PolygonMesh::new`],
 //! [`Geometry::new`], [`Camera`] and [`Geometry::check_view`] for views made with the
 //! `View` builders.
 

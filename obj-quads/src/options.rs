@@ -63,7 +63,7 @@ pub enum NonPlanarPolicy {
 /// trusted.allow_outside_paths = true; // the caller trusts the file
 /// ```
 ///
-/// Every limit's default is defined once, in [`limits`](crate::limits).
+/// Every limit's default is defined once, in [`limits`].
 #[derive(Debug, Clone, PartialEq, Eq)]
 #[non_exhaustive]
 pub struct LoadOptions {

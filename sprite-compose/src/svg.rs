@@ -187,9 +187,9 @@ pub fn project_sprite(root: &DMat4, sprite: &SceneSprite) -> Vec<DVec2> {
 /// square is cut into a grid of cells, each an `<image>` with the affine map nearest to the
 /// exact one at its four projected corners (least squares) under a clip slightly larger than
 /// the cell, fine enough that the map is off by at most [`SvgOptions::texture_tolerance`]
-/// pixels (default [`SVG_TEXTURE_PX`](crate::tolerance::SVG_TEXTURE_PX)) at the cells'
+/// pixels (default [`SVG_TEXTURE_PX`]) at the cells'
 /// corners (grid capped at
-/// [`SVG_TEXTURE_MAX_CELLS`](crate::tolerance::SVG_TEXTURE_MAX_CELLS) per side).
+/// [`SVG_TEXTURE_MAX_CELLS`] per side).
 #[must_use]
 pub fn write_svg(scene: &Scene, options: &SvgOptions) -> String {
     let (w, h) = (options.width, options.height);

@@ -168,7 +168,7 @@ impl CertifiedOrders {
 
 impl Presorted {
     /// The certified orders for orthographic viewers (`eye_distance: None`) or eyes at
-    /// `eye_distance` from the geometry's centre (centred model units: a [`View`](crate::View)
+    /// `eye_distance` from the geometry's centre (centred model units: a [`View`]
     /// with perspective distance `d` pixels and scale `s` has its eye at `d / s`).
     ///
     /// # Errors
