@@ -10,15 +10,15 @@ use crate::workspace_root;
 /// Options of `ci`.
 #[derive(Debug, Args)]
 pub struct CiArgs {
-    /// Skip `cargo test` and the packaging check (format and lint only).
+    /// Skip `cargo test` and the packaging check (format, lints and docs only).
     #[arg(long)]
     no_test: bool,
 }
 
 /// Runs `.ci/run`: installs Chromium and poppler when missing, then `cargo fmt --check`,
-/// `cargo clippy -D warnings`, `cargo test --workspace` and `cargo package` of the library
-/// crates, stopping at the first failure. `--no-test` sets `CI_NO_TEST=1`, which stops it
-/// after clippy.
+/// `cargo clippy -D warnings`, `cargo doc` with warnings as errors, `cargo test --workspace`
+/// and `cargo package` of the library crates, stopping at the first failure. `--no-test`
+/// sets `CI_NO_TEST=1`, which stops it after the docs.
 pub fn run(args: &CiArgs) -> Result<ExitCode> {
     let root = workspace_root();
     let mut command = Command::new("bash");
