@@ -292,7 +292,6 @@ impl<'a> Pieces<'a> {
     /// near plane.
     fn swept_box(&self, view: &View, i: usize, half: f64) -> (DVec2, DVec2) {
         let corners = self.set.corners(i);
-        let origin = view.to_view(DVec3::ZERO);
         // |sin φ| ≤ sin h and 1 − cos φ ≤ 1 − cos h for |φ| ≤ h ≤ π/2 (|sin φ| ≤ 1 beyond).
         let sin = if half < std::f64::consts::FRAC_PI_2 {
             half.sin()
@@ -306,8 +305,8 @@ impl<'a> Pieces<'a> {
             let v = view.to_view(c);
             let radial = c.reject_from_normalized(self.axis_model);
             let tangent = self.axis_model.cross(radial);
-            let r = (view.to_view(radial) - origin).abs();
-            let t = (view.to_view(tangent) - origin).abs();
+            let r = view.direction_to_view(radial).abs();
+            let t = view.direction_to_view(tangent).abs();
             let grow = (t * sin + r * versine) * (1.0 + BOX_SLACK) + DVec3::splat(self.box_floor);
             let (lo, hi) = (v - grow, v + grow);
             match eye {
