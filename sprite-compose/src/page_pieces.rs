@@ -3,8 +3,9 @@
 
 use std::fmt::Write as _;
 
+use aspect_bake::{EventFn, Roots};
 use face_sort::{Geometry, PolygonSet};
-use glam::{DMat3, DMat4, DVec3};
+use glam::{DMat3, DMat4, DVec2, DVec3};
 
 use crate::bake::PolygonMap;
 use crate::tolerance::HTML_SEAM_PX;
@@ -398,13 +399,13 @@ pub(crate) fn border_shape(v: [DVec3; 3], seams: [bool; 3], turning: Turning) ->
                 .unwrap_or(BorderShape::PLAIN)
         }
         Turning::Spin { axis, distance } => {
-            let turns = edge_on_turns(v, axis, distance);
+            let views = edge_on_views(v, axis, distance);
             let reach = |shape: BorderShape| {
                 let corners = shape.box_corners(v);
-                turns
+                views
                     .iter()
                     .flatten()
-                    .flat_map(|&turn| corners.map(|q| overshoot(v, q, turn, distance)))
+                    .flat_map(|view| corners.map(|q| view.overshoot(q)))
                     .fold(0.0, f64::max)
             };
             let better = |best: Option<(BorderShape, f64)>, shape: BorderShape| {
@@ -444,50 +445,96 @@ pub(crate) fn border_shape(v: [DVec3; 3], seams: [bool; 3], turning: Turning) ->
     }
 }
 
-/// The turns of a page spinning about `axis` (with the eye at `(0, 0, distance)`) at which
-/// it shows the triangle `v` edge-on: where the eye's circle, `c + r₁ cos φ + r₂ sin φ` in
-/// the triangle's coordinates, meets the triangle's plane. None when it never does.
-fn edge_on_turns(v: [DVec3; 3], axis: DVec3, distance: f64) -> [Option<DMat3>; 2] {
+/// The views in which a page spinning about `axis` (with the eye at `(0, 0, distance)`)
+/// shows the triangle `v` edge-on: where the eye's circle, `c + r₁ cos φ + r₂ sin φ` in the
+/// triangle's coordinates, meets the triangle's plane, found as the roots of
+/// `n · (e(φ) − v₀)` ([`EventFn::roots`]): two, one where the circle only touches the plane,
+/// or none.
+fn edge_on_views(v: [DVec3; 3], axis: DVec3, distance: f64) -> [Option<EdgeOnView>; 2] {
     let n = (v[1] - v[0]).cross(v[2] - v[0]);
     let eye = DVec3::new(0.0, 0.0, distance);
     let centre = axis * axis.dot(eye);
     let (r1, r2) = (eye - centre, axis.cross(eye));
-    // n · (e(φ) − v₀) = a cos φ + b sin φ + c.
-    let (a, b, c) = (n.dot(r1), n.dot(r2), n.dot(centre - v[0]));
-    let r = a.hypot(b);
-    if r.is_nan() || r == 0.0 || c.abs() >= r {
-        return [None, None];
-    }
-    let (mid, half) = (b.atan2(a), (-c / r).acos());
+    let facing = EventFn {
+        a: n.dot(r1),
+        b: n.dot(r2),
+        c: n.dot(centre - v[0]),
+        scale: n.length() * (distance.abs() + v[0].length()),
+    };
     // The eye at r₁ cos φ + r₂ sin φ (about the axis) is the page turned by −φ.
-    [mid - half, mid + half].map(|phi| Some(DMat3::from_axis_angle(axis, -phi)))
+    let view = |phi: f64| {
+        Some(EdgeOnView::new(
+            v,
+            DMat3::from_axis_angle(axis, -phi),
+            distance,
+        ))
+    };
+    match facing.roots() {
+        Roots::Two { down, up } => [view(up), view(down)],
+        Roots::Tangent(phi) => [view(phi), None],
+        Roots::None | Roots::Identically => [None, None],
+    }
 }
 
-/// How far (page pixels) the point `q` of the triangle's plane projects beyond the triangle
-/// `v` when the page, turned by `turn` and seen from `(0, 0, distance)`, shows the triangle
-/// edge-on: both project onto one line.
-fn overshoot(v: [DVec3; 3], q: DVec3, turn: DMat3, distance: f64) -> f64 {
-    let screen = |p: DVec3| {
-        let p = turn * p;
-        p.truncate() * (distance / (distance - p.z))
-    };
-    let corners = v.map(screen);
-    let length = |(i, j): (usize, usize)| corners[i].distance(corners[j]);
-    let (i, j) = [(0, 1), (1, 2), (2, 0)]
-        .into_iter()
-        .fold(
-            (0, 1),
-            |best, e| if length(e) > length(best) { e } else { best },
-        );
-    let along = (corners[j] - corners[i]).normalize_or_zero();
-    let t = |p: glam::DVec2| (p - corners[i]).dot(along);
-    let (lo, hi) = corners
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &p| {
-            (lo.min(t(p)), hi.max(t(p)))
-        });
-    let x = t(screen(q));
-    (lo - x).max(x - hi).max(0.0)
+/// A view in which the page shows a triangle edge-on: the page turned by `turn` and seen
+/// from `(0, 0, distance)`, where the triangle projects onto a line, from `origin` along
+/// `along` over `[lo, hi]`.
+struct EdgeOnView {
+    turn: DMat3,
+    distance: f64,
+    origin: DVec2,
+    along: DVec2,
+    lo: f64,
+    hi: f64,
+}
+
+impl EdgeOnView {
+    /// The view of the triangle `v` turned by `turn`: the line of its longest projected edge.
+    fn new(v: [DVec3; 3], turn: DMat3, distance: f64) -> Self {
+        let mut view = EdgeOnView {
+            turn,
+            distance,
+            origin: DVec2::ZERO,
+            along: DVec2::ZERO,
+            lo: 0.0,
+            hi: 0.0,
+        };
+        let corners = v.map(|p| view.screen(p));
+        let length = |(i, j): (usize, usize)| corners[i].distance(corners[j]);
+        let (i, j) = [(0, 1), (1, 2), (2, 0)]
+            .into_iter()
+            .fold(
+                (0, 1),
+                |best, e| if length(e) > length(best) { e } else { best },
+            );
+        view.origin = corners[i];
+        view.along = (corners[j] - corners[i]).normalize_or_zero();
+        (view.lo, view.hi) = corners
+            .iter()
+            .map(|&p| view.along_line(p))
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), t| {
+                (lo.min(t), hi.max(t))
+            });
+        view
+    }
+
+    /// The page pixels of a point of the triangle's plane.
+    fn screen(&self, p: DVec3) -> DVec2 {
+        let p = self.turn * p;
+        p.truncate() * (self.distance / (self.distance - p.z))
+    }
+
+    /// Where along the line a screen point lies.
+    fn along_line(&self, p: DVec2) -> f64 {
+        (p - self.origin).dot(self.along)
+    }
+
+    /// How far (page pixels) the point `q` of the triangle's plane projects beyond the
+    /// triangle along the line.
+    fn overshoot(&self, q: DVec3) -> f64 {
+        let x = self.along_line(self.screen(q));
+        (self.lo - x).max(x - self.hi).max(0.0)
+    }
 }
 
 #[cfg(test)]
@@ -516,15 +563,15 @@ mod tests {
                 lean: 0.0
             }
         );
-        let turns = edge_on_turns(v, DVec3::Y, distance);
-        assert_eq!(turns.iter().flatten().count(), 2);
-        for turn in turns.into_iter().flatten() {
+        let views = edge_on_views(v, DVec3::Y, distance);
+        assert_eq!(views.iter().flatten().count(), 2);
+        for view in views.iter().flatten() {
             for q in shape.box_corners(v) {
-                assert!(overshoot(v, q, turn, distance) <= 1e-6);
+                assert!(view.overshoot(q) <= 1e-6);
             }
             // The right angle at corner 0 reaches 5 pixels beyond, to y = 15.
             let q = BorderShape::PLAIN.box_corners(v)[1];
-            assert!((overshoot(v, q, turn, distance) - 5.0).abs() <= 1e-6);
+            assert!((view.overshoot(q) - 5.0).abs() <= 1e-6);
         }
         // Never edge-on (spun about z, the eye stays on the axis, facing the plane z = 0): the
         // plain shape.
@@ -559,9 +606,9 @@ mod tests {
                 lean: 0.5
             }
         );
-        for turn in edge_on_turns(v, axis, distance).into_iter().flatten() {
+        for view in edge_on_views(v, axis, distance).iter().flatten() {
             for q in shape.box_corners(v) {
-                assert!(overshoot(v, q, turn, distance) <= 1e-6);
+                assert!(view.overshoot(q) <= 1e-6);
             }
         }
         // Every pattern of seams, on random triangles and turnings.
@@ -625,7 +672,7 @@ mod tests {
             let v = [corner(), corner(), corner()];
             let shape = border_shape(v, [false; 3], Turning::Spin { axis, distance });
             // Where the turned page shows the triangle edge-on, found apart from
-            // edge_on_turns: the sign changes of its projected area over the turn.
+            // edge_on_views: the sign changes of its projected area over the turn.
             let area = |theta: f64| {
                 let turn = DMat3::from_axis_angle(axis, theta);
                 let p = v.map(|c| {
@@ -652,9 +699,10 @@ mod tests {
                 }
                 found.push(DMat3::from_axis_angle(axis, lo));
             }
-            let turns: Vec<DMat3> = edge_on_turns(v, axis, distance)
-                .into_iter()
+            let turns: Vec<DMat3> = edge_on_views(v, axis, distance)
+                .iter()
                 .flatten()
+                .map(|view| view.turn)
                 .collect();
             assert_eq!(turns.len(), found.len());
             for turn in &found {
@@ -666,10 +714,11 @@ mod tests {
                     turns.iter().any(same),
                     "edge-on turns {turns:?}, found {found:?}"
                 );
+                let view = EdgeOnView::new(v, *turn, distance);
                 let reach = |shape: BorderShape| {
                     shape
                         .box_corners(v)
-                        .map(|q| overshoot(v, q, *turn, distance))
+                        .map(|q| view.overshoot(q))
                         .into_iter()
                         .fold(0.0, f64::max)
                 };
