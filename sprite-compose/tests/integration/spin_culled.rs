@@ -143,7 +143,7 @@ fn culled_spinning_pages_in_chromium_are_exact() {
 /// border triangles chose their shape, the software compositor showed one stray pixel beyond
 /// a nearly edge-on triangle (docs/CHROMIUM.md).
 #[test]
-#[ignore = "the full spot page: five minutes in release; run with --release --ignored"]
+#[ignore = "the full spot page: three minutes in release; run with --release --ignored"]
 fn the_full_spot_culled_page_in_chromium() {
     let mesh = support::load_obj("keenan-crane/spot/spot_quadrangulated.obj");
     let g = Geometry::with_exact_corners(&mesh).expect("a model");
