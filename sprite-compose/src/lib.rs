@@ -119,7 +119,9 @@ pub use materials::{
     FaceMaterials, FacePaint, Image, MaterialOptions, Materials, TextureError, UvMap, decode_image,
     load_image,
 };
-pub use overlay::{Dot, DrawnOverlay, Line, Overlay, Point, Stroke, visible_overlay};
+pub use overlay::{
+    Dot, DrawnOverlay, Line, OrderedPart, Overlay, Point, Stroke, overlay_in_order, visible_overlay,
+};
 pub use painter::{FrameStats, RotationHandle, RotationSource, SpritePainter};
 pub use pdf::{PdfOptions, write_pdf};
 pub use pick::{ProjectedFrame, contains, outline_svg_path};

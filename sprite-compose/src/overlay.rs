@@ -294,3 +294,115 @@ fn lies_on(piece: &Occluder, faces: &[u32], ends: &[DVec3; 2], same_corner: f64)
             .iter()
             .all(|&e| piece.plane.signed_distance(e).abs() <= same_corner)
 }
+
+/// Where a visible part of a line, or a visible point, goes among translucent faces: see
+/// [`overlay_in_order`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct OrderedPart {
+    /// Index of the line in [`Overlay::lines`] (or of the point in [`Overlay::points`]).
+    pub index: usize,
+    /// The part as a parameter interval `[t0, t1]` of `ends[0] + t·(ends[1] − ends[0])`
+    /// (`[0, 1]` for a point).
+    pub t: [f64; 2],
+    /// Paint it just before this face of the ordered geometry: the first, in paint order,
+    /// of the translucent pieces in front of it. `None`: after every face.
+    pub before: Option<u32>,
+}
+
+/// The parts of an overlay that stay visible among faces some of which are translucent, and
+/// where each goes in the paint order.
+///
+/// `ordered` holds the polygons of an exact paint order, **face index = paint position**
+/// (e.g. a sorter's draw list, one face per item, built with
+/// [`Geometry::new_in_frame`](face_sort::Geometry::new_in_frame) in the overlay's frame).
+/// A part hidden by an `opaque` piece is left out, as [`visible_overlay`] does. What
+/// remains is cut where translucent pieces start or stop covering it, and each cut part is
+/// painted just before the first translucent piece in front of it: the pieces behind it
+/// overlap that piece on screen wherever they overlap the part, so an exact order already
+/// paints them earlier. Painting faces and parts in that merged order is the picture of a
+/// depth-sorted scene with every line split at every face.
+#[must_use]
+pub fn overlay_in_order(
+    ordered: &Geometry,
+    view: &View,
+    overlay: &Overlay,
+    opaque: &dyn Fn(u32) -> bool,
+) -> (Vec<OrderedPart>, Vec<OrderedPart>) {
+    let centre = ordered.bounds().centre();
+    let length = ordered.bounds().diagonal().max(f64::MIN_POSITIVE);
+    let same_corner = PLOT_SAME_CORNER * length;
+    let occluders = Occluders::new(ordered, view, &|_| true);
+    let mut stamp = vec![u32::MAX; occluders.pieces.len()];
+    let (mut candidates, mut hiding, mut tinting) = (Vec::new(), Vec::new(), Vec::new());
+    let mut tag = 0u32;
+    let mut parts = |index: usize, ends: [DVec3; 2], faces: &[u32], out: &mut Vec<OrderedPart>| {
+        let Some(segment) = Segment::new(view, ends) else {
+            return;
+        };
+        occluders.candidates(&segment, tag, &mut stamp, &mut candidates);
+        tag = tag.wrapping_add(1);
+        hiding.clear();
+        tinting.clear();
+        for &k in &candidates {
+            let piece = &occluders.pieces[k as usize];
+            if !lies_on(piece, faces, &ends, same_corner)
+                && let Some(interval) = segment.covered_by(piece, length)
+            {
+                if opaque(piece.face) {
+                    hiding.push(interval);
+                } else {
+                    tinting.push((interval, piece.face));
+                }
+            }
+        }
+        let visible = if ends[0] == ends[1] {
+            if hiding.is_empty() {
+                vec![[0.0, 1.0]]
+            } else {
+                Vec::new()
+            }
+        } else {
+            segment.visible_parts(&mut hiding)
+        };
+        for [a, b] in visible {
+            let mut cuts: Vec<f64> = vec![a, b];
+            if ends[0] != ends[1] {
+                cuts.extend(
+                    tinting
+                        .iter()
+                        .flat_map(|&([lo, hi], _)| [lo, hi])
+                        .filter(|&t| t > a && t < b),
+                );
+            }
+            cuts.sort_by(f64::total_cmp);
+            cuts.dedup();
+            for w in cuts.windows(2) {
+                let mid = 0.5 * (w[0] + w[1]);
+                let before = tinting
+                    .iter()
+                    .filter(|&&([lo, hi], _)| (ends[0] == ends[1]) || (lo <= mid && mid <= hi))
+                    .map(|&(_, face)| face)
+                    .min();
+                match out.last_mut() {
+                    Some(last) if last.index == index && last.before == before && last.t[1] == w[0] => {
+                        last.t[1] = w[1];
+                    }
+                    _ => out.push(OrderedPart {
+                        index,
+                        t: [w[0], w[1]],
+                        before,
+                    }),
+                }
+            }
+        }
+    };
+    let (mut lines, mut points) = (Vec::new(), Vec::new());
+    for (n, line) in overlay.lines.iter().enumerate() {
+        parts(n, line.ends.map(|p| p - centre), &line.faces, &mut lines);
+    }
+    for (n, point) in overlay.points.iter().enumerate() {
+        let at = point.at - centre;
+        parts(n, [at, at], &point.faces, &mut points);
+    }
+    (lines, points)
+}

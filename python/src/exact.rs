@@ -1,0 +1,253 @@
+//! `facesort._native.ExactScene`: the engine of `facesort.mpl`. Polygons given once (a BSP
+//! built once), then per view: the exact paint order with fragments, and where the visible
+//! parts of lines and markers go in it.
+//!
+//! Views are given by the viewer alone, as a homogeneous point of the scene's space: an
+//! eye `(x, y, z, 1)`, or a direction toward the viewer `(x, y, z, 0)` for a parallel
+//! projection. Paint order depends on nothing else (a BSP traversal reads only the viewer's
+//! side of each plane), so any projective camera with that centre, matplotlib's included,
+//! sees the picture this order paints.
+
+use std::sync::Arc;
+
+use face_sort::{Bsp, CullMode, DrawList, FaceSorter, Geometry, PolygonMesh, View};
+use glam::{DMat3, DVec3};
+use numpy::{IntoPyArray, PyArrayMethods};
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::PyDict;
+use sprite_compose::{Line, Overlay, Point, overlay_in_order};
+
+use crate::guard::{caught, detached, value_error};
+use crate::input;
+
+/// Polygons ordered exactly for any viewer (see the module docs of the Rust crate).
+///
+/// `ExactScene(points, offsets)`: polygon `i` is `points[offsets[i]:offsets[i+1]]`
+/// (float64 (n, 3); int offsets of length m + 1). Polygons must be convex; non-planar ones
+/// are painted as the fan of triangles from their first corner.
+#[pyclass(module = "facesort")]
+pub struct ExactScene {
+    polygons: PolygonMesh,
+    geometry: Arc<Geometry>,
+    bsp: Bsp,
+    list: DrawList,
+}
+
+/// The rotation whose third row (the view's +Z, toward the viewer) is `back`.
+fn facing(back: DVec3) -> DMat3 {
+    let hint = if back.z.abs() < 0.9 { DVec3::Z } else { DVec3::Y };
+    let up = (hint - back * hint.dot(back)).normalize();
+    let right = up.cross(back);
+    DMat3::from_cols(right, up, back).transpose()
+}
+
+impl ExactScene {
+    fn view(&self, viewer: [f64; 4], width: u32, height: u32) -> PyResult<View> {
+        let bounds = self.geometry.bounds();
+        let base = View::fit(&bounds, width, height).with_cull(CullMode::None);
+        let [x, y, z, w] = viewer;
+        if !viewer.iter().all(|v| v.is_finite()) {
+            return Err(PyValueError::new_err(format!("viewer {viewer:?} is not finite")));
+        }
+        if w == 0.0 {
+            let d = DVec3::new(x, y, z);
+            if d.length_squared() == 0.0 {
+                return Err(PyValueError::new_err("viewer direction is zero"));
+            }
+            return Ok(base.with_rotation(facing(d.normalize())));
+        }
+        let eye = DVec3::new(x, y, z) / w - bounds.centre();
+        let distance = eye.length();
+        if !(distance > 0.5 * bounds.diagonal()) {
+            return Err(PyValueError::new_err(format!(
+                "the eye is inside the scene's bounding sphere ({distance} from its centre, radius {})",
+                0.5 * bounds.diagonal()
+            )));
+        }
+        Ok(base
+            .with_rotation(facing(eye / distance))
+            .with_perspective(base.scale() * distance))
+    }
+
+    /// Whether fragment edge `a`–`b` (centred) lies on an edge of its polygon.
+    fn on_boundary(&self, face: u32, a: DVec3, b: DVec3, tolerance: f64) -> bool {
+        let centre = self.geometry.bounds().centre();
+        let corners = self.polygons.face(face as usize);
+        let positions = self.polygons.positions();
+        (0..corners.len()).any(|k| {
+            let p = positions[corners[k] as usize] - centre;
+            let q = positions[corners[(k + 1) % corners.len()] as usize] - centre;
+            let e = q - p;
+            let len2 = e.length_squared();
+            if len2 == 0.0 {
+                return false;
+            }
+            let near = |x: DVec3| {
+                let t = (x - p).dot(e) / len2;
+                (-1e-9..=1.0 + 1e-9).contains(&t) && (x - (p + e * t)).length() <= tolerance
+            };
+            near(a) && near(b)
+        })
+    }
+}
+
+#[pymethods]
+impl ExactScene {
+    #[new]
+    fn new(py: Python<'_>, points: &Bound<'_, PyAny>, offsets: &Bound<'_, PyAny>) -> PyResult<Self> {
+        let positions = input::points(points, "points")?;
+        let offsets = input::ints1(offsets, "offsets")?;
+        let mut faces = Vec::with_capacity(offsets.len().saturating_sub(1));
+        for (n, w) in offsets.windows(2).enumerate() {
+            let (a, b) = (w[0], w[1]);
+            if a < 0 || b > positions.len() as i64 || b < a {
+                return Err(PyValueError::new_err(format!(
+                    "offsets[{n}..{}] = {a}..{b} is not a range of points (0..{})",
+                    n + 1,
+                    positions.len()
+                )));
+            }
+            if b - a < 3 {
+                return Err(PyValueError::new_err(format!("polygon {n} has {} corners (at least 3 needed)", b - a)));
+            }
+            faces.push((a as u32..b as u32).collect::<Vec<u32>>());
+        }
+        detached(py, || {
+            let polygons = PolygonMesh::new(positions, faces).map_err(|e| value_error("polygons", e))?;
+            let geometry = Arc::new(Geometry::new(&polygons).map_err(|e| value_error("polygons", e))?);
+            let bsp = Bsp::new(&geometry);
+            Ok(ExactScene { polygons, geometry, bsp, list: DrawList::new() })
+        })
+    }
+
+    /// The number of polygons.
+    #[getter]
+    fn polygon_count(&self) -> usize {
+        self.polygons.face_count()
+    }
+
+    /// The exact paint order for `viewer` (a homogeneous point, module docs), with the
+    /// visible parts of `lines` ((l, 2, 3) ends) and `points` ((p, 3)) placed in it.
+    /// `opaque[i]` says whether polygon `i` hides what is behind it (else it is
+    /// translucent). `width` × `height` is the picture's size in pixels (it sets the
+    /// sub-pixel tolerances). Returns a dict of arrays:
+    ///
+    /// - `faces` (k,): the polygon of each item, back to front;
+    /// - `points` (n, 3), `offsets` (k + 1,): each item's corners in the scene's space;
+    /// - `edges` (n,): whether the edge from each corner to the next lies on its polygon's
+    ///   outline (else the item was cut there);
+    /// - `line`, `line_t` (q, 2), `line_before`: visible line parts as parameter intervals
+    ///   of their line, each painted before item `line_before` (k: after every item);
+    /// - `point`, `point_before`: the visible points, likewise.
+    #[pyo3(signature = (viewer, width, height, opaque, lines=None, points=None))]
+    #[allow(clippy::too_many_arguments)]
+    fn order<'py>(
+        &mut self,
+        py: Python<'py>,
+        viewer: (f64, f64, f64, f64),
+        width: u32,
+        height: u32,
+        opaque: &Bound<'py, PyAny>,
+        lines: Option<&Bound<'py, PyAny>>,
+        points: Option<&Bound<'py, PyAny>>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        if width == 0 || height == 0 || width > 1 << 15 || height > 1 << 15 {
+            return Err(PyValueError::new_err(format!("width and height must be in 1..=32768, got {width} x {height}")));
+        }
+        let view = self.view(viewer.into(), width, height)?;
+        let opaque = input::flags(opaque, "opaque", self.polygons.face_count())?;
+        let line_ends = match lines {
+            Some(l) => input::points(&l.call_method1("reshape", ((-1, 3),))?, "lines")?,
+            None => Vec::new(),
+        };
+        let marks = match points {
+            Some(p) => input::points(p, "points")?,
+            None => Vec::new(),
+        };
+        let result = detached(py, || caught(|| Ok(self.order_detached(&view, &opaque, &line_ends, &marks))))??;
+        let dict = PyDict::new(py);
+        let k = result.faces.len();
+        dict.set_item("faces", result.faces.into_pyarray(py))?;
+        let n = result.corners.len() / 3;
+        dict.set_item("points", result.corners.into_pyarray(py).reshape([n, 3])?)?;
+        dict.set_item("offsets", result.offsets.into_pyarray(py))?;
+        dict.set_item("edges", result.edges.into_pyarray(py))?;
+        let q = result.line.len();
+        dict.set_item("line", result.line.into_pyarray(py))?;
+        dict.set_item("line_t", result.line_t.into_pyarray(py).reshape([q, 2])?)?;
+        dict.set_item("line_before", result.line_before.into_pyarray(py))?;
+        dict.set_item("point", result.point.into_pyarray(py))?;
+        dict.set_item("point_before", result.point_before.into_pyarray(py))?;
+        dict.set_item("items", k)?;
+        Ok(dict)
+    }
+}
+
+/// What [`ExactScene::order`] returns, before it becomes numpy arrays.
+#[derive(Default)]
+struct Ordered {
+    faces: Vec<u32>,
+    corners: Vec<f64>,
+    offsets: Vec<i64>,
+    edges: Vec<bool>,
+    line: Vec<i64>,
+    line_t: Vec<f64>,
+    line_before: Vec<i64>,
+    point: Vec<i64>,
+    point_before: Vec<i64>,
+}
+
+impl ExactScene {
+    fn order_detached(&mut self, view: &View, opaque: &[bool], line_ends: &[DVec3], marks: &[DVec3]) -> PyResult<Ordered> {
+        self.bsp.sort(view, &mut self.list);
+        let bounds = self.geometry.bounds();
+        let centre = bounds.centre();
+        let tolerance = 1e-7 * bounds.diagonal();
+        let mut out = Ordered { offsets: vec![0], ..Ordered::default() };
+        let mut fragments: Vec<Vec<u32>> = Vec::with_capacity(self.list.len());
+        let mut fragment_points: Vec<DVec3> = Vec::new();
+        for &item in self.list.items() {
+            let corners = self.list.corners(item);
+            out.faces.push(item.face);
+            let first = fragment_points.len() as u32;
+            for (k, &c) in corners.iter().enumerate() {
+                out.corners.extend_from_slice(&(c + centre).to_array());
+                let next = corners[(k + 1) % corners.len()];
+                out.edges.push(self.on_boundary(item.face, c, next, tolerance));
+                fragment_points.push(c + centre);
+            }
+            fragments.push((first..fragment_points.len() as u32).collect());
+            out.offsets.push((out.corners.len() / 3) as i64);
+        }
+        if line_ends.is_empty() && marks.is_empty() {
+            return Ok(out);
+        }
+        let k = fragments.len() as i64;
+        let ordered_mesh = PolygonMesh::new(fragment_points, fragments).map_err(|e| value_error("fragments", e))?;
+        let ordered = Geometry::new_in_frame(&ordered_mesh, bounds).map_err(|e| value_error("fragments", e))?;
+        let overlay = Overlay {
+            lines: line_ends
+                .chunks_exact(2)
+                .map(|e| Line { ends: [e[0], e[1]], colour: [0; 4], width_px: 1.0, faces: Vec::new() })
+                .collect(),
+            points: marks
+                .iter()
+                .map(|&at| Point { at, colour: [0; 4], radius_px: 1.0, faces: Vec::new() })
+                .collect(),
+        };
+        let item_faces = &out.faces;
+        let is_opaque = |item: u32| opaque[item_faces[item as usize] as usize];
+        let (line_parts, point_parts) = overlay_in_order(&ordered, view, &overlay, &is_opaque);
+        for part in line_parts {
+            out.line.push(part.index as i64);
+            out.line_t.extend_from_slice(&part.t);
+            out.line_before.push(part.before.map_or(k, i64::from));
+        }
+        for part in point_parts {
+            out.point.push(part.index as i64);
+            out.point_before.push(part.before.map_or(k, i64::from));
+        }
+        Ok(out)
+    }
+}
