@@ -1,0 +1,470 @@
+"""matplotlib's mplot3d, drawn exactly: the ``"exact3d"`` projection.
+
+Importing this module registers the projection::
+
+    import matplotlib.pyplot as plt
+    import facesort.mpl  # noqa: F401  (registers "exact3d")
+
+    ax = plt.figure().add_subplot(projection="exact3d")
+    ax.plot_surface(X, Y, Z)          # any code written for projection="3d"
+
+Stock mplot3d sorts every artist by one depth, and every polygon of a collection by one
+depth, and draws lines whole; surfaces that cross or interleave come out wrong. An
+``ExactAxes3D`` gathers, at draw time, every polygon of its ``Poly3DCollection`` artists
+(``plot_surface``, ``plot_trisurf``, ``bar3d``, ``voxels``, ``add_collection3d``,
+``fill_between``), every segment of its ``Line3D`` and ``Line3DCollection`` artists (``plot``,
+``plot_wireframe``) and every point of its ``Path3DCollection`` artists (``scatter``), and
+draws them as one picture:
+
+- polygons are split where they pass through each other and painted in an exact order
+  (a BSP built once per set of polygons, in the axes' box coordinates; a new view only
+  walks it);
+- lines are clipped where polygons hide them, markers are left out where their centre is
+  hidden, and the visible parts are painted among translucent polygons at their place in
+  the order, so alpha composites exactly;
+- colours, edge colours, line widths, alpha, mplot3d's shading (baked into the face colours
+  when the artist is made) and scatter's depth shading are kept.
+
+The projection is mplot3d's own (``get_proj()``: orthographic or perspective,
+``focal_length``, ``roll``, ``box_aspect``): the order depends only on where the viewer is,
+which this module reads off ``get_proj()``'s matrix. With ``computed_zorder=False`` each
+``zorder`` is drawn as its own exact layer, lower first, as the user asked.
+
+Differences from ``"3d"``:
+
+- a marker is drawn whole where its centre is visible and not at all where it is hidden
+  (one straddling the outline of a nearer polygon is not cut);
+- dashed lines restart their dash pattern at every visible part;
+- non-convex polygons are not supported yet (they raise ``ValueError`` naming the polygon);
+- a polygon's edge (``edgecolor``) is stroked where the polygon is; where a polygon was
+  split, the cut is not stroked.
+"""
+
+from __future__ import annotations
+
+import hashlib
+from dataclasses import dataclass, field
+
+import numpy as np
+from matplotlib import collections as mcoll
+from matplotlib import colors as mcolors
+from matplotlib import markers as mmarkers
+from matplotlib import path as mpath
+from matplotlib.artist import Artist
+from matplotlib.projections import register_projection
+from matplotlib.transforms import IdentityTransform
+from mpl_toolkits.mplot3d import Axes3D, art3d, proj3d
+
+from ._native import ExactScene
+
+__all__ = ["ExactAxes3D"]
+
+_MOVETO, _LINETO, _CLOSE = mpath.Path.MOVETO, mpath.Path.LINETO, mpath.Path.CLOSEPOLY
+
+
+@dataclass
+class _Gathered:
+    """Everything one exact layer draws, in data coordinates (scaled where axes are)."""
+
+    polygons: list = field(default_factory=list)  # (k, 3) arrays
+    face_rgba: list = field(default_factory=list)
+    edge_rgba: list = field(default_factory=list)
+    poly_lw: list = field(default_factory=list)
+    poly_aa: list = field(default_factory=list)
+    edge_face: list = field(default_factory=list)  # edges drawn in the face colour
+    lines: list = field(default_factory=list)  # (2, 3) segments
+    line_rgba: list = field(default_factory=list)
+    line_lw: list = field(default_factory=list)
+    line_aa: list = field(default_factory=list)
+    line_style: list = field(default_factory=list)
+    points: list = field(default_factory=list)  # (3,) positions
+    point_path: list = field(default_factory=list)  # unit marker paths
+    point_size: list = field(default_factory=list)  # marker size in points (diameter)
+    point_face: list = field(default_factory=list)
+    point_edge: list = field(default_factory=list)
+    point_lw: list = field(default_factory=list)
+
+
+def _scaled(axes, xs, ys, zs):
+    """Data coordinates after the axes' scales (matplotlib >= 3.11 projects these)."""
+    apply = getattr(proj3d, "_apply_scale_transforms", None)
+    if apply is None:
+        return np.asarray(xs, float), np.asarray(ys, float), np.asarray(zs, float)
+    xs, ys, zs = apply(xs, ys, zs, axes)
+    return np.asarray(xs, float), np.asarray(ys, float), np.asarray(zs, float)
+
+
+def _per_item(values, n):
+    """``values`` (one per item, or one for all) as n rows."""
+    values = np.asarray(values)
+    if len(values) == 0:
+        return None
+    if len(values) != n:
+        values = np.broadcast_to(values[:1] if values.ndim > 1 else values[0], (n,) + values.shape[1:])
+    return values
+
+
+def _poly3d_faces(col):
+    """The 3D polygons of a Poly3DCollection (matplotlib 3.8's layout and later ones')."""
+    if hasattr(col, "_faces"):
+        faces = np.asarray(col._faces, float)
+        invalid = np.broadcast_to(np.asarray(col._invalid_vertices), faces.shape[:2])
+        return [face[~bad] for face, bad in zip(faces, invalid)]
+    vec = np.asarray(col._vec)
+    xyz = (vec[:3] / vec[3]).T
+    return [xyz[s] for s in col._segslices]
+
+
+def _gather_poly(col, axes, out: _Gathered):
+    col.do_3d_projection()  # mplot3d's own colour mapping, into _facecolor3d
+    faces = _poly3d_faces(col)
+    n = len(faces)
+    if n == 0:
+        return
+    fc = _per_item(mcolors.to_rgba_array(col._facecolor3d), n)
+    ec_raw = col._edgecolor3d
+    edge_face = isinstance(col._edgecolors, str) and col._edgecolors == "face"
+    ec = _per_item(mcolors.to_rgba_array(ec_raw), n) if len(ec_raw) else None
+    if fc is None:
+        fc = np.zeros((n, 4))
+    if ec is None:
+        ec, edge_face = fc, True
+    lw = _per_item(col.get_linewidths(), n)
+    aa = _per_item(col.get_antialiased(), n)
+    for i, face in enumerate(faces):
+        xs, ys, zs = _scaled(axes, face[:, 0], face[:, 1], face[:, 2])
+        pts = np.column_stack([xs, ys, zs])
+        keep = np.all(np.isfinite(pts), axis=1)
+        pts = pts[keep]
+        if len(pts) < 3:
+            continue
+        out.polygons.append(pts)
+        out.face_rgba.append(fc[i])
+        out.edge_rgba.append(ec[i])
+        out.poly_lw.append(float(lw[i]) if lw is not None else 0.0)
+        out.poly_aa.append(bool(aa[i]) if aa is not None else True)
+        out.edge_face.append(edge_face or np.array_equal(ec[i], fc[i]))
+
+
+def _add_polyline(out: _Gathered, pts, rgba, lw, aa, style):
+    pts = np.asarray(pts, float)
+    for a, b in zip(pts[:-1], pts[1:]):
+        if np.all(np.isfinite(a)) and np.all(np.isfinite(b)) and not np.array_equal(a, b):
+            out.lines.append(np.array([a, b]))
+            out.line_rgba.append(rgba)
+            out.line_lw.append(lw)
+            out.line_aa.append(aa)
+            out.line_style.append(style)
+
+
+def _marker_path(marker):
+    style = marker if isinstance(marker, mmarkers.MarkerStyle) else mmarkers.MarkerStyle(marker)
+    return style.get_path().transformed(style.get_transform()), style.is_filled()
+
+
+def _gather_line(line, axes, out: _Gathered):
+    xs, ys, zs = (np.asarray(v, float) for v in line.get_data_3d())
+    xs, ys, zs = _scaled(axes, xs, ys, zs)
+    pts = np.column_stack([xs, ys, zs])
+    rgba = mcolors.to_rgba(line.get_color(), line.get_alpha())
+    if line.get_linestyle() not in ("None", "none", "", " ") and line.get_linewidth() > 0:
+        _add_polyline(out, pts, rgba, line.get_linewidth(), line.get_antialiased(), line.get_linestyle())
+    marker = line.get_marker()
+    if marker not in (None, "None", "none", "", " "):
+        path, filled = _marker_path(line._marker)
+        face = mcolors.to_rgba(line.get_markerfacecolor(), line.get_alpha()) if filled else (0, 0, 0, 0)
+        edge = mcolors.to_rgba(line.get_markeredgecolor(), line.get_alpha())
+        for p in pts[np.all(np.isfinite(pts), axis=1)]:
+            out.points.append(p)
+            out.point_path.append(path)
+            out.point_size.append(line.get_markersize())
+            out.point_face.append(face)
+            out.point_edge.append(edge)
+            out.point_lw.append(line.get_markeredgewidth())
+
+
+def _gather_line_collection(col, axes, out: _Gathered):
+    segments = col._segments3d
+    n = len(segments)
+    if n == 0:
+        return
+    rgba = _per_item(col.get_edgecolor(), n)
+    lw = _per_item(col.get_linewidths(), n)
+    aa = _per_item(col.get_antialiased(), n)
+    styles = col.get_linestyle()
+    for i, seg in enumerate(segments):
+        seg = np.ma.filled(np.ma.asarray(seg, float), np.nan)
+        xs, ys, zs = _scaled(axes, seg[:, 0], seg[:, 1], seg[:, 2])
+        style = styles[i % len(styles)] if styles else "solid"
+        if lw is not None and lw[i] > 0 and rgba is not None:
+            _add_polyline(out, np.column_stack([xs, ys, zs]), rgba[i], float(lw[i]), bool(aa[i]), style)
+
+
+def _gather_scatter(col, axes, out: _Gathered):
+    xs, ys, zs = (np.ma.filled(np.ma.asarray(v, float), np.nan).ravel() for v in col._offsets3d)
+    n = len(xs)
+    if n == 0:
+        return
+    col.do_3d_projection()  # mplot3d's depth shading, in its sorted order
+    order = np.asarray(getattr(col, "_z_markers_idx", np.arange(n)))
+    face = mcolors.to_rgba_array(col.get_facecolor())
+    edge = mcolors.to_rgba_array(col.get_edgecolor())
+
+    def unsort(c):
+        if len(c) == n and len(order) == n:
+            back = np.empty_like(c)
+            back[order] = c
+            return back
+        return _per_item(c, n) if len(c) else np.zeros((n, 4))
+
+    face, edge = unsort(face), unsort(edge)
+    sizes = _per_item(getattr(col, "_sizes3d", col.get_sizes()), n)
+    lws = _per_item(getattr(col, "_linewidths3d", col.get_linewidths()), n)
+    path = col.get_paths()[0] if col.get_paths() else _marker_path("o")[0]
+    xs, ys, zs = _scaled(axes, xs, ys, zs)
+    for i in range(n):
+        p = np.array([xs[i], ys[i], zs[i]])
+        if not np.all(np.isfinite(p)):
+            continue
+        out.points.append(p)
+        out.point_path.append(path)
+        out.point_size.append(float(np.sqrt(sizes[i])) if sizes is not None else 6.0)
+        out.point_face.append(face[i])
+        out.point_edge.append(edge[i])
+        out.point_lw.append(float(lws[i]) if lws is not None else 0.0)
+
+
+_GATHER = (
+    (art3d.Poly3DCollection, _gather_poly),
+    (art3d.Line3DCollection, _gather_line_collection),
+    (art3d.Path3DCollection, _gather_scatter),
+    (art3d.Line3D, _gather_line),
+)
+
+
+def _handled(artist) -> bool:
+    return any(isinstance(artist, kind) for kind, _ in _GATHER)
+
+
+def _viewer(M, to_box):
+    """The viewer of projection matrix ``M`` in box coordinates, as a homogeneous point:
+    the point (eye) or direction (parallel projection, w = 0) that ``M`` sends to the
+    screen's centre of projection (x, y and w rows all zero)."""
+    A = (M @ np.linalg.inv(to_box))[[0, 1, 3]]
+    null = np.linalg.svd(A)[2][-1]
+    if abs(null[3]) > 1e-12 * np.abs(null[:3]).max():
+        return tuple(null / null[3])
+    # A direction: point it toward the viewer, where mplot3d's projected z decreases.
+    direction = null[:3] / np.linalg.norm(null[:3])
+    Mb = M @ np.linalg.inv(to_box)
+    centre = np.array([0.5, 0.5, 0.5, 1.0])
+    z = lambda p: (Mb @ p)[2] / (Mb @ p)[3]  # noqa: E731
+    if z(centre + np.append(direction, 0.0)) > z(centre):
+        direction = -direction
+    return (*direction, 0.0)
+
+
+class _ExactLayer(Artist):
+    """One exact picture of some of the axes' artists, drawn in their place."""
+
+    def __init__(self, axes, artists, zorder):
+        super().__init__()
+        self.axes = axes
+        self._sources = artists
+        self.set_zorder(zorder)
+        self.set_figure(axes.figure)
+
+    def draw(self, renderer):
+        axes = self.axes
+        gathered = _Gathered()
+        for artist in self._sources:
+            for kind, gather in _GATHER:
+                if isinstance(artist, kind):
+                    gather(artist, axes, gathered)
+                    break
+        if not gathered.polygons and not gathered.lines and not gathered.points:
+            return
+        collection = axes._exact_collection(gathered, renderer)
+        collection.draw(renderer)
+
+
+class ExactAxes3D(Axes3D):
+    """An ``Axes3D`` whose polygons, lines and markers are drawn as one exact picture
+    (module docs). Use it as ``projection="exact3d"``; everything else is ``Axes3D``."""
+
+    name = "exact3d"
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self._exact_cache = {}
+
+    def draw(self, renderer):
+        if not self.get_visible():
+            return
+        sources = [a for a in self._children if _handled(a) and a.get_visible()]
+        if not sources:
+            return super().draw(renderer)
+        if self.computed_zorder:
+            zorder = max(axis.get_zorder() for axis in self._axis_map.values()) + 1
+            groups = [(zorder, sources)]
+        else:
+            by_z = {}
+            for a in sources:
+                by_z.setdefault(a.get_zorder(), []).append(a)
+            groups = sorted(by_z.items(), key=lambda g: g[0])
+        layers = [_ExactLayer(self, artists, z) for z, artists in groups]
+        # Hide the sources from the stock draw without marking anything stale (no redraw
+        # loop): their picture is the layers'.
+        for a in sources:
+            a._visible = False
+        self._children.extend(layers)
+        try:
+            super().draw(renderer)
+        finally:
+            for layer in layers:
+                self._children.remove(layer)
+            for a in sources:
+                a._visible = True
+
+    # -- the engine ---------------------------------------------------------------------
+
+    def _box(self):
+        """Data (scaled) → unit box: an affine map per axis, from the axes' limits."""
+        lims = []
+        for get in (self.get_xlim3d, self.get_ylim3d, self.get_zlim3d):
+            lo, hi = get()
+            lims.append((lo, hi))
+        lo = np.array([l for l, _ in lims], float)
+        hi = np.array([h for _, h in lims], float)
+        apply = getattr(proj3d, "_apply_scale_transforms", None)
+        if apply is not None:
+            lo = np.array(apply(*lo, self), float).ravel()
+            hi = np.array(apply(*hi, self), float).ravel()
+        span = np.where(hi - lo == 0, 1.0, hi - lo)
+        to_box = np.eye(4)
+        to_box[:3, :3] = np.diag(1.0 / span)
+        to_box[:3, 3] = -lo / span
+        return to_box
+
+    def _scene(self, points_box, offsets):
+        """The ExactScene of these polygons, built once while they stay the same."""
+        key = hashlib.blake2b(points_box.tobytes() + offsets.tobytes(), digest_size=16).digest()
+        scene = self._exact_cache.get(key)
+        if scene is None:
+            scene = ExactScene(points_box, offsets)
+            self._exact_cache = {key: scene}  # one set of polygons kept per axes
+        return scene
+
+    def _exact_collection(self, g: _Gathered, renderer):
+        M = self.M
+        to_box = self._box()
+
+        def box(p):
+            p = np.asarray(p, float).reshape(-1, 3)
+            return p @ to_box[:3, :3].T + to_box[:3, 3]
+
+        def display(p_box):
+            """Box coordinates → display pixels, through mplot3d's projection."""
+            data = (p_box - to_box[:3, 3]) / np.diag(to_box)[:3]
+            h = np.column_stack([data, np.ones(len(data))]) @ M.T
+            xy = h[:, :2] / h[:, 3:4]
+            return self.transData.transform(xy)
+
+        n_poly = len(g.polygons)
+        if n_poly:
+            counts = np.array([len(p) for p in g.polygons])
+            offsets = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
+            points = np.ascontiguousarray(box(np.concatenate(g.polygons)))
+        else:
+            # No polygon: a scene of one tiny invisible triangle far from nothing (lines and
+            # points are then all visible, in their given order).
+            offsets = np.array([0, 3], np.int64)
+            points = np.array([[0.0, 0.0, 0.0], [1e-3, 0.0, 0.0], [0.0, 1e-3, 0.0]])
+        scene = self._scene(points, offsets)
+        viewer = _viewer(M, to_box)
+        bbox = self.bbox
+        width = int(max(1, min(32768, round(bbox.width))))
+        height = int(max(1, min(32768, round(bbox.height))))
+        face_rgba = np.array(g.face_rgba).reshape(-1, 4)
+        opaque = (face_rgba[:, 3] >= 1.0) if n_poly else np.zeros(1, bool)
+        lines = np.ascontiguousarray(box(np.array(g.lines).reshape(-1, 3)).reshape(-1, 2, 3)) if g.lines else None
+        marks = np.ascontiguousarray(box(np.array(g.points))) if g.points else None
+        r = scene.order(viewer, width, height, np.ascontiguousarray(opaque), lines, marks)
+
+        paths, fcs, ecs, lws, aas, styles, keys = [], [], [], [], [], [], []
+        none = (0.0, 0.0, 0.0, 0.0)
+        k = r["items"]
+        if n_poly and k:
+            xy = display(r["points"])
+            offs = r["offsets"]
+            edges = r["edges"]
+            for i, face in enumerate(r["faces"]):
+                a, b = offs[i], offs[i + 1]
+                verts = xy[a:b]
+                codes = np.full(b - a + 1, _LINETO, dtype=mpath.Path.code_type)
+                codes[0], codes[-1] = _MOVETO, _CLOSE
+                fill = mpath.Path(np.vstack([verts, verts[:1]]), codes)
+                lw = g.poly_lw[face]
+                same = g.edge_face[face]
+                paths.append(fill)
+                fcs.append(g.face_rgba[face])
+                ecs.append(g.face_rgba[face] if same and lw > 0 else none)
+                lws.append(lw if same else 0.0)
+                aas.append(g.poly_aa[face])
+                styles.append("solid")
+                keys.append(2 * i + 1)
+                if not same and lw > 0 and g.edge_rgba[face][3] > 0 and edges[a:b].any():
+                    seg_v, seg_c = [], []
+                    for j in range(b - a):
+                        if edges[a + j]:
+                            seg_v += [verts[j], verts[(j + 1) % (b - a)]]
+                            seg_c += [_MOVETO, _LINETO]
+                    paths.append(mpath.Path(np.array(seg_v), np.array(seg_c, dtype=mpath.Path.code_type)))
+                    fcs.append(none)
+                    ecs.append(g.edge_rgba[face])
+                    lws.append(lw)
+                    aas.append(g.poly_aa[face])
+                    styles.append("solid")
+                    keys.append(2 * i + 1)
+        if g.lines:
+            ends = np.array(g.lines)
+            for line, (t0, t1), before in zip(r["line"], r["line_t"], r["line_before"]):
+                a, b = ends[line]
+                part = box(np.array([a + (b - a) * t0, a + (b - a) * t1]))
+                paths.append(mpath.Path(display(part)))
+                fcs.append(none)
+                ecs.append(g.line_rgba[line])
+                lws.append(g.line_lw[line])
+                aas.append(g.line_aa[line])
+                styles.append(g.line_style[line])
+                keys.append(2 * before)
+        if g.points:
+            scale = renderer.points_to_pixels(1.0)
+            centres = display(box(np.array(g.points)))
+            for point, before in zip(r["point"], r["point_before"]):
+                unit = g.point_path[point]
+                size = g.point_size[point] * scale
+                paths.append(mpath.Path(unit.vertices * size * np.array([1, 1]) + centres[point], unit.codes))
+                fcs.append(g.point_face[point])
+                ecs.append(g.point_edge[point])
+                lws.append(g.point_lw[point])
+                aas.append(True)
+                styles.append("solid")
+                keys.append(2 * before)
+        order = np.argsort(np.array(keys, dtype=np.int64), kind="stable")
+        pick = lambda xs: [xs[i] for i in order]  # noqa: E731
+        collection = mcoll.PathCollection(
+            pick(paths),
+            facecolors=pick(fcs),
+            edgecolors=pick(ecs),
+            linewidths=pick(lws),
+            antialiaseds=pick(aas),
+            linestyles=pick(styles) if any(s != "solid" for s in styles) else "solid",
+            transform=IdentityTransform(),
+        )
+        collection.set_figure(self.figure)
+        collection.set_clip_on(False)
+        return collection
+
+
+register_projection(ExactAxes3D)
