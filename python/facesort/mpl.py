@@ -19,9 +19,10 @@ draws them as one picture:
 - polygons are split where they pass through each other and painted in an exact order
   (a BSP built once per set of polygons, in the axes' box coordinates; a new view only
   walks it);
-- lines are clipped where polygons hide them, markers are left out where their centre is
-  hidden, and the visible parts are painted among translucent polygons at their place in
-  the order, so alpha composites exactly;
+- lines are clipped where polygons hide them, and their visible parts are painted among
+  translucent polygons at their place in the order, so alpha composites exactly;
+- a marker is a disc facing the viewer at its point's depth: it is painted just before the
+  first polygon in front of it, so polygons cut it exactly where they cover it;
 - colours, edge colours, line widths, alpha, mplot3d's shading (baked into the face colours
   when the artist is made) and scatter's depth shading are kept.
 
@@ -32,8 +33,8 @@ which this module reads off ``get_proj()``'s matrix. With ``computed_zorder=Fals
 
 Differences from ``"3d"``:
 
-- a marker is drawn whole where its centre is visible and not at all where it is hidden
-  (one straddling the outline of a nearer polygon is not cut);
+- a line's visible parts are found along its centre line: where it passes behind the
+  outline of a nearer polygon, its stroke reaches half its width over that outline;
 - dashed lines restart their dash pattern at every visible part;
 - non-convex polygons are not supported yet (they raise ``ValueError`` naming the polygon);
 - a polygon's edge (``edgecolor``) is stroked where the polygon is; where a polygon was
@@ -264,6 +265,40 @@ def _viewer(M, to_box):
     return (*direction, 0.0)
 
 
+def _disc_meets_polygon(c, radius, poly):
+    """Whether a disc and a convex polygon (display coordinates) overlap."""
+    n = len(poly)
+    edges = np.roll(poly, -1, axis=0) - poly
+    rel = c - poly
+    cross = edges[:, 0] * rel[:, 1] - edges[:, 1] * rel[:, 0]
+    if np.all(cross >= 0) or np.all(cross <= 0):
+        return True
+    length2 = np.einsum("ij,ij->i", edges, edges)
+    t = np.clip(np.einsum("ij,ij->i", rel, edges) / np.where(length2 > 0, length2, 1), 0, 1)
+    closest = poly + edges * t[:, None]
+    return bool(np.min(np.hypot(*(c - closest).T)) < radius) and n >= 3
+
+
+def _depth_at(poly, pz, c):
+    """The depth of a planar polygon's plane at display point ``c`` (affine over the
+    screen), from the corner triple that spans the most area."""
+    best, area = None, 0.0
+    n = len(poly)
+    for j in range(1, n - 1):
+        a = (poly[j] - poly[0])
+        b = (poly[j + 1] - poly[0])
+        s = a[0] * b[1] - a[1] * b[0]
+        if abs(s) > abs(area):
+            best, area = j, s
+    if best is None or area == 0:
+        return float(np.mean(pz))
+    j = best
+    a, b, d = poly[j] - poly[0], poly[j + 1] - poly[0], c - poly[0]
+    u = (d[0] * b[1] - d[1] * b[0]) / area
+    v = (a[0] * d[1] - a[1] * d[0]) / area
+    return float(pz[0] + u * (pz[j] - pz[0]) + v * (pz[j + 1] - pz[0]))
+
+
 class _ExactLayer(Artist):
     """One exact picture of some of the axes' artists, drawn in their place."""
 
@@ -355,6 +390,37 @@ class ExactAxes3D(Axes3D):
             self._exact_cache = {key: scene}  # one set of polygons kept per axes
         return scene
 
+    @staticmethod
+    def _marker_places(r, centres, depths, radii, display):
+        """Where each marker goes in the paint order: just before the first item in front
+        of it among those its disc overlaps (a marker is a disc facing the viewer at its
+        point's depth). Every item behind it that its disc overlaps overlaps that item too,
+        so an exact order paints them earlier; items in front paint over the marker, opaque
+        or not, so a marker half behind a polygon's outline is cut there."""
+        k = r["items"]
+        places = np.full(len(centres), k, dtype=np.int64)
+        if k == 0:
+            return places
+        xy, z = display(r["points"], with_depth=True)
+        offs = r["offsets"]
+        starts, stops = offs[:-1], offs[1:]
+        lo = np.minimum.reduceat(xy, starts, axis=0)
+        hi = np.maximum.reduceat(xy, starts, axis=0)
+        for m, (c, depth, radius) in enumerate(zip(centres, depths, radii)):
+            near = np.nonzero(np.all(lo <= c + radius, axis=1) & np.all(hi >= c - radius, axis=1))[0]
+            for i in near:
+                a, b = starts[i], stops[i]
+                poly, pz = xy[a:b], z[a:b]
+                if not _disc_meets_polygon(c, radius, poly):
+                    continue
+                # The item's depth under the marker's centre: its plane, affine over the
+                # screen (three corners that span it).
+                front = _depth_at(poly, pz, c) < depth
+                if front:
+                    places[m] = min(places[m], i)
+                    break  # items come in paint order: the first in front decides
+        return places
+
     def _exact_collection(self, g: _Gathered, renderer):
         M = self.M
         to_box = self._box()
@@ -363,12 +429,13 @@ class ExactAxes3D(Axes3D):
             p = np.asarray(p, float).reshape(-1, 3)
             return p @ to_box[:3, :3].T + to_box[:3, 3]
 
-        def display(p_box):
-            """Box coordinates → display pixels, through mplot3d's projection."""
+        def display(p_box, with_depth=False):
+            """Box coordinates → display pixels (and mplot3d's projected z, smaller
+            nearer), through mplot3d's projection."""
             data = (p_box - to_box[:3, 3]) / np.diag(to_box)[:3]
             h = np.column_stack([data, np.ones(len(data))]) @ M.T
-            xy = h[:, :2] / h[:, 3:4]
-            return self.transData.transform(xy)
+            xy = self.transData.transform(h[:, :2] / h[:, 3:4])
+            return (xy, h[:, 2] / h[:, 3]) if with_depth else xy
 
         n_poly = len(g.polygons)
         if n_poly:
@@ -388,8 +455,7 @@ class ExactAxes3D(Axes3D):
         face_rgba = np.array(g.face_rgba).reshape(-1, 4)
         opaque = (face_rgba[:, 3] >= 1.0) if n_poly else np.zeros(1, bool)
         lines = np.ascontiguousarray(box(np.array(g.lines).reshape(-1, 3)).reshape(-1, 2, 3)) if g.lines else None
-        marks = np.ascontiguousarray(box(np.array(g.points))) if g.points else None
-        r = scene.order(viewer, width, height, np.ascontiguousarray(opaque), lines, marks)
+        r = scene.order(viewer, width, height, np.ascontiguousarray(opaque), lines)
 
         paths, fcs, ecs, lws, aas, styles, keys = [], [], [], [], [], [], []
         none = (0.0, 0.0, 0.0, 0.0)
@@ -440,11 +506,13 @@ class ExactAxes3D(Axes3D):
                 keys.append(2 * before)
         if g.points:
             scale = renderer.points_to_pixels(1.0)
-            centres = display(box(np.array(g.points)))
-            for point, before in zip(r["point"], r["point_before"]):
+            centres, depths = display(box(np.array(g.points)), with_depth=True)
+            radii = np.array(g.point_size) * scale / 2
+            places = self._marker_places(r, centres, depths, radii, display)
+            for point, before in enumerate(places):
                 unit = g.point_path[point]
                 size = g.point_size[point] * scale
-                paths.append(mpath.Path(unit.vertices * size * np.array([1, 1]) + centres[point], unit.codes))
+                paths.append(mpath.Path(unit.vertices * size + centres[point], unit.codes))
                 fcs.append(g.point_face[point])
                 ecs.append(g.point_edge[point])
                 lws.append(g.point_lw[point])
