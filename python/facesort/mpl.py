@@ -17,8 +17,9 @@ depth, and draws lines whole; surfaces that cross or interleave come out wrong. 
 draws them as one picture:
 
 - polygons are split where they pass through each other and painted in an exact order
-  (a BSP built once per set of polygons, in the axes' box coordinates; a new view only
-  walks it);
+  (Newell's, in the axes' box coordinates, prepared once per set of polygons; it splits
+  only what overlaps cyclically, so the picture has few more items than polygons, and
+  neighbouring pieces of one polygon are drawn as one path);
 - lines are clipped where polygons hide them, and their visible parts are painted among
   translucent polygons at their place in the order, so alpha composites exactly;
 - a marker is a disc facing the viewer at its point's depth: it is painted just before the
@@ -67,12 +68,25 @@ _MOVETO, _LINETO, _CLOSE = mpath.Path.MOVETO, mpath.Path.LINETO, mpath.Path.CLOS
 class _Gathered:
     """Everything one exact layer draws, in data coordinates (scaled where axes are)."""
 
-    polygons: list = field(default_factory=list)  # (k, 3) arrays
+    # Polygons, one chunk per artist: corners (p, 3), corner counts (n,), and per polygon
+    # face and edge colours (n, 4), line width, anti-aliasing, edges in the face colour.
+    corners: list = field(default_factory=list)
+    counts: list = field(default_factory=list)
     face_rgba: list = field(default_factory=list)
     edge_rgba: list = field(default_factory=list)
     poly_lw: list = field(default_factory=list)
     poly_aa: list = field(default_factory=list)
-    edge_face: list = field(default_factory=list)  # edges drawn in the face colour
+    edge_face: list = field(default_factory=list)
+
+    def polygon_arrays(self):
+        """The polygon chunks joined: (corners, counts, face, edge, lw, aa, edge_face)."""
+        if not self.counts:
+            return None
+        join = np.concatenate
+        return (
+            join(self.corners), join(self.counts), join(self.face_rgba), join(self.edge_rgba),
+            join(self.poly_lw), join(self.poly_aa), join(self.edge_face),
+        )
     lines: list = field(default_factory=list)  # (2, 3) segments
     line_rgba: list = field(default_factory=list)
     line_lw: list = field(default_factory=list)
@@ -106,45 +120,55 @@ def _per_item(values, n):
 
 
 def _poly3d_faces(col):
-    """The 3D polygons of a Poly3DCollection (matplotlib 3.8's layout and later ones')."""
+    """The 3D polygons of a Poly3DCollection as (corners (p, 3), counts (n,)), invalid
+    (masked) vertices left out (matplotlib 3.8's layout and later ones')."""
     if hasattr(col, "_faces"):
         faces = np.asarray(col._faces, float)
-        invalid = np.broadcast_to(np.asarray(col._invalid_vertices), faces.shape[:2])
-        return [face[~bad] for face, bad in zip(faces, invalid)]
+        if faces.size == 0:
+            return np.zeros((0, 3)), np.zeros(0, np.int64)
+        valid = ~np.broadcast_to(np.asarray(col._invalid_vertices), faces.shape[:2])
+        return faces[valid], valid.sum(axis=1)
     vec = np.asarray(col._vec)
     xyz = (vec[:3] / vec[3]).T
-    return [xyz[s] for s in col._segslices]
+    counts = np.array([sl.stop - sl.start for sl in col._segslices], np.int64)
+    return xyz, counts
 
 
 def _gather_poly(col, axes, out: _Gathered):
     col.do_3d_projection()  # mplot3d's own colour mapping, into _facecolor3d
-    faces = _poly3d_faces(col)
-    n = len(faces)
+    corners, counts = _poly3d_faces(col)
+    n = len(counts)
     if n == 0:
         return
     fc = _per_item(mcolors.to_rgba_array(col._facecolor3d), n)
-    ec_raw = col._edgecolor3d
     edge_face = isinstance(col._edgecolors, str) and col._edgecolors == "face"
-    ec = _per_item(mcolors.to_rgba_array(ec_raw), n) if len(ec_raw) else None
+    ec = _per_item(mcolors.to_rgba_array(col._edgecolor3d), n) if len(col._edgecolor3d) else None
     if fc is None:
         fc = np.zeros((n, 4))
-    if ec is None:
-        ec, edge_face = fc, True
+    if ec is None:  # no edge colour: no edges, as mplot3d draws them
+        ec, edge_face = np.zeros((n, 4)), False
     lw = _per_item(col.get_linewidths(), n)
     aa = _per_item(col.get_antialiased(), n)
-    for i, face in enumerate(faces):
-        xs, ys, zs = _scaled(axes, face[:, 0], face[:, 1], face[:, 2])
-        pts = np.column_stack([xs, ys, zs])
-        keep = np.all(np.isfinite(pts), axis=1)
-        pts = pts[keep]
-        if len(pts) < 3:
-            continue
-        out.polygons.append(pts)
-        out.face_rgba.append(fc[i])
-        out.edge_rgba.append(ec[i])
-        out.poly_lw.append(float(lw[i]) if lw is not None else 0.0)
-        out.poly_aa.append(bool(aa[i]) if aa is not None else True)
-        out.edge_face.append(edge_face or np.array_equal(ec[i], fc[i]))
+    xs, ys, zs = _scaled(axes, corners[:, 0], corners[:, 1], corners[:, 2])
+    corners = np.column_stack([xs, ys, zs])
+    # Corners that are not finite (masked surfaces, log of ≤ 0) are left out; polygons
+    # left with fewer than 3 corners are dropped.
+    finite = np.all(np.isfinite(corners), axis=1)
+    owner = np.repeat(np.arange(n), counts)
+    counts = np.bincount(owner[finite], minlength=n)
+    corners = corners[finite]
+    keep = counts >= 3
+    corners = corners[np.repeat(keep, counts)]
+    out.corners.append(corners)
+    out.counts.append(counts[keep])
+    out.face_rgba.append(np.asarray(fc, float)[keep])
+    out.edge_rgba.append(np.asarray(ec, float)[keep])
+    out.poly_lw.append((np.asarray(lw, float) if lw is not None else np.zeros(n))[keep])
+    out.poly_aa.append((np.asarray(aa, bool) if aa is not None else np.ones(n, bool))[keep])
+    same = np.all(np.asarray(ec) == np.asarray(fc), axis=1) | edge_face
+    out.edge_face.append(same[keep])
+    # An invisible edge strokes nothing.
+    out.poly_lw[-1] = np.where(np.asarray(ec, float)[keep][:, 3] > 0, out.poly_lw[-1], 0.0)
 
 
 def _add_polyline(out: _Gathered, pts, rgba, lw, aa, style):
@@ -317,7 +341,7 @@ class _ExactLayer(Artist):
                 if isinstance(artist, kind):
                     gather(artist, axes, gathered)
                     break
-        if not gathered.polygons and not gathered.lines and not gathered.points:
+        if not gathered.counts and not gathered.lines and not gathered.points:
             return
         collection = axes._exact_collection(gathered, renderer)
         collection.draw(renderer)
@@ -437,73 +461,101 @@ class ExactAxes3D(Axes3D):
             xy = self.transData.transform(h[:, :2] / h[:, 3:4])
             return (xy, h[:, 2] / h[:, 3]) if with_depth else xy
 
-        n_poly = len(g.polygons)
+        polygons = g.polygon_arrays()
+        n_poly = 0 if polygons is None else len(polygons[1])
         if n_poly:
-            counts = np.array([len(p) for p in g.polygons])
+            corners, counts, face_rgba, edge_rgba, poly_lw, poly_aa, edge_face = polygons
             offsets = np.concatenate([[0], np.cumsum(counts)]).astype(np.int64)
-            points = np.ascontiguousarray(box(np.concatenate(g.polygons)))
+            points = np.ascontiguousarray(box(corners))
         else:
-            # No polygon: a scene of one tiny invisible triangle far from nothing (lines and
-            # points are then all visible, in their given order).
+            # No polygon: a scene of one tiny invisible triangle (lines and points are then
+            # all visible, in their given order).
             offsets = np.array([0, 3], np.int64)
             points = np.array([[0.0, 0.0, 0.0], [1e-3, 0.0, 0.0], [0.0, 1e-3, 0.0]])
+            face_rgba = np.zeros((1, 4))
         scene = self._scene(points, offsets)
         viewer = _viewer(M, to_box)
         bbox = self.bbox
         width = int(max(1, min(32768, round(bbox.width))))
         height = int(max(1, min(32768, round(bbox.height))))
-        face_rgba = np.array(g.face_rgba).reshape(-1, 4)
         opaque = (face_rgba[:, 3] >= 1.0) if n_poly else np.zeros(1, bool)
         lines = np.ascontiguousarray(box(np.array(g.lines).reshape(-1, 3)).reshape(-1, 2, 3)) if g.lines else None
-        r = scene.order(viewer, width, height, np.ascontiguousarray(opaque), lines)
+        # Same-polygon neighbours drawn as one item (fewer paths for Agg), except where
+        # markers are placed among the items by their planes.
+        r = scene.order(viewer, width, height, np.ascontiguousarray(opaque), lines, merge=not g.points)
 
-        paths, fcs, ecs, lws, aas, styles, keys = [], [], [], [], [], [], []
-        none = (0.0, 0.0, 0.0, 0.0)
+        # Elements of one collection, each with a sort key: item i at 2i + 1, a line part
+        # or marker painted before item j at 2j.
+        paths, keys = [], []
+        fcs, ecs, lws, aas, styles = [], [], [], [], []
+        none = np.zeros(4)
         k = r["items"]
         if n_poly and k:
             xy = display(r["points"])
             offs = r["offsets"]
+            faces = r["faces"].astype(np.int64)
+            sizes = np.diff(offs)
+            # Each item closed (its first corner repeated), all in one array; each path a
+            # view of it, made without matplotlib's per-path checks (the same paths, made
+            # the way matplotlib makes its own).
+            closed = np.empty((len(xy) + k, 2))
+            at = offs[:-1] + np.arange(k)
+            gather = np.arange(len(xy) + k) - np.repeat(np.arange(k), sizes + 1)
+            ends = at + sizes
+            gather[ends] = offs[:-1]
+            closed[:] = xy[gather]
+            codes_of = {}
+            template = mpath.Path(np.zeros((2, 2)))
+            template.should_simplify = False
+            fast = mpath.Path._fast_from_codes_and_verts
+            for i in range(k):
+                n = sizes[i]
+                codes = codes_of.get(n)
+                if codes is None:
+                    codes = np.full(n + 1, _LINETO, dtype=mpath.Path.code_type)
+                    codes[0], codes[-1] = _MOVETO, _CLOSE
+                    codes_of[n] = codes
+                paths.append(fast(closed[at[i] : at[i] + n + 1], codes, internals_from=template))
+            same = edge_face[faces]
+            lw = poly_lw[faces]
+            fcs.append(face_rgba[faces])
+            ecs.append(np.where((same & (lw > 0))[:, None], face_rgba[faces], none))
+            lws.append(np.where(same, lw, 0.0))
+            aas.append(poly_aa[faces])
+            styles += ["solid"] * k
+            keys.append(2 * np.arange(k) + 1)
+            # Edges in their own colour: the parts of each item's outline on its polygon's
+            # outline (not where it was cut), stroked right after the item.
             edges = r["edges"]
-            for i, face in enumerate(r["faces"]):
+            stroked = (~same) & (lw > 0) & (edge_rgba[faces][:, 3] > 0)
+            for i in np.nonzero(stroked)[0]:
                 a, b = offs[i], offs[i + 1]
-                verts = xy[a:b]
-                codes = np.full(b - a + 1, _LINETO, dtype=mpath.Path.code_type)
-                codes[0], codes[-1] = _MOVETO, _CLOSE
-                fill = mpath.Path(np.vstack([verts, verts[:1]]), codes)
-                lw = g.poly_lw[face]
-                same = g.edge_face[face]
-                paths.append(fill)
-                fcs.append(g.face_rgba[face])
-                ecs.append(g.face_rgba[face] if same and lw > 0 else none)
-                lws.append(lw if same else 0.0)
-                aas.append(g.poly_aa[face])
+                on = np.nonzero(edges[a:b])[0]
+                if len(on) == 0:
+                    continue
+                verts = np.empty((2 * len(on), 2))
+                verts[0::2] = xy[a + on]
+                verts[1::2] = xy[a + (on + 1) % sizes[i]]
+                codes = np.tile(np.array([_MOVETO, _LINETO], dtype=mpath.Path.code_type), len(on))
+                paths.append(mpath.Path(verts, codes))
+                fcs.append(none[None])
+                ecs.append(edge_rgba[faces[i]][None])
+                lws.append(lw[i : i + 1])
+                aas.append(poly_aa[faces[i]][None])
                 styles.append("solid")
-                keys.append(2 * i + 1)
-                if not same and lw > 0 and g.edge_rgba[face][3] > 0 and edges[a:b].any():
-                    seg_v, seg_c = [], []
-                    for j in range(b - a):
-                        if edges[a + j]:
-                            seg_v += [verts[j], verts[(j + 1) % (b - a)]]
-                            seg_c += [_MOVETO, _LINETO]
-                    paths.append(mpath.Path(np.array(seg_v), np.array(seg_c, dtype=mpath.Path.code_type)))
-                    fcs.append(none)
-                    ecs.append(g.edge_rgba[face])
-                    lws.append(lw)
-                    aas.append(g.poly_aa[face])
-                    styles.append("solid")
-                    keys.append(2 * i + 1)
+                keys.append(np.array([2 * i + 1]))
         if g.lines:
             ends = np.array(g.lines)
             for line, (t0, t1), before in zip(r["line"], r["line_t"], r["line_before"]):
                 a, b = ends[line]
                 part = box(np.array([a + (b - a) * t0, a + (b - a) * t1]))
                 paths.append(mpath.Path(display(part)))
-                fcs.append(none)
-                ecs.append(g.line_rgba[line])
-                lws.append(g.line_lw[line])
-                aas.append(g.line_aa[line])
+                fcs.append(none[None])
+                ecs.append(np.asarray(g.line_rgba[line], float)[None])
+                lws.append(np.array([g.line_lw[line]], float))
+                aas.append(np.array([g.line_aa[line]], bool))
                 styles.append(g.line_style[line])
-                keys.append(2 * before)
+                keys.append(np.array([2 * before]))
         if g.points:
             scale = renderer.points_to_pixels(1.0)
             centres, depths = display(box(np.array(g.points)), with_depth=True)
@@ -513,20 +565,23 @@ class ExactAxes3D(Axes3D):
                 unit = g.point_path[point]
                 size = g.point_size[point] * scale
                 paths.append(mpath.Path(unit.vertices * size + centres[point], unit.codes))
-                fcs.append(g.point_face[point])
-                ecs.append(g.point_edge[point])
-                lws.append(g.point_lw[point])
-                aas.append(True)
+                fcs.append(np.asarray(g.point_face[point], float)[None])
+                ecs.append(np.asarray(g.point_edge[point], float)[None])
+                lws.append(np.array([g.point_lw[point]], float))
+                aas.append(np.array([True]))
                 styles.append("solid")
-                keys.append(2 * before)
-        order = np.argsort(np.array(keys, dtype=np.int64), kind="stable")
+                keys.append(np.array([2 * before]))
+        order = np.argsort(np.concatenate(keys).astype(np.int64), kind="stable")
         pick = lambda xs: [xs[i] for i in order]  # noqa: E731
+        widths = np.concatenate(lws)[order]
+        if len(widths) and np.all(widths == widths[0]):
+            widths = widths[:1]  # one width for all: matplotlib scales one dash pattern
         collection = mcoll.PathCollection(
             pick(paths),
-            facecolors=pick(fcs),
-            edgecolors=pick(ecs),
-            linewidths=pick(lws),
-            antialiaseds=pick(aas),
+            facecolors=np.concatenate(fcs).reshape(-1, 4)[order],
+            edgecolors=np.concatenate(ecs).reshape(-1, 4)[order],
+            linewidths=widths,
+            antialiaseds=np.concatenate(aas)[order],
             linestyles=pick(styles) if any(s != "solid" for s in styles) else "solid",
             transform=IdentityTransform(),
         )

@@ -10,7 +10,7 @@
 
 use std::sync::Arc;
 
-use face_sort::{Bsp, CullMode, DrawList, FaceSorter, Geometry, PolygonMesh, View};
+use face_sort::{CullMode, DrawList, FaceSorter, Geometry, PolygonMesh, SorterKind, View};
 use glam::{DMat3, DVec3};
 use numpy::{IntoPyArray, PyArrayMethods};
 use pyo3::exceptions::PyValueError;
@@ -23,14 +23,17 @@ use crate::input;
 
 /// Polygons ordered exactly for any viewer (see the module docs of the Rust crate).
 ///
-/// `ExactScene(points, offsets)`: polygon `i` is `points[offsets[i]:offsets[i+1]]`
-/// (float64 (n, 3); int offsets of length m + 1). Polygons must be convex; non-planar ones
-/// are painted as the fan of triangles from their first corner.
+/// `ExactScene(points, offsets, sorter="newell")`: polygon `i` is
+/// `points[offsets[i]:offsets[i+1]]` (float64 (n, 3); int offsets of length m + 1).
+/// Polygons must be convex; non-planar ones are painted as the fan of triangles from their
+/// first corner. `sorter` is an exact one: `"newell"` (splits only what overlaps
+/// cyclically: the fewest items), `"bsp"` (a tree built here, then a walk per view) or
+/// `"bsp-merged"`.
 #[pyclass(module = "facesort")]
 pub struct ExactScene {
     polygons: PolygonMesh,
     geometry: Arc<Geometry>,
-    bsp: Bsp,
+    sorter: Box<dyn FaceSorter + Send + Sync>,
     list: DrawList,
 }
 
@@ -95,7 +98,16 @@ impl ExactScene {
 #[pymethods]
 impl ExactScene {
     #[new]
-    fn new(py: Python<'_>, points: &Bound<'_, PyAny>, offsets: &Bound<'_, PyAny>) -> PyResult<Self> {
+    #[pyo3(signature = (points, offsets, sorter="newell"))]
+    fn new(py: Python<'_>, points: &Bound<'_, PyAny>, offsets: &Bound<'_, PyAny>, sorter: &str) -> PyResult<Self> {
+        let kind = match SorterKind::from_name(sorter) {
+            Some(k @ (SorterKind::Newell | SorterKind::Bsp | SorterKind::BspMerged)) => k,
+            _ => {
+                return Err(PyValueError::new_err(format!(
+                    "sorter must be \"newell\", \"bsp\" or \"bsp-merged\", not {sorter:?}"
+                )));
+            }
+        };
         let positions = input::points(points, "points")?;
         let offsets = input::ints1(offsets, "offsets")?;
         let mut faces = Vec::with_capacity(offsets.len().saturating_sub(1));
@@ -116,8 +128,12 @@ impl ExactScene {
         detached(py, || {
             let polygons = PolygonMesh::new(positions, faces).map_err(|e| value_error("polygons", e))?;
             let geometry = Arc::new(Geometry::new(&polygons).map_err(|e| value_error("polygons", e))?);
-            let bsp = Bsp::new(&geometry);
-            Ok(ExactScene { polygons, geometry, bsp, list: DrawList::new() })
+            let sorter: Box<dyn FaceSorter + Send + Sync> = match kind {
+                SorterKind::Newell => Box::new(face_sort::Newell::new(&geometry)),
+                SorterKind::BspMerged => Box::new(face_sort::Bsp::new(&geometry).with_fragment_merge(true)),
+                _ => Box::new(face_sort::Bsp::new(&geometry)),
+            };
+            Ok(ExactScene { polygons, geometry, sorter, list: DrawList::new() })
         })
     }
 
@@ -140,7 +156,11 @@ impl ExactScene {
     /// - `line`, `line_t` (q, 2), `line_before`: visible line parts as parameter intervals
     ///   of their line, each painted before item `line_before` (k: after every item);
     /// - `point`, `point_before`: the visible points, likewise.
-    #[pyo3(signature = (viewer, width, height, opaque, lines=None, points=None))]
+    /// With `merge=True`, neighbours in the order that are pieces of the same polygon
+    /// sharing an edge and turned the same way on screen (a non-planar polygon's fan
+    /// triangles, a split polygon's fragments) come as one item: the same picture with
+    /// fewer, possibly non-convex, items. Line parts and points are never merged across.
+    #[pyo3(signature = (viewer, width, height, opaque, lines=None, points=None, merge=false))]
     #[allow(clippy::too_many_arguments)]
     fn order<'py>(
         &mut self,
@@ -151,6 +171,7 @@ impl ExactScene {
         opaque: &Bound<'py, PyAny>,
         lines: Option<&Bound<'py, PyAny>>,
         points: Option<&Bound<'py, PyAny>>,
+        merge: bool,
     ) -> PyResult<Bound<'py, PyDict>> {
         if width == 0 || height == 0 || width > 1 << 15 || height > 1 << 15 {
             return Err(PyValueError::new_err(format!("width and height must be in 1..=32768, got {width} x {height}")));
@@ -165,7 +186,12 @@ impl ExactScene {
             Some(p) => input::points(p, "points")?,
             None => Vec::new(),
         };
-        let result = detached(py, || caught(|| Ok(self.order_detached(&view, &opaque, &line_ends, &marks))))??;
+        let result = detached(py, || {
+            caught(|| {
+                let ordered = self.order_detached(&view, &opaque, &line_ends, &marks)?;
+                Ok(if merge { merged(ordered, &view, self.geometry.bounds().centre()) } else { ordered })
+            })
+        })?;
         let dict = PyDict::new(py);
         let k = result.faces.len();
         dict.set_item("faces", result.faces.into_pyarray(py))?;
@@ -200,7 +226,7 @@ struct Ordered {
 
 impl ExactScene {
     fn order_detached(&mut self, view: &View, opaque: &[bool], line_ends: &[DVec3], marks: &[DVec3]) -> PyResult<Ordered> {
-        self.bsp.sort(view, &mut self.list);
+        self.sorter.sort(view, &mut self.list);
         let bounds = self.geometry.bounds();
         let centre = bounds.centre();
         let tolerance = 1e-7 * bounds.diagonal();
@@ -250,4 +276,89 @@ impl ExactScene {
         }
         Ok(out)
     }
+}
+
+/// A polygon's corners with the flag of the edge from each to the next.
+type Outline = Vec<(DVec3, bool)>;
+
+/// `a` and `b` joined along an edge that `a` walks one way and `b` the other (the same two
+/// points bit for bit), or `None` when they share none.
+fn join(a: &[(DVec3, bool)], b: &[(DVec3, bool)]) -> Option<Outline> {
+    let (n, m) = (a.len(), b.len());
+    for i in 0..n {
+        let (p, q) = (a[i].0, a[(i + 1) % n].0);
+        for j in 0..m {
+            if b[j].0 == q && b[(j + 1) % m].0 == p {
+                let mut out = Vec::with_capacity(n + m - 2);
+                out.extend_from_slice(&a[..i]);
+                // p now leads into b: its edge is b's edge from p.
+                out.push((p, b[(j + 1) % m].1));
+                out.extend((2..m).map(|t| b[(j + t) % m]));
+                out.extend_from_slice(&a[i + 1..]);
+                return Some(out);
+            }
+        }
+    }
+    None
+}
+
+/// [`ExactScene::order`]'s `merge`: runs of same-polygon neighbours joined (see there).
+fn merged(raw: Ordered, view: &View, centre: DVec3) -> Ordered {
+    let k = raw.faces.len();
+    let offsets: Vec<usize> = raw.offsets.iter().map(|&o| o as usize).collect();
+    let corner = |j: usize| DVec3::new(raw.corners[3 * j], raw.corners[3 * j + 1], raw.corners[3 * j + 2]);
+    let mut breaks = vec![false; k + 1];
+    for &b in raw.line_before.iter().chain(&raw.point_before) {
+        breaks[b as usize] = true;
+    }
+    let mut scratch = face_sort::ProjectionScratch::default();
+    let (mut projected, mut centred) = (Vec::new(), Vec::new());
+    let mut orientation = |i: usize| -> f64 {
+        centred.clear();
+        centred.extend((offsets[i]..offsets[i + 1]).map(|j| corner(j) - centre));
+        view.project_polygon(&centred, &mut projected, &mut scratch);
+        let area: f64 = (0..projected.len())
+            .map(|t| projected[t].perp_dot(projected[(t + 1) % projected.len()]))
+            .sum();
+        area.signum()
+    };
+    let mut out = Ordered { offsets: vec![0], ..Ordered::default() };
+    let mut group_of = vec![0i64; k + 1];
+    let mut current: Option<(u32, f64, Outline)> = None;
+    let flush = |out: &mut Ordered, group: Option<(u32, f64, Outline)>| {
+        if let Some((face, _, outline)) = group {
+            out.faces.push(face);
+            for (c, edge) in outline {
+                out.corners.extend_from_slice(&c.to_array());
+                out.edges.push(edge);
+            }
+            out.offsets.push((out.corners.len() / 3) as i64);
+        }
+    };
+    for i in 0..k {
+        let item: Outline = (offsets[i]..offsets[i + 1]).map(|j| (corner(j), raw.edges[j])).collect();
+        let turn = orientation(i);
+        if let Some((face, o, outline)) = &mut current
+            && !breaks[i]
+            && *face == raw.faces[i]
+            && *o == turn
+            && turn != 0.0
+            && let Some(joined) = join(outline, &item)
+        {
+            *outline = joined;
+            group_of[i] = out.faces.len() as i64;
+            continue;
+        }
+        flush(&mut out, current.take());
+        group_of[i] = out.faces.len() as i64;
+        current = Some((raw.faces[i], turn, item));
+    }
+    flush(&mut out, current.take());
+    group_of[k] = out.faces.len() as i64;
+    out.line = raw.line;
+    out.line_t = raw.line_t;
+    out.line_before = raw.line_before.iter().map(|&b| group_of[b as usize]).collect();
+    out.point = raw.point;
+    out.point_before = raw.point_before.iter().map(|&b| group_of[b as usize]).collect();
+    out
 }

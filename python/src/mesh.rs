@@ -30,7 +30,7 @@ use crate::input;
 pub struct Mesh {
     pub(crate) model: obj_quads::Mesh,
     pub(crate) polygons: PolygonMesh,
-    geometry: OnceLock<Result<Arc<Geometry>, String>>,
+    geometry: Arc<Geometry>,
     exact_geometry: OnceLock<Result<Arc<Geometry>, String>>,
 }
 
@@ -38,15 +38,14 @@ impl Mesh {
     fn from_model(model: obj_quads::Mesh) -> PyResult<Self> {
         let polygons = PolygonMesh::new(model.positions().to_vec(), model.faces())
             .map_err(|e| value_error("mesh", e))?;
-        Ok(Mesh { model, polygons, geometry: OnceLock::new(), exact_geometry: OnceLock::new() })
+        // Prepared now, so that a mesh that cannot be ordered is refused where it is made.
+        let geometry = Arc::new(Geometry::new(&polygons).map_err(|e| value_error("mesh", e))?);
+        Ok(Mesh { model, polygons, geometry, exact_geometry: OnceLock::new() })
     }
 
-    /// The mesh prepared for ordering (built once).
+    /// The mesh prepared for ordering.
     pub(crate) fn geometry(&self) -> PyResult<Arc<Geometry>> {
-        self.geometry
-            .get_or_init(|| Geometry::new(&self.polygons).map(Arc::new).map_err(|e| e.to_string()))
-            .clone()
-            .map_err(|e| PyValueError::new_err(format!("mesh: {e}")))
+        Ok(self.geometry.clone())
     }
 
     /// The mesh prepared with neighbours sharing corners bit for bit (certified orders and
