@@ -12,7 +12,10 @@ use crate::input::floats2;
 #[derive(Clone, Debug)]
 enum Placement {
     /// CONVENTIONS.md: the model fitted to the image, turned by yaw, pitch, roll.
-    Orbit { ypr: [f64; 3], perspective: Option<f64> },
+    Orbit {
+        ypr: [f64; 3],
+        perspective: Option<f64>,
+    },
     /// An engine's camera (look-at or matrices).
     Engine(face_sort::Camera),
 }
@@ -64,7 +67,9 @@ fn finite3(v: [f64; 3], what: &str) -> PyResult<DVec3> {
 fn matrix(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<DMat4> {
     let rows = floats2(obj, what, 4)?;
     if rows.len() != 16 {
-        return Err(PyValueError::new_err(format!("{what} must have shape (4, 4)")));
+        return Err(PyValueError::new_err(format!(
+            "{what} must have shape (4, 4)"
+        )));
     }
     // numpy holds M row by row (M @ p with column vectors); glam reads columns.
     Ok(DMat4::from_cols_slice(&rows).transpose())
@@ -107,7 +112,10 @@ impl Camera {
         };
         finite3([yaw, pitch, roll], "(yaw, pitch, roll)")?;
         Ok(Camera {
-            placement: Placement::Orbit { ypr: [yaw, pitch, roll], perspective },
+            placement: Placement::Orbit {
+                ypr: [yaw, pitch, roll],
+                perspective,
+            },
             width,
             height,
             cull: cull_mode(cull)?,
@@ -148,7 +156,12 @@ impl Camera {
             lens,
         )
         .map_err(|e| value_error("look_at", e))?;
-        Ok(Camera { placement: Placement::Engine(camera), width, height, cull: cull_mode(cull)? })
+        Ok(Camera {
+            placement: Placement::Engine(camera),
+            width,
+            height,
+            cull: cull_mode(cull)?,
+        })
     }
 
     /// A camera from an engine's 4 × 4 view matrix (model → camera, rigid, the camera
@@ -182,12 +195,20 @@ impl Camera {
             clip,
         )
         .map_err(|e| value_error("from_matrices", e))?;
-        Ok(Camera { placement: Placement::Engine(camera), width, height, cull: cull_mode(cull)? })
+        Ok(Camera {
+            placement: Placement::Engine(camera),
+            width,
+            height,
+            cull: cull_mode(cull)?,
+        })
     }
 
     /// This camera with another cull mode: `"back"`, `"front"` or `"none"`.
     fn with_cull(&self, cull: &str) -> PyResult<Self> {
-        Ok(Camera { cull: cull_mode(cull)?, ..self.clone() })
+        Ok(Camera {
+            cull: cull_mode(cull)?,
+            ..self.clone()
+        })
     }
 
     /// Image width in pixels.
@@ -213,7 +234,10 @@ impl Camera {
             ),
             Placement::Engine(c) => format!("eye {} looking {:?}", c.eye(), c.lens()),
         };
-        format!("Camera({how}, {} x {}, cull {:?})", self.width, self.height, self.cull)
+        format!(
+            "Camera({how}, {} x {}, cull {:?})",
+            self.width, self.height, self.cull
+        )
     }
 }
 
@@ -242,10 +266,15 @@ impl Camera {
     pub fn orbit_for_bake(width: u32, height: u32, perspective: Option<f64>) -> PyResult<Camera> {
         let (width, height) = size(width, height)?;
         if perspective.is_some_and(|d| !(d.is_finite() && d > 0.0)) {
-            return Err(PyValueError::new_err("perspective must be a positive distance in pixels"));
+            return Err(PyValueError::new_err(
+                "perspective must be a positive distance in pixels",
+            ));
         }
         Ok(Camera {
-            placement: Placement::Orbit { ypr: [0.0; 3], perspective },
+            placement: Placement::Orbit {
+                ypr: [0.0; 3],
+                perspective,
+            },
             width,
             height,
             cull: CullMode::Back,

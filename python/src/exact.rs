@@ -39,7 +39,11 @@ pub struct ExactScene {
 
 /// The rotation whose third row (the view's +Z, toward the viewer) is `back`.
 fn facing(back: DVec3) -> DMat3 {
-    let hint = if back.z.abs() < 0.9 { DVec3::Z } else { DVec3::Y };
+    let hint = if back.z.abs() < 0.9 {
+        DVec3::Z
+    } else {
+        DVec3::Y
+    };
     let up = (hint - back * hint.dot(back)).normalize();
     let right = up.cross(back);
     DMat3::from_cols(right, up, back).transpose()
@@ -51,7 +55,9 @@ impl ExactScene {
         let base = View::fit(&bounds, width, height).with_cull(CullMode::None);
         let [x, y, z, w] = viewer;
         if !viewer.iter().all(|v| v.is_finite()) {
-            return Err(PyValueError::new_err(format!("viewer {viewer:?} is not finite")));
+            return Err(PyValueError::new_err(format!(
+                "viewer {viewer:?} is not finite"
+            )));
         }
         if w == 0.0 {
             let d = DVec3::new(x, y, z);
@@ -62,7 +68,7 @@ impl ExactScene {
         }
         let eye = DVec3::new(x, y, z) / w - bounds.centre();
         let distance = eye.length();
-        if !(distance > 0.5 * bounds.diagonal()) {
+        if distance.is_nan() || distance <= 0.5 * bounds.diagonal() {
             return Err(PyValueError::new_err(format!(
                 "the eye is inside the scene's bounding sphere ({distance} from its centre, radius {})",
                 0.5 * bounds.diagonal()
@@ -99,7 +105,12 @@ impl ExactScene {
 impl ExactScene {
     #[new]
     #[pyo3(signature = (points, offsets, sorter="newell"))]
-    fn new(py: Python<'_>, points: &Bound<'_, PyAny>, offsets: &Bound<'_, PyAny>, sorter: &str) -> PyResult<Self> {
+    fn new(
+        py: Python<'_>,
+        points: &Bound<'_, PyAny>,
+        offsets: &Bound<'_, PyAny>,
+        sorter: &str,
+    ) -> PyResult<Self> {
         let kind = match SorterKind::from_name(sorter) {
             Some(k @ (SorterKind::Newell | SorterKind::Bsp | SorterKind::BspMerged)) => k,
             _ => {
@@ -121,19 +132,31 @@ impl ExactScene {
                 )));
             }
             if b - a < 3 {
-                return Err(PyValueError::new_err(format!("polygon {n} has {} corners (at least 3 needed)", b - a)));
+                return Err(PyValueError::new_err(format!(
+                    "polygon {n} has {} corners (at least 3 needed)",
+                    b - a
+                )));
             }
             faces.push((a as u32..b as u32).collect::<Vec<u32>>());
         }
         detached(py, || {
-            let polygons = PolygonMesh::new(positions, faces).map_err(|e| value_error("polygons", e))?;
-            let geometry = Arc::new(Geometry::new(&polygons).map_err(|e| value_error("polygons", e))?);
+            let polygons =
+                PolygonMesh::new(positions, faces).map_err(|e| value_error("polygons", e))?;
+            let geometry =
+                Arc::new(Geometry::new(&polygons).map_err(|e| value_error("polygons", e))?);
             let sorter: Box<dyn FaceSorter + Send + Sync> = match kind {
                 SorterKind::Newell => Box::new(face_sort::Newell::new(&geometry)),
-                SorterKind::BspMerged => Box::new(face_sort::Bsp::new(&geometry).with_fragment_merge(true)),
+                SorterKind::BspMerged => {
+                    Box::new(face_sort::Bsp::new(&geometry).with_fragment_merge(true))
+                }
                 _ => Box::new(face_sort::Bsp::new(&geometry)),
             };
-            Ok(ExactScene { polygons, geometry, sorter, list: DrawList::new() })
+            Ok(ExactScene {
+                polygons,
+                geometry,
+                sorter,
+                list: DrawList::new(),
+            })
         })
     }
 
@@ -174,7 +197,9 @@ impl ExactScene {
         merge: bool,
     ) -> PyResult<Bound<'py, PyDict>> {
         if width == 0 || height == 0 || width > 1 << 15 || height > 1 << 15 {
-            return Err(PyValueError::new_err(format!("width and height must be in 1..=32768, got {width} x {height}")));
+            return Err(PyValueError::new_err(format!(
+                "width and height must be in 1..=32768, got {width} x {height}"
+            )));
         }
         let view = self.view(viewer.into(), width, height)?;
         let opaque = input::flags(opaque, "opaque", self.polygons.face_count())?;
@@ -189,7 +214,11 @@ impl ExactScene {
         let result = detached(py, || {
             caught(|| {
                 let ordered = self.order_detached(&view, &opaque, &line_ends, &marks)?;
-                Ok(if merge { merged(ordered, &view, self.geometry.bounds().centre()) } else { ordered })
+                Ok(if merge {
+                    merged(ordered, &view, self.geometry.bounds().centre())
+                } else {
+                    ordered
+                })
             })
         })?;
         let dict = PyDict::new(py);
@@ -225,12 +254,21 @@ struct Ordered {
 }
 
 impl ExactScene {
-    fn order_detached(&mut self, view: &View, opaque: &[bool], line_ends: &[DVec3], marks: &[DVec3]) -> PyResult<Ordered> {
+    fn order_detached(
+        &mut self,
+        view: &View,
+        opaque: &[bool],
+        line_ends: &[DVec3],
+        marks: &[DVec3],
+    ) -> PyResult<Ordered> {
         self.sorter.sort(view, &mut self.list);
         let bounds = self.geometry.bounds();
         let centre = bounds.centre();
         let tolerance = 1e-7 * bounds.diagonal();
-        let mut out = Ordered { offsets: vec![0], ..Ordered::default() };
+        let mut out = Ordered {
+            offsets: vec![0],
+            ..Ordered::default()
+        };
         let mut fragments: Vec<Vec<u32>> = Vec::with_capacity(self.list.len());
         let mut fragment_points: Vec<DVec3> = Vec::new();
         for &item in self.list.items() {
@@ -240,7 +278,8 @@ impl ExactScene {
             for (k, &c) in corners.iter().enumerate() {
                 out.corners.extend_from_slice(&(c + centre).to_array());
                 let next = corners[(k + 1) % corners.len()];
-                out.edges.push(self.on_boundary(item.face, c, next, tolerance));
+                out.edges
+                    .push(self.on_boundary(item.face, c, next, tolerance));
                 fragment_points.push(c + centre);
             }
             fragments.push((first..fragment_points.len() as u32).collect());
@@ -250,16 +289,28 @@ impl ExactScene {
             return Ok(out);
         }
         let k = fragments.len() as i64;
-        let ordered_mesh = PolygonMesh::new(fragment_points, fragments).map_err(|e| value_error("fragments", e))?;
-        let ordered = Geometry::new_in_frame(&ordered_mesh, bounds).map_err(|e| value_error("fragments", e))?;
+        let ordered_mesh = PolygonMesh::new(fragment_points, fragments)
+            .map_err(|e| value_error("fragments", e))?;
+        let ordered = Geometry::new_in_frame(&ordered_mesh, bounds)
+            .map_err(|e| value_error("fragments", e))?;
         let overlay = Overlay {
             lines: line_ends
                 .chunks_exact(2)
-                .map(|e| Line { ends: [e[0], e[1]], colour: [0; 4], width_px: 1.0, faces: Vec::new() })
+                .map(|e| Line {
+                    ends: [e[0], e[1]],
+                    colour: [0; 4],
+                    width_px: 1.0,
+                    faces: Vec::new(),
+                })
                 .collect(),
             points: marks
                 .iter()
-                .map(|&at| Point { at, colour: [0; 4], radius_px: 1.0, faces: Vec::new() })
+                .map(|&at| Point {
+                    at,
+                    colour: [0; 4],
+                    radius_px: 1.0,
+                    faces: Vec::new(),
+                })
                 .collect(),
         };
         let item_faces = &out.faces;
@@ -306,7 +357,13 @@ fn join(a: &[(DVec3, bool)], b: &[(DVec3, bool)]) -> Option<Outline> {
 fn merged(raw: Ordered, view: &View, centre: DVec3) -> Ordered {
     let k = raw.faces.len();
     let offsets: Vec<usize> = raw.offsets.iter().map(|&o| o as usize).collect();
-    let corner = |j: usize| DVec3::new(raw.corners[3 * j], raw.corners[3 * j + 1], raw.corners[3 * j + 2]);
+    let corner = |j: usize| {
+        DVec3::new(
+            raw.corners[3 * j],
+            raw.corners[3 * j + 1],
+            raw.corners[3 * j + 2],
+        )
+    };
     let mut breaks = vec![false; k + 1];
     for &b in raw.line_before.iter().chain(&raw.point_before) {
         breaks[b as usize] = true;
@@ -322,7 +379,10 @@ fn merged(raw: Ordered, view: &View, centre: DVec3) -> Ordered {
             .sum();
         area.signum()
     };
-    let mut out = Ordered { offsets: vec![0], ..Ordered::default() };
+    let mut out = Ordered {
+        offsets: vec![0],
+        ..Ordered::default()
+    };
     let mut group_of = vec![0i64; k + 1];
     let mut current: Option<(u32, f64, Outline)> = None;
     let flush = |out: &mut Ordered, group: Option<(u32, f64, Outline)>| {
@@ -336,7 +396,9 @@ fn merged(raw: Ordered, view: &View, centre: DVec3) -> Ordered {
         }
     };
     for i in 0..k {
-        let item: Outline = (offsets[i]..offsets[i + 1]).map(|j| (corner(j), raw.edges[j])).collect();
+        let item: Outline = (offsets[i]..offsets[i + 1])
+            .map(|j| (corner(j), raw.edges[j]))
+            .collect();
         let turn = orientation(i);
         if let Some((face, o, outline)) = &mut current
             && !breaks[i]
@@ -357,8 +419,16 @@ fn merged(raw: Ordered, view: &View, centre: DVec3) -> Ordered {
     group_of[k] = out.faces.len() as i64;
     out.line = raw.line;
     out.line_t = raw.line_t;
-    out.line_before = raw.line_before.iter().map(|&b| group_of[b as usize]).collect();
+    out.line_before = raw
+        .line_before
+        .iter()
+        .map(|&b| group_of[b as usize])
+        .collect();
     out.point = raw.point;
-    out.point_before = raw.point_before.iter().map(|&b| group_of[b as usize]).collect();
+    out.point_before = raw
+        .point_before
+        .iter()
+        .map(|&b| group_of[b as usize])
+        .collect();
     out
 }

@@ -42,7 +42,9 @@ fn with_export<T: Send>(
     let view = camera.view(&geometry)?;
     let materials = materials(mesh, &geometry)?;
     detached(py, || {
-        let export = Export::new(&geometry, view).with_materials(&materials).with_hidden(hidden);
+        let export = Export::new(&geometry, view)
+            .with_materials(&materials)
+            .with_hidden(hidden);
         Ok(write(&export))
     })
 }
@@ -52,7 +54,13 @@ fn with_export<T: Send>(
 /// in its ID colour (face id + 1 as 24-bit RGB) on no background, for checking.
 #[pyfunction]
 #[pyo3(signature = (mesh, camera, hidden="remove", ids=false))]
-pub fn svg(py: Python<'_>, mesh: &Mesh, camera: &Camera, hidden: &str, ids: bool) -> PyResult<String> {
+pub fn svg(
+    py: Python<'_>,
+    mesh: &Mesh,
+    camera: &Camera,
+    hidden: &str,
+    ids: bool,
+) -> PyResult<String> {
     let hidden = hidden_parts(hidden)?;
     let (width, height) = camera.size();
     with_export(py, mesh, camera, hidden, |export| {
@@ -72,7 +80,13 @@ pub fn svg(py: Python<'_>, mesh: &Mesh, camera: &Camera, hidden: &str, ids: bool
 /// The one-page PDF (one pixel to one point) of `mesh` seen by `camera`, as `svg`.
 #[pyfunction]
 #[pyo3(signature = (mesh, camera, hidden="remove", ids=false))]
-pub fn pdf<'py>(py: Python<'py>, mesh: &Mesh, camera: &Camera, hidden: &str, ids: bool) -> PyResult<Bound<'py, PyBytes>> {
+pub fn pdf<'py>(
+    py: Python<'py>,
+    mesh: &Mesh,
+    camera: &Camera,
+    hidden: &str,
+    ids: bool,
+) -> PyResult<Bound<'py, PyBytes>> {
     let hidden = hidden_parts(hidden)?;
     let (width, height) = camera.size();
     let bytes = with_export(py, mesh, camera, hidden, |export| {
@@ -98,7 +112,10 @@ pub fn html(py: Python<'_>, mesh: &Mesh, camera: &Camera, ids: bool) -> PyResult
     let (width, height) = camera.size();
     with_export(py, mesh, camera, HiddenParts::Keep, |export| {
         if ids {
-            write_html(export.scene(), &HtmlOptions::DEFAULT.with_size(width, height).with_ids(true))
+            write_html(
+                export.scene(),
+                &HtmlOptions::DEFAULT.with_size(width, height).with_ids(true),
+            )
         } else {
             export.html()
         }
@@ -122,7 +139,9 @@ impl Plot {
             .iter()
             .map(|line| {
                 let flat: Vec<f64> = line.iter().flat_map(|p| p.to_array()).collect();
-                flat.into_pyarray(py).reshape([line.len(), 2]).expect("k × 2 values")
+                flat.into_pyarray(py)
+                    .reshape([line.len(), 2])
+                    .expect("k × 2 values")
             })
             .collect()
     }
@@ -143,7 +162,9 @@ impl Plot {
     #[pyo3(signature = (stroke=1.0))]
     fn svg(&self, stroke: f64) -> PyResult<String> {
         if !(stroke.is_finite() && stroke > 0.0) {
-            return Err(PyValueError::new_err(format!("stroke must be positive, got {stroke}")));
+            return Err(PyValueError::new_err(format!(
+                "stroke must be positive, got {stroke}"
+            )));
         }
         Ok(self.plot.to_svg(stroke))
     }
@@ -153,7 +174,9 @@ impl Plot {
     #[pyo3(signature = (units_per_px=10.0))]
     fn hpgl(&self, units_per_px: f64) -> PyResult<String> {
         if !(units_per_px.is_finite() && units_per_px > 0.0) {
-            return Err(PyValueError::new_err(format!("units_per_px must be positive, got {units_per_px}")));
+            return Err(PyValueError::new_err(format!(
+                "units_per_px must be positive, got {units_per_px}"
+            )));
         }
         Ok(self.plot.to_hpgl(units_per_px))
     }
@@ -166,13 +189,17 @@ impl Plot {
 #[pyo3(signature = (mesh, camera, crease=30.0))]
 pub fn plot_edges(py: Python<'_>, mesh: &Mesh, camera: &Camera, crease: f64) -> PyResult<Plot> {
     if !(crease.is_finite() && (0.0..=180.0).contains(&crease)) {
-        return Err(PyValueError::new_err(format!("crease must be in 0..=180 degrees, got {crease}")));
+        return Err(PyValueError::new_err(format!(
+            "crease must be in 0..=180 degrees, got {crease}"
+        )));
     }
     let geometry = mesh.geometry()?;
     let view = camera.view(&geometry)?;
     let options = sprite_compose::PlotOptions::DEFAULT.with_crease_deg(crease);
     detached(py, || {
-        Ok(Plot { plot: sprite_compose::plot_edges(&mesh.polygons, &geometry, &view, &options) })
+        Ok(Plot {
+            plot: sprite_compose::plot_edges(&mesh.polygons, &geometry, &view, &options),
+        })
     })
 }
 
@@ -190,30 +217,51 @@ impl YawBake {
     /// The cells as (start, end) yaw angles in degrees; one order holds over each.
     #[getter]
     fn cells(&self) -> Vec<(f64, f64)> {
-        self.bake.cells().iter().map(|c| (c.range.lo, c.range.hi)).collect()
+        self.bake
+            .cells()
+            .iter()
+            .map(|c| (c.range.lo, c.range.hi))
+            .collect()
     }
 
     /// A self-contained HTML page that spins the model once every `period` seconds with no
     /// script (CSS animations only). `paused` (seconds) freezes it at that time; `ids=True`
     /// paints ID colours for checking.
     #[pyo3(signature = (period=8.0, paused=None, ids=false))]
-    fn spin_html(&self, py: Python<'_>, period: f64, paused: Option<f64>, ids: bool) -> PyResult<String> {
+    fn spin_html(
+        &self,
+        py: Python<'_>,
+        period: f64,
+        paused: Option<f64>,
+        ids: bool,
+    ) -> PyResult<String> {
         if !(period.is_finite() && period > 0.0) {
-            return Err(PyValueError::new_err(format!("period must be positive, got {period}")));
+            return Err(PyValueError::new_err(format!(
+                "period must be positive, got {period}"
+            )));
         }
         if paused.is_some_and(|t| !t.is_finite()) {
             return Err(PyValueError::new_err("paused must be finite"));
         }
         detached(py, || {
-            let lists = aspect_bake::drawn_lists(&self.bake, &self.spin).map_err(|e| value_error("bake", e))?;
-            let options = SpinOptions::DEFAULT.with_period(period).with_ids(ids).with_paused_at(paused);
+            let lists = aspect_bake::drawn_lists(&self.bake, &self.spin)
+                .map_err(|e| value_error("bake", e))?;
+            let options = SpinOptions::DEFAULT
+                .with_period(period)
+                .with_ids(ids)
+                .with_paused_at(paused);
             let colours = &self.colours;
             Ok(sprite_compose::write_culled_spin_html(
                 &self.bake,
                 &lists,
                 &self.spin,
                 &self.geometry,
-                &|face| colours.get(face as usize).copied().unwrap_or([128, 128, 128, 255]),
+                &|face| {
+                    colours
+                        .get(face as usize)
+                        .copied()
+                        .unwrap_or([128, 128, 128, 255])
+                },
                 &options,
             ))
         })
@@ -226,7 +274,14 @@ impl YawBake {
 /// past the bake's budgets raises `ValueError` saying which.
 #[pyfunction]
 #[pyo3(signature = (mesh, pitch=20.0, width=512, height=512, perspective=None))]
-pub fn bake_yaw(py: Python<'_>, mesh: &Mesh, pitch: f64, width: u32, height: u32, perspective: Option<f64>) -> PyResult<YawBake> {
+pub fn bake_yaw(
+    py: Python<'_>,
+    mesh: &Mesh,
+    pitch: f64,
+    width: u32,
+    height: u32,
+    perspective: Option<f64>,
+) -> PyResult<YawBake> {
     if !pitch.is_finite() {
         return Err(PyValueError::new_err("pitch must be finite"));
     }
@@ -240,8 +295,14 @@ pub fn bake_yaw(py: Python<'_>, mesh: &Mesh, pitch: f64, width: u32, height: u32
     detached(py, || {
         let spin = aspect_bake::Spin::new(template, aspect_bake::Axis::Yaw { pitch, roll: 0.0 })
             .map_err(|e| value_error("bake", e))?;
-        let (bake, _) = aspect_bake::bake_picture(&geometry, &spin, &aspect_bake::PictureOptions::DEFAULT)
-            .map_err(|e| value_error("bake", e))?;
-        Ok(YawBake { bake, spin, geometry: geometry.clone(), colours })
+        let (bake, _) =
+            aspect_bake::bake_picture(&geometry, &spin, &aspect_bake::PictureOptions::DEFAULT)
+                .map_err(|e| value_error("bake", e))?;
+        Ok(YawBake {
+            bake,
+            spin,
+            geometry: geometry.clone(),
+            colours,
+        })
     })
 }

@@ -2,7 +2,9 @@
 //! finiteness, with errors that name the argument, and the face or vertex.
 
 use glam::DVec3;
-use numpy::{PyArrayDescrMethods, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArray, PyUntypedArrayMethods};
+use numpy::{
+    PyArrayDescrMethods, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArray, PyUntypedArrayMethods,
+};
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyList, PySequence, PyTuple};
@@ -12,7 +14,10 @@ fn array<'py>(obj: &Bound<'py, PyAny>, what: &str) -> PyResult<Bound<'py, PyUnty
     obj.cast::<PyUntypedArray>().cloned().map_err(|_| {
         PyTypeError::new_err(format!(
             "{what} must be a numpy array, not {}",
-            obj.get_type().name().map(|n| n.to_string()).unwrap_or_default()
+            obj.get_type()
+                .name()
+                .map(|n| n.to_string())
+                .unwrap_or_default()
         ))
     })
 }
@@ -24,7 +29,12 @@ fn dtype_name(a: &Bound<'_, PyUntypedArray>) -> String {
 
 /// Checks a C-contiguous array of `ndim` dimensions whose last has length `columns` (any,
 /// when `None`).
-fn check_shape(a: &Bound<'_, PyUntypedArray>, what: &str, ndim: usize, columns: Option<usize>) -> PyResult<()> {
+fn check_shape(
+    a: &Bound<'_, PyUntypedArray>,
+    what: &str,
+    ndim: usize,
+    columns: Option<usize>,
+) -> PyResult<()> {
     let shape = a.shape();
     let expected = match (ndim, columns) {
         (1, _) => "(n,)".to_owned(),
@@ -84,7 +94,11 @@ pub fn ints1(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<i64>> {
     integers(obj, &a, what)
 }
 
-fn integers(obj: &Bound<'_, PyAny>, a: &Bound<'_, PyUntypedArray>, what: &str) -> PyResult<Vec<i64>> {
+fn integers(
+    obj: &Bound<'_, PyAny>,
+    a: &Bound<'_, PyUntypedArray>,
+    what: &str,
+) -> PyResult<Vec<i64>> {
     macro_rules! try_dtype {
         ($($t:ty),*) => {$(
             if let Ok(r) = obj.extract::<numpy::PyReadonlyArrayDyn<'_, $t>>() {
@@ -109,7 +123,10 @@ fn integers(obj: &Bound<'_, PyAny>, a: &Bound<'_, PyUntypedArray>, what: &str) -
 pub fn faces(obj: &Bound<'_, PyAny>, vertex_count: usize) -> PyResult<Vec<Vec<u32>>> {
     let rows: Vec<Vec<i64>> = if let Ok(a) = obj.cast::<PyUntypedArray>() {
         if a.ndim() == 1 && a.dtype().kind() == b'O' {
-            return faces(&PyList::new(obj.py(), obj.try_iter()?.collect::<PyResult<Vec<_>>>()?)?.into_any(), vertex_count);
+            return faces(
+                &PyList::new(obj.py(), obj.try_iter()?.collect::<PyResult<Vec<_>>>()?)?.into_any(),
+                vertex_count,
+            );
         }
         check_shape(a, "faces", 2, None)?;
         let k = a.shape()[1];
@@ -122,9 +139,8 @@ pub fn faces(obj: &Bound<'_, PyAny>, vertex_count: usize) -> PyResult<Vec<Vec<u3
             let row: Vec<i64> = if face.cast::<PyUntypedArray>().is_ok() {
                 ints1(&face, &format!("faces[{n}]"))?
             } else if face.cast::<PyList>().is_ok() || face.cast::<PyTuple>().is_ok() {
-                face.extract().map_err(|_| {
-                    PyTypeError::new_err(format!("faces[{n}] must hold integers"))
-                })?
+                face.extract()
+                    .map_err(|_| PyTypeError::new_err(format!("faces[{n}] must hold integers")))?
             } else {
                 return Err(PyTypeError::new_err(format!(
                     "faces[{n}] must be a sequence of vertex indices"
@@ -174,7 +190,10 @@ pub fn colours(obj: &Bound<'_, PyAny>, face_count: usize) -> PyResult<Vec<[u8; 4
     }
     let values: Vec<f64> = if let Ok(r) = obj.extract::<PyReadonlyArray2<'_, u8>>() {
         check_shape(&a, "colours", 2, Some(columns))?;
-        r.as_slice()?.iter().map(|&v| f64::from(v) / 255.0).collect()
+        r.as_slice()?
+            .iter()
+            .map(|&v| f64::from(v) / 255.0)
+            .collect()
     } else {
         floats2(obj, "colours", columns)?
     };
@@ -188,7 +207,12 @@ pub fn colours(obj: &Bound<'_, PyAny>, face_count: usize) -> PyResult<Vec<[u8; 4
                 )));
             }
             let byte = |v: f64| (v * 255.0).round() as u8;
-            Ok([byte(c[0]), byte(c[1]), byte(c[2]), if columns == 4 { byte(c[3]) } else { 255 }])
+            Ok([
+                byte(c[0]),
+                byte(c[1]),
+                byte(c[2]),
+                if columns == 4 { byte(c[3]) } else { 255 },
+            ])
         })
         .collect()
 }
@@ -206,5 +230,8 @@ pub fn flags(obj: &Bound<'_, PyAny>, what: &str, n: usize) -> PyResult<Vec<bool>
     if let Ok(r) = obj.extract::<PyReadonlyArray1<'_, bool>>() {
         return Ok(r.as_slice()?.to_vec());
     }
-    Ok(integers(obj, &a, what)?.into_iter().map(|v| v != 0).collect())
+    Ok(integers(obj, &a, what)?
+        .into_iter()
+        .map(|v| v != 0)
+        .collect())
 }

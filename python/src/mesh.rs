@@ -40,7 +40,12 @@ impl Mesh {
             .map_err(|e| value_error("mesh", e))?;
         // Prepared now, so that a mesh that cannot be ordered is refused where it is made.
         let geometry = Arc::new(Geometry::new(&polygons).map_err(|e| value_error("mesh", e))?);
-        Ok(Mesh { model, polygons, geometry, exact_geometry: OnceLock::new() })
+        Ok(Mesh {
+            model,
+            polygons,
+            geometry,
+            exact_geometry: OnceLock::new(),
+        })
     }
 
     /// The mesh prepared for ordering.
@@ -53,7 +58,9 @@ impl Mesh {
     pub(crate) fn exact_geometry(&self) -> PyResult<Arc<Geometry>> {
         self.exact_geometry
             .get_or_init(|| {
-                Geometry::with_exact_corners(&self.polygons).map(Arc::new).map_err(|e| e.to_string())
+                Geometry::with_exact_corners(&self.polygons)
+                    .map(Arc::new)
+                    .map_err(|e| e.to_string())
             })
             .clone()
             .map_err(|e| PyValueError::new_err(format!("mesh: {e}")))
@@ -85,7 +92,8 @@ impl Mesh {
                 for (face, c) in colours.iter().enumerate() {
                     let slot = *index.entry(*c).or_insert_with(|| {
                         let diffuse = c.map(|v| f32::from(v) / 255.0);
-                        materials.push(Material::new(format!("colour{}", materials.len()), diffuse));
+                        materials
+                            .push(Material::new(format!("colour{}", materials.len()), diffuse));
                         materials.len() - 1
                     });
                     face_materials[face] = Some(slot as u32);
@@ -104,17 +112,24 @@ impl Mesh {
                     let corners: Vec<Vec2> = faces
                         .iter()
                         .flatten()
-                        .map(|&v| Vec2::new(per_vertex[2 * v as usize] as f32, per_vertex[2 * v as usize + 1] as f32))
+                        .map(|&v| {
+                            Vec2::new(
+                                per_vertex[2 * v as usize] as f32,
+                                per_vertex[2 * v as usize + 1] as f32,
+                            )
+                        })
                         .collect();
                     let textured = materials.len();
                     materials.push(Material::new("texture", [1.0; 4]).with_texture(texture));
-                    for m in &mut face_materials {
-                        *m = Some(textured as u32);
-                    }
+                    face_materials.fill(Some(textured as u32));
                     model = model.with_uvs(corners).map_err(|e| value_error("uvs", e))?;
                 }
                 (None, None) => {}
-                _ => return Err(PyValueError::new_err("uvs and texture go together: give both or neither")),
+                _ => {
+                    return Err(PyValueError::new_err(
+                        "uvs and texture go together: give both or neither",
+                    ));
+                }
             }
             if !materials.is_empty() {
                 model = model
@@ -140,7 +155,12 @@ impl Mesh {
     /// The vertex positions, (n, 3) float64 (a copy).
     #[getter]
     fn vertices<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f64>> {
-        let flat: Vec<f64> = self.model.positions().iter().flat_map(|p| p.to_array()).collect();
+        let flat: Vec<f64> = self
+            .model
+            .positions()
+            .iter()
+            .flat_map(|p| p.to_array())
+            .collect();
         let n = flat.len() / 3;
         flat.into_pyarray(py).reshape([n, 3]).expect("n × 3 values")
     }
@@ -175,7 +195,11 @@ impl Mesh {
     }
 
     fn __repr__(&self) -> String {
-        format!("Mesh({} vertices, {} faces)", self.model.positions().len(), self.model.face_count())
+        format!(
+            "Mesh({} vertices, {} faces)",
+            self.model.positions().len(),
+            self.model.face_count()
+        )
     }
 }
 
@@ -193,22 +217,35 @@ impl Order {
     /// The face id of every item, back to front (uint32).
     #[getter]
     fn faces<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<u32>> {
-        self.list.items().iter().map(|i| i.face).collect::<Vec<_>>().into_pyarray(py)
+        self.list
+            .items()
+            .iter()
+            .map(|i| i.face)
+            .collect::<Vec<_>>()
+            .into_pyarray(py)
     }
 
     /// The items as polygons in pixels (x right, y down): `(points, offsets)`, where item
     /// `i` is `points[offsets[i]:offsets[i + 1]]`; points (k, 2) float64, offsets int64.
-    fn polygons<'py>(&self, py: Python<'py>) -> (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray1<i64>>) {
+    fn polygons<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> (Bound<'py, PyArray2<f64>>, Bound<'py, PyArray1<i64>>) {
         let (points, offsets) = projected(&self.view, &self.list);
         let n = points.len();
         let flat: Vec<f64> = points.iter().flat_map(|p| p.to_array()).collect();
-        (flat.into_pyarray(py).reshape([n, 2]).expect("n × 2 values"), offsets.into_pyarray(py))
+        (
+            flat.into_pyarray(py).reshape([n, 2]).expect("n × 2 values"),
+            offsets.into_pyarray(py),
+        )
     }
 
     /// The oracle's count of order violations: pairs of drawn polygons that overlap on
     /// screen with the later one behind (0 for an exact order). Resolution-free.
     fn violations(&self, py: Python<'_>) -> PyResult<usize> {
-        detached(py, || Ok(face_sort::oracle::count_violations(&self.view, &self.list)))
+        detached(py, || {
+            Ok(face_sort::oracle::count_violations(&self.view, &self.list))
+        })
     }
 
     fn __len__(&self) -> usize {
@@ -216,7 +253,11 @@ impl Order {
     }
 
     fn __repr__(&self) -> String {
-        format!("Order({} items, {} fragments cut this frame)", self.list.len(), self.list.frame_fragments())
+        format!(
+            "Order({} items, {} fragments cut this frame)",
+            self.list.len(),
+            self.list.frame_fragments()
+        )
     }
 }
 
@@ -248,12 +289,18 @@ impl Presorted {
     fn new(py: Python<'_>, mesh: &Mesh) -> PyResult<Self> {
         let geometry = mesh.exact_geometry()?;
         detached(py, || {
-            let (sorter, refused) =
-                match face_sort::Presorted::try_new(&geometry, &face_sort::PresortOptions::default()) {
-                    Ok(s) => (s, None),
-                    Err(e) => (face_sort::Presorted::new(&geometry), Some(e.to_string())),
-                };
-            Ok(Presorted { sorter: Mutex::new(sorter), geometry: geometry.clone(), refused })
+            let (sorter, refused) = match face_sort::Presorted::try_new(
+                &geometry,
+                &face_sort::PresortOptions::default(),
+            ) {
+                Ok(s) => (s, None),
+                Err(e) => (face_sort::Presorted::new(&geometry), Some(e.to_string())),
+            };
+            Ok(Presorted {
+                sorter: Mutex::new(sorter),
+                geometry: geometry.clone(),
+                refused,
+            })
         })
     }
 
@@ -262,7 +309,10 @@ impl Presorted {
         let view = camera.view(&self.geometry)?;
         detached(py, || {
             let mut list = DrawList::new();
-            let mut sorter = self.sorter.lock().map_err(|_| PyValueError::new_err("Presorted is poisoned by an earlier error"))?;
+            let mut sorter = self
+                .sorter
+                .lock()
+                .map_err(|_| PyValueError::new_err("Presorted is poisoned by an earlier error"))?;
             sorter.sort(&view, &mut list);
             Ok(Order { view, list })
         })

@@ -384,7 +384,9 @@ pub fn overlay_in_order(
                     .map(|&(_, face)| face)
                     .min();
                 match out.last_mut() {
-                    Some(last) if last.index == index && last.before == before && last.t[1] == w[0] => {
+                    Some(last)
+                        if last.index == index && last.before == before && last.t[1] == w[0] =>
+                    {
                         last.t[1] = w[1];
                     }
                     _ => out.push(OrderedPart {
