@@ -169,3 +169,80 @@ def test_exact3d_draws_issue_scenes_exactly(name, proj_type):
     print(f"{name} {proj_type}: exact3d {exact} wrong of {total_exact} unambiguous px; stock 3d {stock} of {total}")
     assert total_exact > 1000, "the scene must cover the picture"
     assert exact == 0
+
+
+def _translucent_planes(projection, proj_type):
+    """#29060's planes, translucent: each paints alpha 0.5 of its own colour."""
+    s = Scene(projection, proj_type, 25, -60)
+    x = np.linspace(-1, 1, 4)
+    X, Y = np.meshgrid(x, x)
+    surfaces = []
+    for colour, Z in (("#ff2000", 0.6 * X + 0.1 * Y), ("#0040ff", -0.5 * X + 0.3 * Y + 0.1)):
+        c = s.ax.plot_surface(X, Y, Z, shade=False, color=colour, alpha=0.5, antialiased=False, linewidth=0)
+        surfaces.append((c, colour))
+    return s, surfaces
+
+
+@pytest.mark.parametrize("proj_type", ["ortho", "persp"])
+def test_exact3d_composites_translucent_surfaces_in_depth_order(proj_type):
+    """Alpha compositing in exact order: every unambiguous pixel is the background with the
+    far surface, then the near one, composited over it (per truth.py's depths), to within
+    Agg's 8-bit rounding."""
+    from matplotlib import colors as mcolors
+
+    from truth import Truth, _project  # noqa: F401
+
+    errors = {}
+    for projection in ("3d", "exact3d"):
+        s, surfaces = _translucent_planes(projection, proj_type)
+        s.fig.canvas.draw()
+        image = np.asarray(s.fig.canvas.buffer_rgba())[..., :3].astype(float)
+        h, w = image.shape[:2]
+        per_surface, both = [], Primitives()
+        for n, (c, colour) in enumerate(surfaces):
+            prims = Primitives(polygons=[(f, n + 1) for f in _faces3d(c)])
+            both.polygons += prims.polygons
+            per_surface.append((truth_of(s.ax, prims, w, h), np.array(mcolors.to_rgb(colour)) * 255))
+        combined = truth_of(s.ax, both, w, h)
+        mask = combined.unambiguous() & np.isfinite(per_surface[0][0].depth) & np.isfinite(per_surface[1][0].depth)
+        (ta, ca), (tb, cb) = per_surface
+        a_near = ta.depth < tb.depth
+        far = np.where(a_near[..., None], cb, ca)
+        near = np.where(a_near[..., None], ca, cb)
+        expected = (0.5 * far) * 0.5 + 0.5 * near  # over a black background
+        diff = np.abs(image - expected).max(axis=-1)
+        errors[projection] = (int(np.count_nonzero(diff[mask] > 2.0)), int(np.count_nonzero(mask)))
+        plt.close(s.fig)
+    print(f"translucent planes {proj_type}: exact3d {errors['exact3d'][0]} off of {errors['exact3d'][1]} px; stock 3d {errors['3d'][0]}")
+    assert errors["exact3d"][1] > 1000
+    assert errors["exact3d"][0] == 0
+    assert errors["3d"][0] > 0, "the scene must be one stock mplot3d gets wrong"
+
+
+def test_computed_zorder_false_draws_each_zorder_as_a_layer():
+    """With computed_zorder=False the user's zorder wins, as in mplot3d: a line of a higher
+    zorder is drawn over a surface even where the surface hides it; each layer is exact."""
+    s = Scene("exact3d", "ortho", 20, -35)
+    s.ax.computed_zorder = False
+    x = np.linspace(-1, 1, 6)
+    X, Y = np.meshgrid(x, x)
+    s.polygons(s.ax.plot_surface(X, Y, 0 * X, shade=False, zorder=1))
+    t = np.linspace(-1, 1, 9)
+    (i,) = s._ids(1)
+    s.ax.plot(0.3 * t, 0.2 * t, t, color=id_colour(i), lw=2, antialiased=False, zorder=5)
+    s.fig.canvas.draw()
+    image = decode(np.asarray(s.fig.canvas.buffer_rgba()))
+    h, w = image.shape
+    # The truth of a layered picture: the line's pixels over the surface's truth.
+    line_only = Primitives(lines=[(np.array([a, b]), 2 * DPI / 72, i) for a, b in zip(
+        np.column_stack([0.3 * t, 0.2 * t, t])[:-1], np.column_stack([0.3 * t, 0.2 * t, t])[1:])])
+    surface = Primitives(polygons=s.prims.polygons)
+    lt, st_ = truth_of(s.ax, line_only, w, h), truth_of(s.ax, surface, w, h)
+    expected = np.where(np.isfinite(lt.depth), lt.ids, st_.ids)
+    mask = (lt.unambiguous() | (~np.isfinite(lt.depth) & st_.unambiguous())) & ~lt.near_edge
+    wrong = int(np.count_nonzero(image[mask] != expected[mask]))
+    hidden_but_drawn = int(np.count_nonzero(mask & np.isfinite(lt.depth) & np.isfinite(st_.depth) & (st_.depth < lt.depth)))
+    plt.close(s.fig)
+    print(f"computed_zorder=False: {wrong} wrong of {np.count_nonzero(mask)} px; {hidden_but_drawn} line px drawn over the surface that hides them")
+    assert hidden_but_drawn > 20, "the line must pass behind the surface"
+    assert wrong == 0
