@@ -344,6 +344,12 @@ class _ExactLayer(Artist):
         if not gathered.counts and not gathered.lines and not gathered.points:
             return
         collection = axes._exact_collection(gathered, renderer)
+        # Clipped as the artists it draws are (mplot3d's: to the axes' patch).
+        clipped = [a for a in self._sources if a.get_clip_on()]
+        if clipped:
+            collection.set_clip_on(True)
+            collection.set_clip_box(clipped[0].get_clip_box())
+            collection.set_clip_path(clipped[0].get_clip_path())
         collection.draw(renderer)
 
 
@@ -356,6 +362,9 @@ class ExactAxes3D(Axes3D):
     def __init__(self, *args, **kwargs):
         super().__init__(*args, **kwargs)
         self._exact_cache = {}
+        # matplotlib's tick locators and axis margins test `axes.name == "3d"`: an exact
+        # axes ticks as mplot3d's (the projection stays registered as "exact3d").
+        self.name = "3d"
 
     def draw(self, renderer):
         if not self.get_visible():

@@ -25,13 +25,16 @@ use crate::input;
 ///
 /// `ExactScene(points, offsets, sorter="newell")`: polygon `i` is
 /// `points[offsets[i]:offsets[i+1]]` (float64 (n, 3); int offsets of length m + 1).
-/// Polygons must be convex; non-planar ones are painted as the fan of triangles from their
-/// first corner. `sorter` is an exact one: `"newell"` (splits only what overlaps
+/// Non-planar convex polygons are painted as the fan of triangles from their first corner;
+/// non-convex ones are cut into triangles (ear clipping in their plane). `sorter` is an exact one: `"newell"` (splits only what overlaps
 /// cyclically: the fewest items), `"bsp"` (a tree built here, then a walk per view) or
 /// `"bsp-merged"`.
 #[pyclass(module = "facesort")]
 pub struct ExactScene {
+    /// The polygons as given (their outlines say which item edges are real).
     polygons: PolygonMesh,
+    /// The polygon of each face of `geometry` (a non-convex polygon is cut into triangles).
+    source: Vec<u32>,
     geometry: Arc<Geometry>,
     sorter: Box<dyn FaceSorter + Send + Sync>,
     list: DrawList,
@@ -142,8 +145,9 @@ impl ExactScene {
         detached(py, || {
             let polygons =
                 PolygonMesh::new(positions, faces).map_err(|e| value_error("polygons", e))?;
+            let (convex, source) = convex_parts(&polygons)?;
             let geometry =
-                Arc::new(Geometry::new(&polygons).map_err(|e| value_error("polygons", e))?);
+                Arc::new(Geometry::new(&convex).map_err(|e| value_error("polygons", e))?);
             let sorter: Box<dyn FaceSorter + Send + Sync> = match kind {
                 SorterKind::Newell => Box::new(face_sort::Newell::new(&geometry)),
                 SorterKind::BspMerged => {
@@ -153,6 +157,7 @@ impl ExactScene {
             };
             Ok(ExactScene {
                 polygons,
+                source,
                 geometry,
                 sorter,
                 list: DrawList::new(),
@@ -273,13 +278,14 @@ impl ExactScene {
         let mut fragment_points: Vec<DVec3> = Vec::new();
         for &item in self.list.items() {
             let corners = self.list.corners(item);
-            out.faces.push(item.face);
+            let polygon = self.source[item.face as usize];
+            out.faces.push(polygon);
             let first = fragment_points.len() as u32;
             for (k, &c) in corners.iter().enumerate() {
                 out.corners.extend_from_slice(&(c + centre).to_array());
                 let next = corners[(k + 1) % corners.len()];
                 out.edges
-                    .push(self.on_boundary(item.face, c, next, tolerance));
+                    .push(self.on_boundary(polygon, c, next, tolerance));
                 fragment_points.push(c + centre);
             }
             fragments.push((first..fragment_points.len() as u32).collect());
@@ -430,5 +436,92 @@ fn merged(raw: Ordered, view: &View, centre: DVec3) -> Ordered {
         .iter()
         .map(|&b| group_of[b as usize])
         .collect();
+    out
+}
+
+/// The polygons as convex faces: each convex one as it is, each other one cut into
+/// triangles; with the polygon of each face. A polygon is cut when it turns both ways
+/// around its Newell normal, or when `Geometry` finds it non-convex within its tolerance.
+fn convex_parts(polygons: &PolygonMesh) -> PyResult<(PolygonMesh, Vec<u32>)> {
+    let positions = polygons.positions();
+    let mut cut: Vec<bool> = polygons
+        .faces()
+        .map(|f| !turns_one_way(&f.iter().map(|&i| positions[i as usize]).collect::<Vec<_>>()))
+        .collect();
+    // Geometry's own test has a tolerance: what it still calls non-convex is cut too
+    // (each polygon at most once, so this ends).
+    loop {
+        let mut faces: Vec<Vec<u32>> = Vec::new();
+        let mut source = Vec::new();
+        for (n, f) in polygons.faces().enumerate() {
+            if cut[n] {
+                let corners: Vec<DVec3> = f.iter().map(|&i| positions[i as usize]).collect();
+                for [a, b, c] in ear_clip(&corners) {
+                    faces.push(vec![f[a], f[b], f[c]]);
+                    source.push(n as u32);
+                }
+            } else {
+                faces.push(f.to_vec());
+                source.push(n as u32);
+            }
+        }
+        let mesh = PolygonMesh::new(positions.to_vec(), faces).map_err(|e| value_error("polygons", e))?;
+        match Geometry::new(&mesh) {
+            Err(face_sort::MeshError::NonConvex { face }) if !cut[source[face] as usize] => {
+                cut[source[face] as usize] = true;
+            }
+            _ => return Ok((mesh, source)),
+        }
+    }
+}
+
+/// The polygon's Newell normal and its corners in the plane across it (2D).
+fn flattened(corners: &[DVec3]) -> Vec<glam::DVec2> {
+    let normal = face_sort::newell_normal(corners);
+    let axis = normal.abs().max_position();
+    let (u, v) = match axis {
+        0 => (1, 2),
+        1 => (2, 0),
+        _ => (0, 1),
+    };
+    let flip = if normal[axis] < 0.0 { -1.0 } else { 1.0 };
+    corners.iter().map(|c| glam::DVec2::new(c[u], flip * c[v])).collect()
+}
+
+/// Whether every corner turns the same way (collinear corners allowed).
+fn turns_one_way(corners: &[DVec3]) -> bool {
+    let p = flattened(corners);
+    let n = p.len();
+    let turn = |k: usize| (p[(k + 1) % n] - p[k]).perp_dot(p[(k + 2) % n] - p[(k + 1) % n]);
+    (0..n).all(|k| turn(k) >= 0.0) || (0..n).all(|k| turn(k) <= 0.0)
+}
+
+/// Triangles covering a simple polygon (ear clipping in its plane, counter-clockwise around
+/// its Newell normal), as corner positions in the polygon.
+fn ear_clip(corners: &[DVec3]) -> Vec<[usize; 3]> {
+    let p = flattened(corners);
+    let mut left: Vec<usize> = (0..p.len()).collect();
+    let mut out = Vec::with_capacity(p.len().saturating_sub(2));
+    let cross = |a: usize, b: usize, c: usize| (p[b] - p[a]).perp_dot(p[c] - p[b]);
+    let inside = |q: usize, a: usize, b: usize, c: usize| {
+        cross(a, b, q) >= 0.0 && cross(b, c, q) >= 0.0 && cross(c, a, q) >= 0.0
+    };
+    while left.len() > 3 {
+        let n = left.len();
+        let ear = (0..n).find(|&k| {
+            let (a, b, c) = (left[(k + n - 1) % n], left[k], left[(k + 1) % n]);
+            cross(a, b, c) > 0.0
+                && !left
+                    .iter()
+                    .any(|&q| q != a && q != b && q != c && p[q] != p[a] && p[q] != p[b] && p[q] != p[c] && inside(q, a, b, c))
+        });
+        // A polygon with no ear (self-intersecting, or degenerate): its fan, as a last resort.
+        let k = ear.unwrap_or(1 % n);
+        out.push([left[(k + n - 1) % n], left[k], left[(k + 1) % n]]);
+        left.remove(k);
+    }
+    if left.len() == 3 {
+        out.push([left[0], left[1], left[2]]);
+    }
     out
 }
