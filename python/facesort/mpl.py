@@ -37,7 +37,6 @@ Differences from ``"3d"``:
 - a line's visible parts are found along its centre line: where it passes behind the
   outline of a nearer polygon, its stroke reaches half its width over that outline;
 - dashed lines restart their dash pattern at every visible part;
-- non-convex polygons are not supported yet (they raise ``ValueError`` naming the polygon);
 - a polygon's edge (``edgecolor``) is stroked where the polygon is; where a polygon was
   split, the cut is not stroked.
 """

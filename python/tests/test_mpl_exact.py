@@ -148,11 +148,36 @@ def line_through_plane(s: Scene):
     s.scatter(pts)
 
 
+def bars_and_voxels(s: Scene):
+    """bar3d boxes standing in a voxel block, one passing through it."""
+    filled = np.zeros((3, 3, 2), bool)
+    filled[0, :, 0] = filled[:, 0, 0] = filled[1, 1, 1] = True
+    for collection in s.ax.voxels(filled).values():
+        s.polygons(collection)
+    s.polygons(s.ax.bar3d([0.5, 1.5, 2.2], [0.5, 1.2, 0.4], [0.0, 0.5, 0.0], 0.6, 0.6, [2.5, 1.0, 1.5], shade=False))
+
+
+def non_convex_fill(s: Scene):
+    """A planar non-convex polygon (a star, as fill_between(mode="polygon") or contourf
+    make) through a tilted surface (add_collection3d: every matplotlib from 3.8)."""
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+
+    t = np.linspace(0, 2 * np.pi, 40, endpoint=False)
+    r = 0.8 + 0.15 * np.sin(5 * t)
+    star = np.column_stack([r * np.cos(t), r * np.sin(t), 0.2 + 0 * t])
+    s.polygons(s.ax.add_collection3d(Poly3DCollection([star])) or s.ax.collections[-1])
+    x = np.linspace(-1, 1, 8)
+    X, Y = np.meshgrid(x, x)
+    s.polygons(s.ax.plot_surface(X, Y, 0.5 * X - 0.2 * Y + 0.2, shade=False))
+
+
 SCENES = {
     "crossing_planes": (crossing_planes, 25, -60),
     "two_spheres": (two_spheres, 20, -50),
     "interlocking_rings": (interlocking_rings, 30, -70),
     "line_through_plane": (line_through_plane, 20, -35),
+    "bars_and_voxels": (bars_and_voxels, 30, -55),
+    "non_convex_fill": (non_convex_fill, 35, -65),
 }
 
 

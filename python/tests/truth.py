@@ -49,6 +49,20 @@ def decode(rgb: np.ndarray) -> np.ndarray:
     return (rgb[..., 0] << 16) | (rgb[..., 1] << 8) | rgb[..., 2]
 
 
+def _planar(pts, rel=1e-9):
+    """Whether 3D points lie on one plane (to ``rel`` of their extent)."""
+    p = np.asarray(pts, float) - np.mean(pts, axis=0)
+    size = np.abs(p).max()
+    return size == 0 or np.linalg.svd(p, compute_uv=False)[-1] <= rel * size * np.sqrt(len(p))
+
+
+def _convex(x, y):
+    """Whether a 2D polygon turns one way only."""
+    dx, dy = np.roll(x, -1) - x, np.roll(y, -1) - y
+    turn = dx * np.roll(dy, -1) - dy * np.roll(dx, -1)
+    return bool(np.all(turn >= 0) or np.all(turn <= 0))
+
+
 def _project(ax, pts):
     """Data points → (display x, y with y down in image rows, projected z)."""
     M = ax.get_proj()
@@ -138,9 +152,31 @@ class Truth:
 
     def polygon(self, ax, pts, ident):
         x, y, z = _project(ax, pts)
+        if len(x) > 3 and _planar(pts) and not _convex(x, y):
+            self.planar_polygon(x, y, z, ident)
+            return
         for k in range(1, len(x) - 1):
             idx = [0, k, k + 1]
             self.triangle(x[idx], y[idx], z[idx], ident)
+
+    def planar_polygon(self, x, y, z, ident):
+        """A planar, possibly non-convex polygon: pixel centres inside its projected outline
+        (matplotlib.path's point-in-polygon test), depth from its plane (affine over the
+        screen, fitted through its corners)."""
+        from matplotlib.path import Path
+
+        self.zmin, self.zmax = min(self.zmin, z.min()), max(self.zmax, z.max())
+        n = len(x)
+        for k in range(n):
+            self._edge(np.array([x[k], y[k]]), np.array([x[(k + 1) % n], y[(k + 1) % n]]))
+        box = self._box(x, y, 0)
+        if box is None:
+            return
+        where, px, py = box
+        inside = Path(np.column_stack([x, y])).contains_points(np.column_stack([px.ravel(), py.ravel()])).reshape(px.shape)
+        A = np.column_stack([x, y, np.ones(n)])
+        (gx, gy, c), *_ = np.linalg.lstsq(A, z, rcond=None)
+        self._offer(where, inside, gx * px + gy * py + c, (gx, gy), ident)
 
     def line(self, ax, ends, width, ident):
         x, y, z = _project(ax, ends)
