@@ -425,17 +425,10 @@ fn merged(raw: Ordered, view: &View, centre: DVec3) -> Ordered {
     group_of[k] = out.faces.len() as i64;
     out.line = raw.line;
     out.line_t = raw.line_t;
-    out.line_before = raw
-        .line_before
-        .iter()
-        .map(|&b| group_of[b as usize])
-        .collect();
+    let regroup = |before: &[i64]| before.iter().map(|&b| group_of[b as usize]).collect();
+    out.line_before = regroup(&raw.line_before);
     out.point = raw.point;
-    out.point_before = raw
-        .point_before
-        .iter()
-        .map(|&b| group_of[b as usize])
-        .collect();
+    out.point_before = regroup(&raw.point_before);
     out
 }
 
@@ -465,7 +458,8 @@ fn convex_parts(polygons: &PolygonMesh) -> PyResult<(PolygonMesh, Vec<u32>)> {
                 source.push(n as u32);
             }
         }
-        let mesh = PolygonMesh::new(positions.to_vec(), faces).map_err(|e| value_error("polygons", e))?;
+        let mesh =
+            PolygonMesh::new(positions.to_vec(), faces).map_err(|e| value_error("polygons", e))?;
         match Geometry::new(&mesh) {
             Err(face_sort::MeshError::NonConvex { face }) if !cut[source[face] as usize] => {
                 cut[source[face] as usize] = true;
@@ -485,7 +479,10 @@ fn flattened(corners: &[DVec3]) -> Vec<glam::DVec2> {
         _ => (0, 1),
     };
     let flip = if normal[axis] < 0.0 { -1.0 } else { 1.0 };
-    corners.iter().map(|c| glam::DVec2::new(c[u], flip * c[v])).collect()
+    corners
+        .iter()
+        .map(|c| glam::DVec2::new(c[u], flip * c[v]))
+        .collect()
 }
 
 /// Whether every corner turns the same way (collinear corners allowed).
@@ -511,9 +508,15 @@ fn ear_clip(corners: &[DVec3]) -> Vec<[usize; 3]> {
         let ear = (0..n).find(|&k| {
             let (a, b, c) = (left[(k + n - 1) % n], left[k], left[(k + 1) % n]);
             cross(a, b, c) > 0.0
-                && !left
-                    .iter()
-                    .any(|&q| q != a && q != b && q != c && p[q] != p[a] && p[q] != p[b] && p[q] != p[c] && inside(q, a, b, c))
+                && !left.iter().any(|&q| {
+                    q != a
+                        && q != b
+                        && q != c
+                        && p[q] != p[a]
+                        && p[q] != p[b]
+                        && p[q] != p[c]
+                        && inside(q, a, b, c)
+                })
         });
         // A polygon with no ear (self-intersecting, or degenerate): its fan, as a last resort.
         let k = ear.unwrap_or(1 % n);

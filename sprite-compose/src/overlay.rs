@@ -242,17 +242,7 @@ pub fn visible_overlay(geometry: &Geometry, view: &View, overlay: &Overlay) -> D
                 covered.push(interval);
             }
         }
-        let parts = if ends[0] == ends[1] {
-            // A point: covered or not (its intervals are all or nothing).
-            if covered.is_empty() {
-                vec![[0.0, 1.0]]
-            } else {
-                Vec::new()
-            }
-        } else {
-            segment.visible_parts(&mut covered)
-        };
-        parts
+        uncovered(&segment, &ends, &mut covered)
             .into_iter()
             .filter_map(|[t0, t1]| {
                 let at = |t: f64| view.project_view_point(view.to_view(ends[0].lerp(ends[1], t)));
@@ -284,6 +274,18 @@ pub fn visible_overlay(geometry: &Geometry, view: &View, overlay: &Overlay) -> D
         }
     }
     drawn
+}
+
+/// The parts of a line (or point: equal ends) that `covered` leaves visible. A point is
+/// covered or not (its intervals are all or nothing).
+fn uncovered(segment: &Segment, ends: &[DVec3; 2], covered: &mut [[f64; 2]]) -> Vec<[f64; 2]> {
+    if ends[0] != ends[1] {
+        segment.visible_parts(covered)
+    } else if covered.is_empty() {
+        vec![[0.0, 1.0]]
+    } else {
+        Vec::new()
+    }
 }
 
 /// Whether a line (or point) lies on `piece`: the piece's face is one it names and the
@@ -355,16 +357,7 @@ pub fn overlay_in_order(
                 }
             }
         }
-        let visible = if ends[0] == ends[1] {
-            if hiding.is_empty() {
-                vec![[0.0, 1.0]]
-            } else {
-                Vec::new()
-            }
-        } else {
-            segment.visible_parts(&mut hiding)
-        };
-        for [a, b] in visible {
+        for [a, b] in uncovered(&segment, &ends, &mut hiding) {
             let mut cuts: Vec<f64> = vec![a, b];
             if ends[0] != ends[1] {
                 cuts.extend(
