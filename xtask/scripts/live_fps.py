@@ -1,13 +1,14 @@
 #!/usr/bin/env python3
-"""Frames per second of a spinning page (`cargo xtask bake ... --html PAGE`) playing live in
-headless Chromium, beside the same page with no order changes at all.
+"""Frames per second of spinning pages (`cargo xtask bake ... --html PAGE` or `--canvas
+PAGE`) playing live in headless Chromium with software compositing, one after another.
 
-The "still" variant keeps every element and the shared `rotate` animation but drops the
-opacity keyframes that switch copies of pieces between cells, so the two differ only in the
-switches. A script added to each copy counts `requestAnimationFrame` callbacks over
-`--seconds` (after a 1.5 s warm-up) and posts the figures to a local server.
+For a CSS page, a "still" variant is measured beside it: every element and the shared
+`rotate` animation, without the opacity keyframes that switch copies of pieces between cells,
+so the two differ only in the switches. A canvas page (the canvas player) is measured as it
+is. A script added to each page counts `requestAnimationFrame` callbacks over `--seconds`
+(after a 1.5 s warm-up) and posts the figures to a local server.
 
-    python3 xtask/scripts/live_fps.py spin.html [--seconds 8] [--browser chromium]
+    python3 xtask/scripts/live_fps.py PAGE [PAGE ...] [--seconds 8] [--browser chromium] [--no-still]
 """
 
 import argparse
@@ -48,7 +49,8 @@ def still(page: str) -> str:
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("page")
+    parser.add_argument("pages", nargs="+")
+    parser.add_argument("--no-still", action="store_true", help="skip the CSS pages' still variant")
     parser.add_argument("--seconds", type=float, default=8.0)
     parser.add_argument("--browser", default="chromium")
     args = parser.parse_args()
@@ -70,8 +72,17 @@ def main() -> None:
 
     server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), Handler)
     threading.Thread(target=server.serve_forever, daemon=True).start()
-    page = open(args.page, encoding="utf-8").read()
-    for name, html in [("switching", page), ("still", still(page))]:
+    variants = []
+    for path in args.pages:
+        page = open(path, encoding="utf-8").read()
+        stem = os.path.splitext(os.path.basename(path))[0]
+        if "<canvas" in page:
+            variants.append((f"{stem}-canvas", page))
+        else:
+            variants.append((f"{stem}-switching", page))
+            if not args.no_still:
+                variants.append((f"{stem}-still", still(page)))
+    for name, html in variants:
         probe = PROBE.replace("SECONDS", str(args.seconds)).replace("NAME", name)
         html = html.replace("</body>", probe + "</body>") if "</body>" in html else html + probe
         with open(os.path.join(work, name + ".html"), "w", encoding="utf-8") as f:

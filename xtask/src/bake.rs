@@ -96,6 +96,11 @@ pub struct BakeArgs {
     /// Write a self-contained spinning HTML page.
     #[arg(long, value_name = "FILE")]
     html: Option<PathBuf>,
+    /// With `--sorter picture`: also write the canvas player (one `<canvas>` and a script that
+    /// projects, looks up the cell, culls and fills; no per-element layers) to this path.
+    /// `--period`, `--ids` and `--paused` apply; a page address `#S` pauses it at S seconds.
+    #[arg(long, value_name = "PATH")]
+    canvas: Option<PathBuf>,
     /// Seconds per turn of the HTML page.
     #[arg(long, value_name = "S", default_value_t = 8.0)]
     period: f64,
@@ -260,6 +265,9 @@ pub fn run(args: &BakeArgs) -> Result<ExitCode> {
             args.period
         );
     }
+    if args.canvas.is_some() && (args.sorter != SorterChoice::Picture || args.pitch_range.is_some()) {
+        bail!("--canvas plays a one-axis picture bake: use it with --sorter picture and no --pitch-range");
+    }
     let prepared = prepare(args)?;
     if let Some(range) = args.pitch_range {
         return run_two_axes(args, &prepared, range);
@@ -411,24 +419,38 @@ fn run_picture(args: &BakeArgs, prepared: &Prepared) -> Result<ExitCode> {
         std::fs::write(path, &bytes).with_context(|| format!("writing {}", path.display()))?;
         line.push_str(&format!(", binary {} B", bytes.len()));
     }
-    if let Some(path) = &args.html {
+    if args.html.is_some() || args.canvas.is_some() {
         let lists = aspect_bake::drawn_lists(&baked, &prepared.spin)?;
         let colour = crate::raster::solid_colours(&geometry, &prepared.source)?;
         let options = sprite_compose::SpinOptions::DEFAULT
             .with_period(args.period)
             .with_ids(args.ids)
             .with_paused_at(args.paused);
-        let page = sprite_compose::write_culled_spin_html(
-            &baked,
-            &lists,
-            &prepared.spin,
-            &geometry,
-            &colour,
-            &options,
-        );
-        write(path, &page)?;
-        let elements = page.matches("<i class=").count() + page.matches("<b class=").count();
-        line.push_str(&format!(", page {} B ({elements} elements)", page.len()));
+        if let Some(path) = &args.html {
+            let page = sprite_compose::write_culled_spin_html(
+                &baked,
+                &lists,
+                &prepared.spin,
+                &geometry,
+                &colour,
+                &options,
+            );
+            write(path, &page)?;
+            let elements = page.matches("<i class=").count() + page.matches("<b class=").count();
+            line.push_str(&format!(", page {} B ({elements} elements)", page.len()));
+        }
+        if let Some(path) = &args.canvas {
+            let page = sprite_compose::write_canvas_spin_html(
+                &baked,
+                &lists,
+                &prepared.spin,
+                &geometry,
+                &colour,
+                &options,
+            );
+            write(path, &page)?;
+            line.push_str(&format!(", canvas page {} B", page.len()));
+        }
     }
     println!("{line}");
     Ok(code)
