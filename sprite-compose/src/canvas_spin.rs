@@ -33,7 +33,8 @@ fn rows(m: DMat3) -> String {
 /// `<canvas>` that turns the model once per `period_s`.
 ///
 /// The page holds the bake's pieces once (their corners as unique vertices, 32-bit floats
-/// in centred model space; each piece's corner indices, Newell normal and colour) and each
+/// in centred model space; each piece's corner indices, its plane's normal as 64-bit
+/// floats, since the cull test decides by its sign, and its colour) and each
 /// cell's drawn list as piece indices (`lists`, [`aspect_bake::drawn_lists`]): full lists,
 /// not deltas, as 32-bit integers. A frame is the spin's rotation
 /// `R(θ) = C₀ + C₁·cos θ + C₂·sin θ` applied to every vertex, the projection of
@@ -41,10 +42,13 @@ fn rows(m: DMat3) -> String {
 /// holding `θ` found by binary search as [`Bake::cell_at`] does, and the cell's pieces
 /// filled in order where they face the viewer (the view's cull test, in f64).
 ///
-/// In ID mode every piece is filled with its face's ID colour and nothing else is drawn;
-/// otherwise each piece is also stroked half a pixel wide in its own colour, under the
-/// pieces painted after it, so that anti-aliased edges between neighbours do not let the
-/// background through. `paused_at_s` draws one frame at that time; a page address `#S`
+/// In ID mode there is no anti-aliasing: every piece fills the pixels whose centres it
+/// holds with its face's ID colour (a span per row, written into the image), as
+/// CONVENTIONS.md's ID images are sampled. Otherwise the canvas fills paths, consecutive
+/// drawn pieces of one face as one path (no anti-aliased seam where the bake cut a face),
+/// and each path is also stroked
+/// half a pixel wide in its own colour, under the pieces painted after it, so that
+/// anti-aliased edges between neighbours do not let the background through. `paused_at_s` draws one frame at that time; a page address `#S`
 /// (seconds) does too.
 #[must_use]
 pub fn write_canvas_spin_html(
@@ -62,7 +66,7 @@ pub fn write_canvas_spin_html(
     let mut index: HashMap<[u64; 3], u32> = HashMap::new();
     let mut vertices: Vec<f32> = Vec::new();
     let (mut corners, mut offsets) = (Vec::new(), vec![0u32]);
-    let (mut normals, mut colours) = (Vec::new(), Vec::new());
+    let (mut normals, mut colours, mut faces) = (Vec::new(), Vec::new(), Vec::new());
     for i in 0..pieces.len() {
         for c in pieces.corners(i) {
             let c = *c + centre_shift;
@@ -74,8 +78,9 @@ pub fn write_canvas_spin_html(
             corners.push(k);
         }
         offsets.push(corners.len() as u32);
-        normals.extend(pieces.plane(i).normal.to_array().map(|v| v as f32));
+        normals.extend(pieces.plane(i).normal().to_array());
         let face = pieces.face(i);
+        faces.push(face);
         colours.extend(if options.ids {
             crate::id_colour(face)
         } else {
@@ -104,7 +109,9 @@ pub fn write_canvas_spin_html(
     // +1: faces whose test value is positive are drawn; −1: negative; 0: every face.
     let sign = match (view.cull(), view.front_face()) {
         (CullMode::None, _) => 0,
-        (CullMode::Back, FrontFace::CounterClockwise) | (CullMode::Front, FrontFace::Clockwise) => 1,
+        (CullMode::Back, FrontFace::CounterClockwise) | (CullMode::Front, FrontFace::Clockwise) => {
+            1
+        }
         _ => -1,
     };
     let (w, h) = (view.width(), view.height());
@@ -121,11 +128,12 @@ pub fn write_canvas_spin_html(
     );
     let _ = writeln!(
         page,
-        "const D={{v:\"{}\",n:\"{}\",ix:\"{}\",off:\"{}\",col:\"{}\",ord:\"{}\",co:\"{}\",lo:[{}],\
+        "const D={{f:\"{}\",v:\"{}\",n:\"{}\",ix:\"{}\",off:\"{}\",col:\"{}\",ord:\"{}\",co:\"{}\",lo:[{}],\
          c0:{},c1:{},c2:{},s:{},d:{},px:{},py:{},t:[{},{},{}],sign:{sign},w:{w},h:{h},\
-         period:{},start:{},ids:{},bg:\"{background}\",paused:{}}};",
+         period:{},start:{},ids:{},bg:\"{background}\",bgrgb:[{},{},{}],paused:{}}};",
+        u32s(&faces),
         base64_of(&vertices, |x: f32| x.to_le_bytes().to_vec()),
-        base64_of(&normals, |x: f32| x.to_le_bytes().to_vec()),
+        base64_of(&normals, |x: f64| x.to_le_bytes().to_vec()),
         u32s(&corners),
         u32s(&offsets),
         base64_of(&colours, |x: u8| vec![x]),
@@ -145,6 +153,9 @@ pub fn write_canvas_spin_html(
         num(options.period_s),
         num(bake.domain().lo),
         options.ids,
+        options.background[0],
+        options.background[1],
+        options.background[2],
         options.paused_at_s.map_or("null".to_owned(), num),
     );
     page.push_str(PLAYER);
@@ -154,13 +165,13 @@ pub fn write_canvas_spin_html(
 
 /// The player: decode, then per frame project, look up, cull and fill.
 const PLAYER: &str = r#"function arr(s,T){const b=atob(s),u=new Uint8Array(b.length);for(let i=0;i<b.length;i++)u[i]=b.charCodeAt(i);return new T(u.buffer);}
-const V=arr(D.v,Float32Array),N=arr(D.n,Float32Array),IX=arr(D.ix,Uint32Array),OFF=arr(D.off,Uint32Array),
-COL=arr(D.col,Uint8Array),ORD=arr(D.ord,Uint32Array),CO=arr(D.co,Uint32Array);
+const V=arr(D.v,Float32Array),N=arr(D.n,Float64Array),IX=arr(D.ix,Uint32Array),OFF=arr(D.off,Uint32Array),
+COL=arr(D.col,Uint8Array),ORD=arr(D.ord,Uint32Array),CO=arr(D.co,Uint32Array),FACE=arr(D.f,Uint32Array);
 const n=V.length/3,X=new Float64Array(n),Y=new Float64Array(n),VX=new Float64Array(n),VY=new Float64Array(n),VZ=new Float64Array(n);
 const FILL=[];for(let p=0;p<OFF.length-1;p++)FILL.push("rgba("+COL[4*p]+","+COL[4*p+1]+","+COL[4*p+2]+","+(COL[4*p+3]/255)+")");
 const cv=document.getElementById("c"),dpr=window.devicePixelRatio||1;cv.width=D.w*dpr;cv.height=D.h*dpr;
 const ctx=cv.getContext("2d",{alpha:false});ctx.scale(dpr,dpr);ctx.imageSmoothingEnabled=false;ctx.lineJoin="round";ctx.lineWidth=1;
-const R=new Float64Array(9);
+const R=new Float64Array(9),COL_BG=D.bgrgb;
 function cellAt(deg){const lo=D.lo[0],a=(deg>=lo&&deg<lo+360)?deg:lo+(((deg-lo)%360)+360)%360;let a0=0,a1=D.lo.length;while(a0<a1){const m=(a0+a1)>>1;if(D.lo[m]<=a)a0=m+1;else a1=m;}return Math.max(a0-1,0);}
 function frame(deg){
 const th=deg*Math.PI/180,c=Math.cos(th),s=Math.sin(th);
@@ -169,16 +180,30 @@ const sc=D.s,d=D.d;
 for(let i=0;i<n;i++){const x=V[3*i],y=V[3*i+1],z=V[3*i+2];
 const vx=R[0]*x+R[1]*y+R[2]*z+D.t[0],vy=R[3]*x+R[4]*y+R[5]*z+D.t[1],vz=R[6]*x+R[7]*y+R[8]*z+D.t[2];
 VX[i]=vx;VY[i]=vy;VZ[i]=vz;const w=d>0?1-sc*vz/d:1;X[i]=D.px+sc*vx/w;Y[i]=D.py-sc*vy/w;}
-ctx.fillStyle=D.bg;ctx.fillRect(0,0,D.w,D.h);
-const cell=cellAt(deg),ez=d>0?d/sc:0;
+if(D.ids)PIX.fill((255<<24)|(COL_BG[2]<<16)|(COL_BG[1]<<8)|COL_BG[0]);else{ctx.fillStyle=D.bg;ctx.fillRect(0,0,D.w,D.h);}
+const cell=cellAt(deg),ez=d>0?d/sc:0;let open=-1;
+const flush=()=>{if(open<0)return;ctx.fillStyle=FILL[open];ctx.fill();if(!D.ids){ctx.strokeStyle=FILL[open];ctx.stroke();}open=-1;};
 for(let k=CO[cell];k<CO[cell+1];k++){const p=ORD[k],a=OFF[p],b=OFF[p+1];
 if(D.sign!==0){const nx=N[3*p],ny=N[3*p+1],nz=N[3*p+2];
 const rx=R[0]*nx+R[1]*ny+R[2]*nz,ry=R[3]*nx+R[4]*ny+R[5]*nz,rz=R[6]*nx+R[7]*ny+R[8]*nz;
 const v0=IX[a],f=d>0?(rx*(-VX[v0])+ry*(-VY[v0])+rz*(ez-VZ[v0])):rz;
 if(!(D.sign*f>0))continue;}
-ctx.beginPath();ctx.moveTo(X[IX[a]],Y[IX[a]]);for(let j=a+1;j<b;j++)ctx.lineTo(X[IX[j]],Y[IX[j]]);ctx.closePath();
-ctx.fillStyle=FILL[p];ctx.fill();if(!D.ids){ctx.strokeStyle=FILL[p];ctx.stroke();}}
+if(D.ids){span(a,b,p);continue;}
+if(open<0||FACE[p]!==FACE[open]||FILL[p]!==FILL[open]){flush();ctx.beginPath();open=p;}
+ctx.moveTo(X[IX[a]],Y[IX[a]]);for(let j=a+1;j<b;j++)ctx.lineTo(X[IX[j]],Y[IX[j]]);ctx.closePath();}
+flush();
+if(D.ids)ctx.putImageData(IMG,0,0);
 }
+// ID mode: no anti-aliasing. Each convex piece fills the pixels whose centres it holds, row
+// by row (its span on the row through the centres), straight into the image.
+const IMG=D.ids?ctx.createImageData(D.w,D.h):null,PIX=D.ids?new Uint32Array(IMG.data.buffer):null;
+function span(a,b,p){const m=b-a;let y0=Infinity,y1=-Infinity;
+for(let j=a;j<b;j++){const y=Y[IX[j]];if(y<y0)y0=y;if(y>y1)y1=y;}
+const c=(255<<24)|(COL[4*p+2]<<16)|(COL[4*p+1]<<8)|COL[4*p];
+for(let r=Math.max(0,Math.ceil(y0-0.5));r<=Math.min(D.h-1,Math.floor(y1-0.5));r++){const yc=r+0.5;let xl=Infinity,xr=-Infinity;
+for(let j=0;j<m;j++){const i0=IX[a+j],i1=IX[a+(j+1)%m],ya=Y[i0],yb=Y[i1];
+if((ya<=yc&&yb>yc)||(yb<=yc&&ya>yc)){const x=X[i0]+(yc-ya)*(X[i1]-X[i0])/(yb-ya);if(x<xl)xl=x;if(x>xr)xr=x;}}
+for(let col=Math.max(0,Math.ceil(xl-0.5));col<=Math.min(D.w-1,Math.ceil(xr-0.5)-1);col++)PIX[r*D.w+col]=c;}}
 function degreesAt(t){return D.start+360*(((t%D.period)+D.period)%D.period)/D.period;}
 const hash=parseFloat(location.hash.slice(1));
 if(D.paused!==null||!isNaN(hash)){frame(degreesAt(isNaN(hash)?D.paused:hash));}

@@ -265,8 +265,11 @@ pub fn run(args: &BakeArgs) -> Result<ExitCode> {
             args.period
         );
     }
-    if args.canvas.is_some() && (args.sorter != SorterChoice::Picture || args.pitch_range.is_some()) {
-        bail!("--canvas plays a one-axis picture bake: use it with --sorter picture and no --pitch-range");
+    if args.canvas.is_some() && (args.sorter != SorterChoice::Picture || args.pitch_range.is_some())
+    {
+        bail!(
+            "--canvas plays a one-axis picture bake: use it with --sorter picture and no --pitch-range"
+        );
     }
     let prepared = prepare(args)?;
     if let Some(range) = args.pitch_range {
