@@ -36,7 +36,7 @@ fn rows(m: DMat3) -> String {
 /// in centred model space; each piece's corner indices, its plane's normal as 64-bit
 /// floats, since the cull test decides by its sign, and its colour) and each
 /// cell's drawn list as piece indices (`lists`, [`aspect_bake::drawn_lists`]): full lists,
-/// not deltas, as 32-bit integers. A frame is the spin's rotation
+/// not deltas; indices are 16-bit integers where they all fit, else 32-bit. A frame is the spin's rotation
 /// `R(θ) = C₀ + C₁·cos θ + C₂·sin θ` applied to every vertex, the projection of
 /// CONVENTIONS.md (the spin's view: scale, principal point, perspective distance), the cell
 /// holding `θ` found by binary search as [`Bake::cell_at`] does, and the cell's pieces
@@ -118,7 +118,16 @@ pub fn write_canvas_spin_html(
     let principal = view.principal_point();
     let offset = view.view_offset();
     let background = crate::svg::hex(options.background);
+    // Index arrays as 16-bit integers where every index fits (the page says which).
+    let wide = vertices.len() / 3 > usize::from(u16::MAX) || pieces.len() > usize::from(u16::MAX);
     let u32s = |v: &[u32]| base64_of(v, |x| x.to_le_bytes().to_vec());
+    let indices = |v: &[u32]| {
+        if wide {
+            u32s(v)
+        } else {
+            base64_of(v, |x| (x as u16).to_le_bytes().to_vec())
+        }
+    };
     let mut page = String::new();
     let _ = write!(
         page,
@@ -130,14 +139,14 @@ pub fn write_canvas_spin_html(
         page,
         "const D={{f:\"{}\",v:\"{}\",n:\"{}\",ix:\"{}\",off:\"{}\",col:\"{}\",ord:\"{}\",co:\"{}\",lo:[{}],\
          c0:{},c1:{},c2:{},s:{},d:{},px:{},py:{},t:[{},{},{}],sign:{sign},w:{w},h:{h},\
-         period:{},start:{},ids:{},bg:\"{background}\",bgrgb:[{},{},{}],paused:{}}};",
+         period:{},start:{},ids:{},wide:{wide},bg:\"{background}\",bgrgb:[{},{},{}],paused:{}}};",
         u32s(&faces),
         base64_of(&vertices, |x: f32| x.to_le_bytes().to_vec()),
         base64_of(&normals, |x: f64| x.to_le_bytes().to_vec()),
-        u32s(&corners),
+        indices(&corners),
         u32s(&offsets),
         base64_of(&colours, |x: u8| vec![x]),
-        u32s(&order),
+        indices(&order),
         u32s(&cell_offsets),
         lows.join(","),
         rows(c0),
@@ -165,8 +174,8 @@ pub fn write_canvas_spin_html(
 
 /// The player: decode, then per frame project, look up, cull and fill.
 const PLAYER: &str = r#"function arr(s,T){const b=atob(s),u=new Uint8Array(b.length);for(let i=0;i<b.length;i++)u[i]=b.charCodeAt(i);return new T(u.buffer);}
-const V=arr(D.v,Float32Array),N=arr(D.n,Float64Array),IX=arr(D.ix,Uint32Array),OFF=arr(D.off,Uint32Array),
-COL=arr(D.col,Uint8Array),ORD=arr(D.ord,Uint32Array),CO=arr(D.co,Uint32Array),FACE=arr(D.f,Uint32Array);
+const V=arr(D.v,Float32Array),N=arr(D.n,Float64Array),IX=arr(D.ix,D.wide?Uint32Array:Uint16Array),OFF=arr(D.off,Uint32Array),
+COL=arr(D.col,Uint8Array),ORD=arr(D.ord,D.wide?Uint32Array:Uint16Array),CO=arr(D.co,Uint32Array),FACE=arr(D.f,Uint32Array);
 const n=V.length/3,X=new Float64Array(n),Y=new Float64Array(n),VX=new Float64Array(n),VY=new Float64Array(n),VZ=new Float64Array(n);
 const FILL=[];for(let p=0;p<OFF.length-1;p++)FILL.push("rgba("+COL[4*p]+","+COL[4*p+1]+","+COL[4*p+2]+","+(COL[4*p+3]/255)+")");
 const cv=document.getElementById("c"),dpr=window.devicePixelRatio||1;cv.width=D.w*dpr;cv.height=D.h*dpr;

@@ -77,7 +77,7 @@ def main() -> None:
         page = open(path, encoding="utf-8").read()
         stem = os.path.splitext(os.path.basename(path))[0]
         if "<canvas" in page:
-            variants.append((f"{stem}-canvas", page))
+            variants.append((stem, page))
         else:
             variants.append((f"{stem}-switching", page))
             if not args.no_still:
