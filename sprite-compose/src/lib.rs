@@ -80,7 +80,7 @@
 
 mod bake;
 mod bake_player;
-mod canvas_spin;
+mod canvas;
 mod compositor;
 mod export;
 mod hidden;
@@ -112,7 +112,7 @@ pub use bake::{
     convex_facing_predicates,
 };
 pub use bake_player::BakePlayer;
-pub use canvas_spin::write_canvas_spin_html;
+pub use canvas::{write_canvas_spin_html, write_canvas_turn_html};
 pub use compositor::{Brush, Compositor, OpCounts, SpriteId, TextureId};
 pub use export::Export;
 pub use hidden::{HiddenParts, Visibility, visible_parts};

@@ -166,6 +166,7 @@ pub fn write_turn_html(
     }
     page.push_str("\n</div><script>\n");
     write_data(&mut page, &certified, &elements_of, eye, &options.start);
+    page.push_str(LOOKUP);
     page.push_str(SCRIPT);
     page.push_str("</script></body></html>\n");
     Ok(TurnPage {
@@ -205,7 +206,7 @@ fn base64_f64(values: impl IntoIterator<Item = f64>) -> String {
 ///   `OC[o]`: `[cycle, z]` pairs, the cycle's polygons taking `z-index` `z, z + 1, …`
 ///   between the polygons its step sits between;
 /// - `C[c]`: a cycle's planes (`[nx, ny, nz, offset]` each) and, per key, its polygons.
-fn write_data(
+pub(crate) fn write_data(
     page: &mut String,
     certified: &CertifiedOrders,
     elements_of: &[Vec<(String, char)>],
@@ -293,34 +294,44 @@ fn write_data(
     page.push_str("];\n");
 }
 
-/// The page's script: tables in, `z-index` and visibility out.
-const SCRIPT: &str = r#"const bytes=s=>Uint8Array.from(atob(s),c=>c.charCodeAt(0)).buffer;
+/// The lookup both turning pages share (this one and the canvas player): the tables
+/// decoded; `viewer(yaw, pitch)`, the quaternion of `Ry(yaw)·Rx(pitch)`; `regionOf(u)`, the
+/// order of the region the direction toward the viewer `u` is deepest inside (on a shared
+/// edge either is exact); `keyOf(c, u)`, a cycle's key by the viewer's side of its planes.
+pub(crate) const LOOKUP: &str = r#"const bytes=s=>Uint8Array.from(atob(s),c=>c.charCodeAt(0)).buffer;
 const ids=s=>W?new Uint32Array(bytes(s)):new Uint16Array(bytes(s));
-const s=document.getElementById('s'),el=s.children,first=[0];
-for(const k of N)first.push(first[first.length-1]+k);
 const regions=new Float64Array(bytes(R)),orders=O.map(ids);
-const cores=C.map(([p,t])=>{const planes=new Float64Array(bytes(p)),all=ids(t),n=all.length>>(planes.length/4);
+const cycles=C.map(([p,t])=>{const planes=new Float64Array(bytes(p)),all=ids(t),n=all.length>>(planes.length/4);
  return [planes,n,all];});
-let shown=-1,keys=[];
-function put(p,z){for(let e=first[p];e<first[p+1];e++){el[e].style.zIndex=z;el[e].style.visibility=z?'visible':'hidden';}}
-function cycle(c,key,z){const [,n,all]=cores[c];for(let i=0;i<n;i++)put(all[key*n+i],z&&z+i);}
-function turn(yaw,pitch){
+function viewer(yaw,pitch){
  const a=yaw*Math.PI/360,b=pitch*Math.PI/360,cy=Math.cos(a),sy=Math.sin(a),cp=Math.cos(b),sp=Math.sin(b);
- const x=cy*sp,y=sy*cp,z=-sy*sp,w=cy*cp,l=Math.hypot(x,y,z);
- s.style.setProperty('--r',l>1e-12?`${-x/l} ${y/l} ${-z/l} ${2*Math.atan2(l,w)}rad`:'0 0 1 0deg');
- // Toward the viewer in the model: the third row of the rotation.
- const u=[2*(x*z-w*y),2*(y*z+w*x),1-2*(x*x+y*y)];
- // The region holding u: the one it is deepest inside (on a shared edge, either is exact).
- let o=0,best=-Infinity;
+ return [cy*sp,sy*cp,-sy*sp,cy*cp];}
+function regionOf(u){let o=0,best=-Infinity;
  for(let r=0;r<RO.length;r++){const k=9*r;let d=Infinity;
   for(let j=0;j<9;j+=3)d=Math.min(d,regions[k+j]*u[0]+regions[k+j+1]*u[1]+regions[k+j+2]*u[2]);
   if(d>best){best=d;o=RO[r];}}
+ return o;}
+function keyOf(c,u){const planes=cycles[c][0],t=E>0?E:1,m=E>0?1:0;let key=0;
+ for(let i=0;4*i<planes.length;i++)if(t*(planes[4*i]*u[0]+planes[4*i+1]*u[1]+planes[4*i+2]*u[2])-m*planes[4*i+3]>=0)key|=1<<i;
+ return key;}
+"#;
+
+/// The page's script after [`LOOKUP`]: `z-index` and visibility out.
+const SCRIPT: &str = r#"const s=document.getElementById('s'),el=s.children,first=[0];
+for(const k of N)first.push(first[first.length-1]+k);
+let shown=-1,keys=[];
+function put(p,z){for(let e=first[p];e<first[p+1];e++){el[e].style.zIndex=z;el[e].style.visibility=z?'visible':'hidden';}}
+function cycle(c,key,z){const [,n,all]=cycles[c];for(let i=0;i<n;i++)put(all[key*n+i],z&&z+i);}
+function turn(yaw,pitch){
+ const [x,y,z,w]=viewer(yaw,pitch),l=Math.hypot(x,y,z);
+ s.style.setProperty('--r',l>1e-12?`${-x/l} ${y/l} ${-z/l} ${2*Math.atan2(l,w)}rad`:'0 0 1 0deg');
+ // Toward the viewer in the model: the third row of the rotation.
+ const u=[2*(x*z-w*y),2*(y*z+w*x),1-2*(x*x+y*y)];
+ const o=regionOf(u);
  if(o!==shown){
   if(shown>=0){for(const p of orders[shown])put(p,0);OC[shown].forEach(([c],j)=>cycle(c,keys[j],0));}
   orders[o].forEach((p,i)=>put(p,(i+1)*K));shown=o;keys=OC[o].map(()=>-1);}
- const t=E>0?E:1,m=E>0?1:0;
- OC[o].forEach(([c,z],j)=>{const planes=cores[c][0];let key=0;
-  for(let i=0;4*i<planes.length;i++)if(t*(planes[4*i]*u[0]+planes[4*i+1]*u[1]+planes[4*i+2]*u[2])-m*planes[4*i+3]>=0)key|=1<<i;
+ OC[o].forEach(([c,z],j)=>{const key=keyOf(c,u);
   if(key!==keys[j]){cycle(c,key,z);keys[j]=key;}});
 }
 const h=location.hash.slice(1).split(',').map(Number);

@@ -27,6 +27,12 @@ PROBE = """<script>
 (function(){
  let t0 = null, last = null, gaps = [];
  function tick(t){
+   if (SWEEP) {
+     // A pointer sweeping the page: across once every 4 s, up and down once every 3 s.
+     const x = innerWidth * (0.5 + 0.45 * Math.sin(t / 4000 * 2 * Math.PI));
+     const y = innerHeight * (0.5 + 0.45 * Math.sin(t / 3000 * 2 * Math.PI));
+     dispatchEvent(new PointerEvent('pointermove', {clientX: x, clientY: y, bubbles: true}));
+   }
    if (t0 === null) { t0 = t; last = t; }
    else { gaps.push(t - last); last = t; }
    if (t - t0 < SECONDS * 1000) { requestAnimationFrame(tick); return; }
@@ -51,6 +57,7 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("pages", nargs="+")
     parser.add_argument("--no-still", action="store_true", help="skip the CSS pages' still variant")
+    parser.add_argument("--sweep", action="store_true", help="move a pointer across the page every frame")
     parser.add_argument("--seconds", type=float, default=8.0)
     parser.add_argument("--browser", default="chromium")
     args = parser.parse_args()
@@ -76,14 +83,15 @@ def main() -> None:
     for path in args.pages:
         page = open(path, encoding="utf-8").read()
         stem = os.path.splitext(os.path.basename(path))[0]
-        if "<canvas" in page:
+        if "<canvas" in page or args.sweep:
             variants.append((stem, page))
         else:
             variants.append((f"{stem}-switching", page))
             if not args.no_still:
                 variants.append((f"{stem}-still", still(page)))
     for name, html in variants:
-        probe = PROBE.replace("SECONDS", str(args.seconds)).replace("NAME", name)
+        probe = (PROBE.replace("SECONDS", str(args.seconds)).replace("NAME", name)
+                 .replace("SWEEP", "true" if args.sweep else "false"))
         html = html.replace("</body>", probe + "</body>") if "</body>" in html else html + probe
         with open(os.path.join(work, name + ".html"), "w", encoding="utf-8") as f:
             f.write(html)

@@ -16,9 +16,13 @@ use crate::render::{self, PolicyChoice};
 pub struct TurnArgs {
     /// Model (.obj, .gltf, .glb).
     model: PathBuf,
-    /// The page to write.
+    /// The CSS page to write (one element per piece, z-index switched by the script).
+    #[arg(long, value_name = "FILE", required_unless_present = "canvas")]
+    html: Option<PathBuf>,
+    /// The canvas player to write (one `<canvas>`; the script projects, looks up the region,
+    /// culls and fills).
     #[arg(long, value_name = "FILE")]
-    html: PathBuf,
+    canvas: Option<PathBuf>,
     /// Yaw in degrees shown until the pointer moves (the page's address may override it with
     /// `#yaw,pitch`).
     #[arg(
@@ -72,27 +76,44 @@ pub fn run(args: &TurnArgs) -> Result<ExitCode> {
     let options = sprite_compose::TurnPageOptions::DEFAULT
         .with_ids(args.ids)
         .with_start(args.yaw, args.pitch);
-    let page = sprite_compose::write_turn_html(&sorter, &geometry, &view, &colour, &options)
-        .with_context(|| format!("{}: the page", args.model.display()))?;
-    if let Some(parent) = args.html.parent().filter(|p| !p.as_os_str().is_empty()) {
-        std::fs::create_dir_all(parent)
-            .with_context(|| format!("creating {}", parent.display()))?;
-    }
-    std::fs::write(&args.html, &page.html)
-        .with_context(|| format!("writing {}", args.html.display()))?;
-    println!(
-        "{}: presorted in {build_ms:.0} ms; page {} B: {} regions, {} orders, {} cycles, {} elements{}",
-        args.model.display(),
-        page.html.len(),
-        page.regions,
-        page.orders,
-        page.cycles,
-        page.elements,
-        if sorter.one_order_for_every_view() {
-            "; one order serves every view"
-        } else {
-            ""
+    type Writer = fn(
+        &face_sort::Presorted,
+        &face_sort::Geometry,
+        &View,
+        &dyn Fn(u32) -> [u8; 4],
+        &sprite_compose::TurnPageOptions,
+    ) -> Result<sprite_compose::TurnPage, face_sort::CertifiedOrdersError>;
+    let pages: [(&Option<PathBuf>, Writer, &str); 2] = [
+        (&args.html, sprite_compose::write_turn_html, "page"),
+        (
+            &args.canvas,
+            sprite_compose::write_canvas_turn_html,
+            "canvas page",
+        ),
+    ];
+    for (path, write, what) in pages {
+        let Some(path) = path else { continue };
+        let page = write(&sorter, &geometry, &view, &colour, &options)
+            .with_context(|| format!("{}: the {what}", args.model.display()))?;
+        if let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
+            std::fs::create_dir_all(parent)
+                .with_context(|| format!("creating {}", parent.display()))?;
         }
-    );
+        std::fs::write(path, &page.html).with_context(|| format!("writing {}", path.display()))?;
+        println!(
+            "{}: presorted in {build_ms:.0} ms; {what} {} B: {} regions, {} orders, {} cycles, {} elements{}",
+            args.model.display(),
+            page.html.len(),
+            page.regions,
+            page.orders,
+            page.cycles,
+            page.elements,
+            if sorter.one_order_for_every_view() {
+                "; one order serves every view"
+            } else {
+                ""
+            }
+        );
+    }
     Ok(ExitCode::SUCCESS)
 }

@@ -186,7 +186,7 @@ fn the_full_spot_culled_page_in_chromium() {
 }
 
 /// The canvas player of the same bakes: spot's control mesh and the book, orthographic and
-/// perspective, at random times and 1 ms either side of every breakpoint: exact (no wrong
+/// perspective, at random times and a millisecond either side of every breakpoint: exact (no wrong
 /// unambiguous pixel; the CSS page is held to 0.2 % on these models). In ID mode the player
 /// fills pixel centres itself, without the canvas's anti-aliasing.
 #[test]
@@ -223,7 +223,7 @@ fn canvas_spinning_pages_in_chromium_are_exact() {
 
 /// The full spot's canvas page (the page the CSS one is in
 /// [`the_full_spot_culled_page_in_chromium`]) at 512 × 512, orthographic and perspective:
-/// 3 random times and 1 ms either side of each breakpoint, through both compositors, no
+/// 3 random times and a millisecond either side of each breakpoint, through both compositors, no
 /// wrong pixel.
 #[test]
 fn the_full_spot_canvas_page_in_chromium() {

@@ -6,8 +6,8 @@
 
 use raster_sink::{pixel_error, truth};
 use sprite_compose::face_sort::glam::DVec3;
-use sprite_compose::face_sort::{Geometry, Presorted, View};
-use sprite_compose::{TurnPageOptions, write_turn_html};
+use sprite_compose::face_sort::{CertifiedOrdersError, Geometry, Presorted, View};
+use sprite_compose::{TurnPage, TurnPageOptions, write_canvas_turn_html, write_turn_html};
 
 use crate::browser::{chromium, print_wrong_pixels, screenshot_at};
 use crate::support;
@@ -24,7 +24,21 @@ fn yaw_pitch_of(u: DVec3) -> (f64, f64) {
     )
 }
 
+/// A turning page's writer: the CSS page or the canvas player.
+type Writer = fn(
+    &Presorted,
+    &Geometry,
+    &View,
+    &dyn Fn(u32) -> [u8; 4],
+    &TurnPageOptions,
+) -> Result<TurnPage, CertifiedOrdersError>;
+
 fn check(name: &str, g: &Geometry, base: View, random: usize) {
+    check_page(write_turn_html, name, g, base, random, false);
+}
+
+/// [`check`] of the page `write` makes; `exact`: no frame may show a wrong pixel.
+fn check_page(write: Writer, name: &str, g: &Geometry, base: View, random: usize, exact: bool) {
     let Some(browser) = chromium() else {
         return;
     };
@@ -52,7 +66,7 @@ fn check(name: &str, g: &Geometry, base: View, random: usize) {
     }
     let none = |_: u32| [0, 0, 0, 255];
     for (k, &(yaw, pitch)) in views.iter().enumerate() {
-        let page = write_turn_html(
+        let page = write(
             &sorter,
             g,
             &base,
@@ -83,6 +97,9 @@ fn check(name: &str, g: &Geometry, base: View, random: usize) {
             "{name} at {yaw}°, {pitch}°: too few pixels to judge"
         );
         assert!(e.error <= 2e-3, "{name} at {yaw}°, {pitch}°: {e:?}");
+        if exact {
+            assert_eq!(e.wrong, 0, "{name} at {yaw}°, {pitch}°");
+        }
     }
 }
 
@@ -126,4 +143,32 @@ fn the_full_spot_turning_page_in_chromium() {
     let base = View::fit(&spot.bounds(), 512, 512);
     check("spot-full-ortho", &spot, base, 4);
     check("spot-full-persp", &spot, base.with_perspective(1024.0), 4);
+}
+
+/// The canvas player of the same certificates (one `<canvas>`; the script projects, looks up
+/// the region and each cycle's key, culls and fills; ID mode fills pixel centres itself):
+/// exact at random views and either side of region edges, orthographic and perspective,
+/// the full spot included.
+#[test]
+fn canvas_turning_pages_in_chromium_are_exact() {
+    let load =
+        |path: &str| Geometry::with_exact_corners(&support::load_obj(path)).expect("a model");
+    let write: Writer = write_canvas_turn_html;
+    let spot = load("keenan-crane/spot/spot_control_mesh.obj");
+    let base = View::fit(&spot.bounds(), SIZE, SIZE);
+    check_page(write, "canvas-spot-control-ortho", &spot, base, 4, true);
+    let suzanne = load("suzanne/suzanne.obj");
+    let base = View::fit(&suzanne.bounds(), SIZE, SIZE).with_perspective(2.0 * f64::from(SIZE));
+    check_page(write, "canvas-suzanne-persp", &suzanne, base, 3, true);
+    let full = load("keenan-crane/spot/spot_quadrangulated.obj");
+    let base = View::fit(&full.bounds(), 512, 512);
+    check_page(write, "canvas-spot-full-ortho", &full, base, 4, true);
+    check_page(
+        write,
+        "canvas-spot-full-persp",
+        &full,
+        base.with_perspective(1024.0),
+        4,
+        true,
+    );
 }
