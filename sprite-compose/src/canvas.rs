@@ -220,12 +220,7 @@ pub fn write_canvas_turn_html(
     colour: &dyn Fn(u32) -> [u8; 4],
     options: &TurnPageOptions,
 ) -> Result<TurnPage, CertifiedOrdersError> {
-    let rest = view.with_rotation(DMat3::IDENTITY);
-    let eye = match rest.projection() {
-        Projection::Orthographic => None,
-        Projection::Perspective { distance } => Some(distance / rest.scale()),
-    };
-    let certified = sorter.certified_orders(eye)?;
+    let (rest, eye, certified) = crate::turn_page::certified_at_rest(sorter, view)?;
     let shift = geometry.bounds().centre() - rest.centre();
     let (pieces, _) = pieces_js(
         &certified.pieces,

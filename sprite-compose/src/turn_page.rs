@@ -115,12 +115,11 @@ pub fn write_turn_html(
     colour: &dyn Fn(u32) -> [u8; 4],
     options: &TurnPageOptions,
 ) -> Result<TurnPage, CertifiedOrdersError> {
-    let rest = view.with_rotation(DMat3::IDENTITY);
-    let (eye, distance) = match rest.projection() {
-        Projection::Orthographic => (None, options.orthographic_distance),
-        Projection::Perspective { distance } => (Some(distance / rest.scale()), distance),
+    let (rest, eye, certified) = certified_at_rest(sorter, view)?;
+    let distance = match rest.projection() {
+        Projection::Orthographic => options.orthographic_distance,
+        Projection::Perspective { distance } => distance,
     };
-    let certified = sorter.certified_orders(eye)?;
     let set = &*certified.pieces;
     let (w, h) = (rest.width(), rest.height());
     let origin = DVec3::new(f64::from(w) * 0.5, f64::from(h) * 0.5, 0.0);
@@ -176,6 +175,21 @@ pub fn write_turn_html(
         cycles: certified.cores.len(),
         elements,
     })
+}
+
+/// `view` at rest (its rotation ignored: the page turns it), the eye's distance from the
+/// centre in model units (`None`: orthographic), and the orders certified for that viewer.
+pub(crate) fn certified_at_rest(
+    sorter: &Presorted,
+    view: &View,
+) -> Result<(View, Option<f64>, CertifiedOrders), CertifiedOrdersError> {
+    let rest = view.with_rotation(DMat3::IDENTITY);
+    let eye = match rest.projection() {
+        Projection::Orthographic => None,
+        Projection::Perspective { distance } => Some(distance / rest.scale()),
+    };
+    let certified = sorter.certified_orders(eye)?;
+    Ok((rest, eye, certified))
 }
 
 /// Polygon indices in base64, little-endian, two bytes each when every index fits (`wide`:

@@ -137,10 +137,10 @@ fn check_page(
     }
 }
 
-#[test]
-fn culled_spinning_pages_in_chromium_are_exact() {
-    // spot's control mesh (fan triangles of non-planar quads) and the book (planar quads,
-    // doubled covers), orthographic and perspective.
+/// The spinning pages `write` makes of spot's control mesh (fan triangles of non-planar
+/// quads) and the book (planar quads, doubled covers), orthographic and perspective, through
+/// the software compositor; `exact` as in [`check_page`].
+fn small_models(write: Writer, prefix: &str, exact: bool) {
     for (name, path) in [
         ("spot", "keenan-crane/spot/spot_control_mesh.obj"),
         ("book", "combobulate-samples/book.obj"),
@@ -149,16 +149,31 @@ fn culled_spinning_pages_in_chromium_are_exact() {
         let g = Geometry::with_exact_corners(&mesh).expect("a model");
         let base = View::fit(&g.bounds(), SIZE, SIZE);
         let software = [Compositor::Software];
-        check(&format!("{name}-ortho"), &g, base, 2, &software, false);
-        check(
-            &format!("{name}-persp"),
+        let persp = base.with_perspective(f64::from(SIZE));
+        check_page(
+            write,
+            &format!("{prefix}{name}-ortho"),
             &g,
-            base.with_perspective(f64::from(SIZE)),
+            base,
             2,
             &software,
-            false,
+            exact,
+        );
+        check_page(
+            write,
+            &format!("{prefix}{name}-persp"),
+            &g,
+            persp,
+            2,
+            &software,
+            exact,
         );
     }
+}
+
+#[test]
+fn culled_spinning_pages_in_chromium_are_exact() {
+    small_models(write_culled_spin_html, "", false);
 }
 
 /// The full spot (5,856 pieces, a 1.3 MB page) at 512 × 512, orthographic and perspective:
@@ -185,40 +200,13 @@ fn the_full_spot_culled_page_in_chromium() {
     );
 }
 
-/// The canvas player of the same bakes: spot's control mesh and the book, orthographic and
-/// perspective, at random times and a millisecond either side of every breakpoint: exact (no wrong
-/// unambiguous pixel; the CSS page is held to 0.2 % on these models). In ID mode the player
-/// fills pixel centres itself, without the canvas's anti-aliasing.
+/// The canvas player of the same bakes, at random times and a millisecond either side of
+/// every breakpoint: exact (no wrong unambiguous pixel; the CSS page is held to 0.2 % on
+/// these models). In ID mode the player fills pixel centres itself, without the canvas's
+/// anti-aliasing.
 #[test]
 fn canvas_spinning_pages_in_chromium_are_exact() {
-    for (name, path) in [
-        ("spot", "keenan-crane/spot/spot_control_mesh.obj"),
-        ("book", "combobulate-samples/book.obj"),
-    ] {
-        let mesh = support::load_obj(path);
-        let g = Geometry::with_exact_corners(&mesh).expect("a model");
-        let base = View::fit(&g.bounds(), SIZE, SIZE);
-        let software = [Compositor::Software];
-        let write: Writer = write_canvas_spin_html;
-        check_page(
-            write,
-            &format!("canvas-{name}-ortho"),
-            &g,
-            base,
-            2,
-            &software,
-            true,
-        );
-        check_page(
-            write,
-            &format!("canvas-{name}-persp"),
-            &g,
-            base.with_perspective(f64::from(SIZE)),
-            2,
-            &software,
-            true,
-        );
-    }
+    small_models(write_canvas_spin_html, "canvas-", true);
 }
 
 /// The full spot's canvas page (the page the CSS one is in
