@@ -121,7 +121,12 @@ class YawBake:
 class ExactScene:
     """Polygons ordered exactly for any viewer (the engine of facesort.mpl)."""
 
-    def __init__(self, points: npt.NDArray[np.float64], offsets: npt.NDArray[np.integer]) -> None: ...
+    def __init__(
+        self,
+        points: npt.NDArray[np.float64],
+        offsets: npt.NDArray[np.integer],
+        sorter: Literal["newell", "bsp", "bsp-merged"] = "newell",
+    ) -> None: ...
     @property
     def polygon_count(self) -> int: ...
     def order(
@@ -131,7 +136,7 @@ class ExactScene:
         height: int,
         opaque: npt.NDArray[np.bool_],
         lines: Optional[npt.NDArray[np.float64]] = None,
-        points: Optional[npt.NDArray[np.float64]] = None,
+        merge: bool = False,
     ) -> dict[str, object]: ...
 
 def svg(mesh: Mesh, camera: Camera, hidden: Literal["remove", "keep"] = "remove", ids: bool = False) -> str: ...

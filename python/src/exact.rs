@@ -1,24 +1,27 @@
-//! `facesort._native.ExactScene`: the engine of `facesort.mpl`. Polygons given once (a BSP
-//! built once), then per view: the exact paint order with fragments, and where the visible
-//! parts of lines and markers go in it.
+//! `facesort._native.ExactScene`: the engine of `facesort.mpl`. Polygons given once
+//! (prepared once: cut into convex pieces, each piece's outline edges marked), then per
+//! view: the exact paint order with fragments, and where the visible parts of lines go in
+//! it.
 //!
 //! Views are given by the viewer alone, as a homogeneous point of the scene's space: an
 //! eye `(x, y, z, 1)`, or a direction toward the viewer `(x, y, z, 0)` for a parallel
-//! projection. Paint order depends on nothing else (a BSP traversal reads only the viewer's
-//! side of each plane), so any projective camera with that centre, matplotlib's included,
-//! sees the picture this order paints.
+//! projection. Paint order depends on nothing else (which side of each plane the viewer is
+//! on), so any projective camera with that centre, matplotlib's included, sees the picture
+//! this order paints.
 
 use std::sync::Arc;
 
-use face_sort::{CullMode, DrawList, FaceSorter, Geometry, PolygonMesh, SorterKind, View};
-use glam::{DMat3, DVec3};
+use face_sort::{
+    Camera, CullMode, DrawList, FaceSorter, Geometry, Lens, PolygonMesh, SorterKind, View,
+};
+use glam::DVec3;
 use numpy::{IntoPyArray, PyArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use sprite_compose::{Line, Overlay, Point, overlay_in_order};
+use sprite_compose::{Line, Overlay, overlay_in_order};
 
-use crate::guard::{caught, detached, value_error};
+use crate::guard::{detached, value_error};
 use crate::input;
 
 /// Polygons ordered exactly for any viewer (see the module docs of the Rust crate).
@@ -36,26 +39,31 @@ pub struct ExactScene {
     /// The polygon of each face of `geometry` (a non-convex polygon is cut into triangles).
     source: Vec<u32>,
     geometry: Arc<Geometry>,
+    /// Per corner of each piece of `geometry` (in its order), whether the edge from it to the
+    /// next lies on its polygon's outline: made once, read for every unsplit item.
+    piece_edges: Vec<Vec<bool>>,
     sorter: Box<dyn FaceSorter + Send + Sync>,
     list: DrawList,
 }
 
-/// The rotation whose third row (the view's +Z, toward the viewer) is `back`.
-fn facing(back: DVec3) -> DMat3 {
-    let hint = if back.z.abs() < 0.9 {
+/// A view of `geometry` from `toward` (unit, from the centre toward the viewer): the
+/// rotation of a camera looking back at the centre from there (face-sort's look-at).
+fn view_from(geometry: &Geometry, toward: DVec3, width: u32, height: u32) -> PyResult<View> {
+    let up = if toward.z.abs() < 0.9 {
         DVec3::Z
     } else {
         DVec3::Y
     };
-    let up = (hint - back * hint.dot(back)).normalize();
-    let right = up.cross(back);
-    DMat3::from_cols(right, up, back).transpose()
+    let camera = Camera::look_at(toward, DVec3::ZERO, up, Lens::orthographic(1.0))
+        .map_err(|e| value_error("viewer", e))?;
+    Ok(View::fit(&geometry.bounds(), width, height)
+        .with_cull(CullMode::None)
+        .with_rotation(camera.rotation()))
 }
 
 impl ExactScene {
     fn view(&self, viewer: [f64; 4], width: u32, height: u32) -> PyResult<View> {
         let bounds = self.geometry.bounds();
-        let base = View::fit(&bounds, width, height).with_cull(CullMode::None);
         let [x, y, z, w] = viewer;
         if !viewer.iter().all(|v| v.is_finite()) {
             return Err(PyValueError::new_err(format!(
@@ -67,7 +75,7 @@ impl ExactScene {
             if d.length_squared() == 0.0 {
                 return Err(PyValueError::new_err("viewer direction is zero"));
             }
-            return Ok(base.with_rotation(facing(d.normalize())));
+            return view_from(&self.geometry, d.normalize(), width, height);
         }
         let eye = DVec3::new(x, y, z) / w - bounds.centre();
         let distance = eye.length();
@@ -77,15 +85,31 @@ impl ExactScene {
                 0.5 * bounds.diagonal()
             )));
         }
-        Ok(base
-            .with_rotation(facing(eye / distance))
-            .with_perspective(base.scale() * distance))
+        let view = view_from(&self.geometry, eye / distance, width, height)?;
+        Ok(view.with_perspective(view.scale() * distance))
     }
 
-    /// Whether fragment edge `a`–`b` (centred) lies on an edge of its polygon.
-    fn on_boundary(&self, face: u32, a: DVec3, b: DVec3, tolerance: f64) -> bool {
+    /// Per corner of a piece or fragment of `face` (centred corners), whether the edge from
+    /// it to the next lies on an edge of its polygon (`source[face]`).
+    fn outline_edges(&self, face: u32, corners: &[DVec3]) -> Vec<bool> {
+        let polygon = self.source[face as usize];
+        let tolerance = 1e-7 * self.geometry.bounds().diagonal();
+        (0..corners.len())
+            .map(|k| {
+                self.on_boundary(
+                    polygon,
+                    corners[k],
+                    corners[(k + 1) % corners.len()],
+                    tolerance,
+                )
+            })
+            .collect()
+    }
+
+    /// Whether fragment edge `a`–`b` (centred) lies on an edge of `polygon`.
+    fn on_boundary(&self, polygon: u32, a: DVec3, b: DVec3, tolerance: f64) -> bool {
         let centre = self.geometry.bounds().centre();
-        let corners = self.polygons.face(face as usize);
+        let corners = self.polygons.face(polygon as usize);
         let positions = self.polygons.positions();
         (0..corners.len()).any(|k| {
             let p = positions[corners[k] as usize] - centre;
@@ -145,9 +169,8 @@ impl ExactScene {
         detached(py, || {
             let polygons =
                 PolygonMesh::new(positions, faces).map_err(|e| value_error("polygons", e))?;
-            let (convex, source) = convex_parts(&polygons)?;
-            let geometry =
-                Arc::new(Geometry::new(&convex).map_err(|e| value_error("polygons", e))?);
+            let (geometry, source) = convex_parts(&polygons)?;
+            let geometry = Arc::new(geometry);
             let sorter: Box<dyn FaceSorter + Send + Sync> = match kind {
                 SorterKind::Newell => Box::new(face_sort::Newell::new(&geometry)),
                 SorterKind::BspMerged => {
@@ -155,13 +178,19 @@ impl ExactScene {
                 }
                 _ => Box::new(face_sort::Bsp::new(&geometry)),
             };
-            Ok(ExactScene {
+            let mut scene = ExactScene {
                 polygons,
                 source,
                 geometry,
+                piece_edges: Vec::new(),
                 sorter,
                 list: DrawList::new(),
-            })
+            };
+            let pieces = scene.geometry.pieces().clone();
+            scene.piece_edges = (0..pieces.len())
+                .map(|i| scene.outline_edges(pieces.face(i), pieces.corners(i)))
+                .collect();
+            Ok(scene)
         })
     }
 
@@ -172,7 +201,7 @@ impl ExactScene {
     }
 
     /// The exact paint order for `viewer` (a homogeneous point, module docs), with the
-    /// visible parts of `lines` ((l, 2, 3) ends) and `points` ((p, 3)) placed in it.
+    /// visible parts of `lines` ((l, 2, 3) ends) placed in it.
     /// `opaque[i]` says whether polygon `i` hides what is behind it (else it is
     /// translucent). `width` × `height` is the picture's size in pixels (it sets the
     /// sub-pixel tolerances). Returns a dict of arrays:
@@ -182,13 +211,13 @@ impl ExactScene {
     /// - `edges` (n,): whether the edge from each corner to the next lies on its polygon's
     ///   outline (else the item was cut there);
     /// - `line`, `line_t` (q, 2), `line_before`: visible line parts as parameter intervals
-    ///   of their line, each painted before item `line_before` (k: after every item);
-    /// - `point`, `point_before`: the visible points, likewise.
+    ///   of their line, each painted before item `line_before` (k: after every item).
+    ///
     /// With `merge=True`, neighbours in the order that are pieces of the same polygon
-    /// sharing an edge and turned the same way on screen (a non-planar polygon's fan
-    /// triangles, a split polygon's fragments) come as one item: the same picture with
-    /// fewer, possibly non-convex, items. Line parts and points are never merged across.
-    #[pyo3(signature = (viewer, width, height, opaque, lines=None, points=None, merge=false))]
+    /// sharing an edge and turned the same way (a non-planar polygon's fan triangles, a
+    /// split polygon's fragments) come as one item: the same picture with fewer, possibly
+    /// non-convex, items. Line parts are never merged across.
+    #[pyo3(signature = (viewer, width, height, opaque, lines=None, merge=false))]
     #[allow(clippy::too_many_arguments)]
     fn order<'py>(
         &mut self,
@@ -198,7 +227,6 @@ impl ExactScene {
         height: u32,
         opaque: &Bound<'py, PyAny>,
         lines: Option<&Bound<'py, PyAny>>,
-        points: Option<&Bound<'py, PyAny>>,
         merge: bool,
     ) -> PyResult<Bound<'py, PyDict>> {
         if width == 0 || height == 0 || width > 1 << 15 || height > 1 << 15 {
@@ -212,19 +240,9 @@ impl ExactScene {
             Some(l) => input::points(&l.call_method1("reshape", ((-1, 3),))?, "lines")?,
             None => Vec::new(),
         };
-        let marks = match points {
-            Some(p) => input::points(p, "points")?,
-            None => Vec::new(),
-        };
         let result = detached(py, || {
-            caught(|| {
-                let ordered = self.order_detached(&view, &opaque, &line_ends, &marks)?;
-                Ok(if merge {
-                    merged(ordered, &view, self.geometry.bounds().centre())
-                } else {
-                    ordered
-                })
-            })
+            let ordered = self.order_detached(&view, &opaque, &line_ends)?;
+            Ok(if merge { merged(ordered) } else { ordered })
         })?;
         let dict = PyDict::new(py);
         let k = result.faces.len();
@@ -237,8 +255,6 @@ impl ExactScene {
         dict.set_item("line", result.line.into_pyarray(py))?;
         dict.set_item("line_t", result.line_t.into_pyarray(py).reshape([q, 2])?)?;
         dict.set_item("line_before", result.line_before.into_pyarray(py))?;
-        dict.set_item("point", result.point.into_pyarray(py))?;
-        dict.set_item("point_before", result.point_before.into_pyarray(py))?;
         dict.set_item("items", k)?;
         Ok(dict)
     }
@@ -248,14 +264,14 @@ impl ExactScene {
 #[derive(Default)]
 struct Ordered {
     faces: Vec<u32>,
+    /// Per item: the sign of its facing (which way it turns on screen; 0 edge-on).
+    turns: Vec<f64>,
     corners: Vec<f64>,
     offsets: Vec<i64>,
     edges: Vec<bool>,
     line: Vec<i64>,
     line_t: Vec<f64>,
     line_before: Vec<i64>,
-    point: Vec<i64>,
-    point_before: Vec<i64>,
 }
 
 impl ExactScene {
@@ -264,39 +280,55 @@ impl ExactScene {
         view: &View,
         opaque: &[bool],
         line_ends: &[DVec3],
-        marks: &[DVec3],
     ) -> PyResult<Ordered> {
         self.sorter.sort(view, &mut self.list);
         let bounds = self.geometry.bounds();
         let centre = bounds.centre();
-        let tolerance = 1e-7 * bounds.diagonal();
+        let viewer = view.viewer();
+        // The list's shared polygons are the prepared pieces (Newell's), or not (the BSP's
+        // fragments): only then do the pieces' edge flags serve.
+        let shared = match self.list.shared() {
+            Some(set) if Arc::ptr_eq(set, self.geometry.pieces()) => set.len(),
+            _ => 0,
+        };
         let mut out = Ordered {
-            offsets: vec![0],
+            offsets: Vec::with_capacity(self.list.len() + 1),
+            faces: Vec::with_capacity(self.list.len()),
+            turns: Vec::with_capacity(self.list.len()),
             ..Ordered::default()
         };
-        let mut fragments: Vec<Vec<u32>> = Vec::with_capacity(self.list.len());
-        let mut fragment_points: Vec<DVec3> = Vec::new();
+        out.offsets.push(0);
         for &item in self.list.items() {
             let corners = self.list.corners(item);
-            let polygon = self.source[item.face as usize];
-            out.faces.push(polygon);
-            let first = fragment_points.len() as u32;
-            for (k, &c) in corners.iter().enumerate() {
+            out.faces.push(self.source[item.face as usize]);
+            out.turns
+                .push(viewer.facing(self.list.plane(item)).signum());
+            for &c in corners {
                 out.corners.extend_from_slice(&(c + centre).to_array());
-                let next = corners[(k + 1) % corners.len()];
-                out.edges
-                    .push(self.on_boundary(polygon, c, next, tolerance));
-                fragment_points.push(c + centre);
             }
-            fragments.push((first..fragment_points.len() as u32).collect());
+            // A piece as prepared keeps its edge flags; a fragment cut this frame is tested.
+            if (item.polygon as usize) < shared {
+                out.edges
+                    .extend_from_slice(&self.piece_edges[item.polygon as usize]);
+            } else {
+                out.edges.extend(self.outline_edges(item.face, corners));
+            }
             out.offsets.push((out.corners.len() / 3) as i64);
         }
-        if line_ends.is_empty() && marks.is_empty() {
+        if line_ends.is_empty() {
             return Ok(out);
         }
-        let k = fragments.len() as i64;
-        let ordered_mesh = PolygonMesh::new(fragment_points, fragments)
-            .map_err(|e| value_error("fragments", e))?;
+        // The order as a geometry whose face index is the paint position: the occluders.
+        let k = out.faces.len() as i64;
+        let fragment_points: Vec<DVec3> = out
+            .corners
+            .chunks_exact(3)
+            .map(|c| DVec3::new(c[0], c[1], c[2]))
+            .collect();
+        let fragments = out.offsets.windows(2).map(|w| w[0] as u32..w[1] as u32);
+        let ordered_mesh =
+            PolygonMesh::new(fragment_points, fragments.map(|r| r.collect::<Vec<u32>>()))
+                .map_err(|e| value_error("fragments", e))?;
         let ordered = Geometry::new_in_frame(&ordered_mesh, bounds)
             .map_err(|e| value_error("fragments", e))?;
         let overlay = Overlay {
@@ -309,27 +341,15 @@ impl ExactScene {
                     faces: Vec::new(),
                 })
                 .collect(),
-            points: marks
-                .iter()
-                .map(|&at| Point {
-                    at,
-                    colour: [0; 4],
-                    radius_px: 1.0,
-                    faces: Vec::new(),
-                })
-                .collect(),
+            points: Vec::new(),
         };
         let item_faces = &out.faces;
         let is_opaque = |item: u32| opaque[item_faces[item as usize] as usize];
-        let (line_parts, point_parts) = overlay_in_order(&ordered, view, &overlay, &is_opaque);
+        let (line_parts, _) = overlay_in_order(&ordered, view, &overlay, &is_opaque);
         for part in line_parts {
             out.line.push(part.index as i64);
             out.line_t.extend_from_slice(&part.t);
             out.line_before.push(part.before.map_or(k, i64::from));
-        }
-        for part in point_parts {
-            out.point.push(part.index as i64);
-            out.point_before.push(part.before.map_or(k, i64::from));
         }
         Ok(out)
     }
@@ -360,7 +380,7 @@ fn join(a: &[(DVec3, bool)], b: &[(DVec3, bool)]) -> Option<Outline> {
 }
 
 /// [`ExactScene::order`]'s `merge`: runs of same-polygon neighbours joined (see there).
-fn merged(raw: Ordered, view: &View, centre: DVec3) -> Ordered {
+fn merged(raw: Ordered) -> Ordered {
     let k = raw.faces.len();
     let offsets: Vec<usize> = raw.offsets.iter().map(|&o| o as usize).collect();
     let corner = |j: usize| {
@@ -371,20 +391,9 @@ fn merged(raw: Ordered, view: &View, centre: DVec3) -> Ordered {
         )
     };
     let mut breaks = vec![false; k + 1];
-    for &b in raw.line_before.iter().chain(&raw.point_before) {
+    for &b in &raw.line_before {
         breaks[b as usize] = true;
     }
-    let mut scratch = face_sort::ProjectionScratch::default();
-    let (mut projected, mut centred) = (Vec::new(), Vec::new());
-    let mut orientation = |i: usize| -> f64 {
-        centred.clear();
-        centred.extend((offsets[i]..offsets[i + 1]).map(|j| corner(j) - centre));
-        view.project_polygon(&centred, &mut projected, &mut scratch);
-        let area: f64 = (0..projected.len())
-            .map(|t| projected[t].perp_dot(projected[(t + 1) % projected.len()]))
-            .sum();
-        area.signum()
-    };
     let mut out = Ordered {
         offsets: vec![0],
         ..Ordered::default()
@@ -392,8 +401,9 @@ fn merged(raw: Ordered, view: &View, centre: DVec3) -> Ordered {
     let mut group_of = vec![0i64; k + 1];
     let mut current: Option<(u32, f64, Outline)> = None;
     let flush = |out: &mut Ordered, group: Option<(u32, f64, Outline)>| {
-        if let Some((face, _, outline)) = group {
+        if let Some((face, turn, outline)) = group {
             out.faces.push(face);
+            out.turns.push(turn);
             for (c, edge) in outline {
                 out.corners.extend_from_slice(&c.to_array());
                 out.edges.push(edge);
@@ -405,7 +415,7 @@ fn merged(raw: Ordered, view: &View, centre: DVec3) -> Ordered {
         let item: Outline = (offsets[i]..offsets[i + 1])
             .map(|j| (corner(j), raw.edges[j]))
             .collect();
-        let turn = orientation(i);
+        let turn = raw.turns[i];
         if let Some((face, o, outline)) = &mut current
             && !breaks[i]
             && *face == raw.faces[i]
@@ -425,17 +435,18 @@ fn merged(raw: Ordered, view: &View, centre: DVec3) -> Ordered {
     group_of[k] = out.faces.len() as i64;
     out.line = raw.line;
     out.line_t = raw.line_t;
-    let regroup = |before: &[i64]| before.iter().map(|&b| group_of[b as usize]).collect();
-    out.line_before = regroup(&raw.line_before);
-    out.point = raw.point;
-    out.point_before = regroup(&raw.point_before);
+    out.line_before = raw
+        .line_before
+        .iter()
+        .map(|&b| group_of[b as usize])
+        .collect();
     out
 }
 
-/// The polygons as convex faces: each convex one as it is, each other one cut into
+/// The polygons prepared as convex faces: each convex one as it is, each other one cut into
 /// triangles; with the polygon of each face. A polygon is cut when it turns both ways
 /// around its Newell normal, or when `Geometry` finds it non-convex within its tolerance.
-fn convex_parts(polygons: &PolygonMesh) -> PyResult<(PolygonMesh, Vec<u32>)> {
+fn convex_parts(polygons: &PolygonMesh) -> PyResult<(Geometry, Vec<u32>)> {
     let positions = polygons.positions();
     let mut cut: Vec<bool> = polygons
         .faces()
@@ -464,7 +475,8 @@ fn convex_parts(polygons: &PolygonMesh) -> PyResult<(PolygonMesh, Vec<u32>)> {
             Err(face_sort::MeshError::NonConvex { face }) if !cut[source[face] as usize] => {
                 cut[source[face] as usize] = true;
             }
-            _ => return Ok((mesh, source)),
+            Err(e) => return Err(value_error("polygons", e)),
+            Ok(geometry) => return Ok((geometry, source)),
         }
     }
 }
