@@ -165,6 +165,13 @@ impl Spin {
         &self.template
     }
 
+    /// `[C₀, C₁, C₂]` of `R(θ) = C₀ + C₁·cos θ + C₂·sin θ` (Rodrigues): what a realisation
+    /// that turns the model itself needs (e.g. a canvas player's script).
+    #[must_use]
+    pub fn rodrigues(&self) -> [DMat3; 3] {
+        self.c
+    }
+
     /// `R(θ)`, `θ` in radians (the animated parameter itself for yaw, pitch and roll).
     #[must_use]
     pub fn rotation_rad(&self, theta: f64) -> DMat3 {

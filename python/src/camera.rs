@@ -64,6 +64,17 @@ fn finite3(v: [f64; 3], what: &str) -> PyResult<DVec3> {
     }
 }
 
+/// A perspective eye distance in pixels: positive and finite.
+fn eye_distance(d: f64) -> PyResult<f64> {
+    if d.is_finite() && d > 0.0 {
+        Ok(d)
+    } else {
+        Err(PyValueError::new_err(format!(
+            "perspective distance must be positive and finite, got {d}"
+        )))
+    }
+}
+
 fn matrix(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<DMat4> {
     let rows = floats2(obj, what, 4)?;
     if rows.len() != 16 {
@@ -102,24 +113,19 @@ impl Camera {
                 let d: f64 = p.extract().map_err(|_| {
                     PyValueError::new_err("perspective must be a distance in pixels, True or None")
                 })?;
-                if !(d.is_finite() && d > 0.0) {
-                    return Err(PyValueError::new_err(format!(
-                        "perspective distance must be positive and finite, got {d}"
-                    )));
-                }
-                Some(d)
+                Some(eye_distance(d)?)
             }
         };
         finite3([yaw, pitch, roll], "(yaw, pitch, roll)")?;
-        Ok(Camera {
-            placement: Placement::Orbit {
+        Camera::new(
+            Placement::Orbit {
                 ypr: [yaw, pitch, roll],
                 perspective,
             },
             width,
             height,
-            cull: cull_mode(cull)?,
-        })
+            cull_mode(cull)?,
+        )
     }
 
     /// A camera at `eye` looking at `target` with `up` upward (model space). Perspective
@@ -156,12 +162,7 @@ impl Camera {
             lens,
         )
         .map_err(|e| value_error("look_at", e))?;
-        Ok(Camera {
-            placement: Placement::Engine(camera),
-            width,
-            height,
-            cull: cull_mode(cull)?,
-        })
+        Camera::new(Placement::Engine(camera), width, height, cull_mode(cull)?)
     }
 
     /// A camera from an engine's 4 × 4 view matrix (model → camera, rigid, the camera
@@ -195,12 +196,7 @@ impl Camera {
             clip,
         )
         .map_err(|e| value_error("from_matrices", e))?;
-        Ok(Camera {
-            placement: Placement::Engine(camera),
-            width,
-            height,
-            cull: cull_mode(cull)?,
-        })
+        Camera::new(Placement::Engine(camera), width, height, cull_mode(cull)?)
     }
 
     /// This camera with another cull mode: `"back"`, `"front"` or `"none"`.
@@ -259,30 +255,28 @@ impl Camera {
         };
         Ok(view.with_cull(self.cull))
     }
-}
 
-impl Camera {
-    /// The template camera of a yaw bake (yaw 0, pitch and roll set by the bake's axis).
-    pub fn orbit_for_bake(width: u32, height: u32, perspective: Option<f64>) -> PyResult<Camera> {
+    /// A camera of `placement` in a checked image size.
+    fn new(placement: Placement, width: u32, height: u32, cull: CullMode) -> PyResult<Camera> {
         let (width, height) = size(width, height)?;
-        if perspective.is_some_and(|d| !(d.is_finite() && d > 0.0)) {
-            return Err(PyValueError::new_err(
-                "perspective must be a positive distance in pixels",
-            ));
-        }
         Ok(Camera {
-            placement: Placement::Orbit {
-                ypr: [0.0; 3],
-                perspective,
-            },
+            placement,
             width,
             height,
-            cull: CullMode::Back,
+            cull,
         })
     }
-}
 
-impl Camera {
+    /// The template camera of a yaw bake (yaw 0, pitch and roll set by the bake's axis).
+    pub fn orbit_for_bake(width: u32, height: u32, perspective: Option<f64>) -> PyResult<Camera> {
+        let perspective = perspective.map(eye_distance).transpose()?;
+        let placement = Placement::Orbit {
+            ypr: [0.0; 3],
+            perspective,
+        };
+        Camera::new(placement, width, height, CullMode::Back)
+    }
+
     /// `(width, height)` in pixels.
     pub fn size(&self) -> (u32, u32) {
         (self.width, self.height)

@@ -175,14 +175,7 @@ pub fn write_canvas_spin_html(
         cell_offsets.push(order.len() as u32);
     }
     let lows: Vec<String> = bake.cells().iter().map(|c| num(c.range.lo)).collect();
-    // R(θ) = C0 + C1·cos θ + C2·sin θ, from three rotations of the spin.
-    let (r0, r90, r180) = (
-        spin.rotation_rad(0.0),
-        spin.rotation_rad(std::f64::consts::FRAC_PI_2),
-        spin.rotation_rad(std::f64::consts::PI),
-    );
-    let c0 = (r0 + r180) * 0.5;
-    let (c1, c2) = ((r0 - r180) * 0.5, r90 - c0);
+    let [c0, c1, c2] = spin.rodrigues();
     let mut page = page_head("spin", &view, options.background);
     page.push_str(&pieces);
     let _ = writeln!(

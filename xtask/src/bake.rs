@@ -429,30 +429,31 @@ fn run_picture(args: &BakeArgs, prepared: &Prepared) -> Result<ExitCode> {
             .with_period(args.period)
             .with_ids(args.ids)
             .with_paused_at(args.paused);
-        if let Some(path) = &args.html {
-            let page = sprite_compose::write_culled_spin_html(
-                &baked,
-                &lists,
-                &prepared.spin,
-                &geometry,
-                &colour,
-                &options,
-            );
+        type Writer = fn(
+            &Bake,
+            &[Vec<u32>],
+            &aspect_bake::Spin,
+            &Geometry,
+            &dyn Fn(u32) -> [u8; 4],
+            &sprite_compose::SpinOptions,
+        ) -> String;
+        let pages: [(&Option<PathBuf>, Writer, &str); 2] = [
+            (&args.html, sprite_compose::write_culled_spin_html, "page"),
+            (
+                &args.canvas,
+                sprite_compose::write_canvas_spin_html,
+                "canvas page",
+            ),
+        ];
+        for (path, write_page, what) in pages {
+            let Some(path) = path else { continue };
+            let page = write_page(&baked, &lists, &prepared.spin, &geometry, &colour, &options);
             write(path, &page)?;
             let elements = page.matches("<i class=").count() + page.matches("<b class=").count();
-            line.push_str(&format!(", page {} B ({elements} elements)", page.len()));
-        }
-        if let Some(path) = &args.canvas {
-            let page = sprite_compose::write_canvas_spin_html(
-                &baked,
-                &lists,
-                &prepared.spin,
-                &geometry,
-                &colour,
-                &options,
-            );
-            write(path, &page)?;
-            line.push_str(&format!(", canvas page {} B", page.len()));
+            line.push_str(&format!(", {what} {} B", page.len()));
+            if elements > 0 {
+                line.push_str(&format!(" ({elements} elements)"));
+            }
         }
     }
     println!("{line}");
