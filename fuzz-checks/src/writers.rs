@@ -166,7 +166,7 @@ pub fn writers(data: &[u8]) {
             .with_size(width, height)
             .with_textures(names)
             .with_ids(ids)
-            .with_background(background),
+            .with_background(Some(background)),
     ));
     check_pdf(&write_pdf(
         scene,

@@ -104,7 +104,6 @@ mod materials;
 mod overlay;
 mod overlay_truth;
 mod project;
-mod seams;
 mod style;
 pub mod tolerance;
 mod truth;

@@ -17,14 +17,6 @@ pub const DEPTH_GAP: f64 = 1e-6;
 /// excluded from the truth (CONVENTIONS.md: "faces whose projection has zero area").
 pub const DEGENERATE_PROJECTED_AREA: f64 = 1e-12;
 
-/// Edges of two drawn polygons whose endpoints (or, for T-junctions, whose lines and
-/// overlap) agree within this many pixels count as shared for the seam outset.
-pub const SHARED_EDGE_PX: f64 = 1e-3;
-
-/// Two edge normals (unit vectors) are parallel for the seam outset's miter when the sine of
-/// their angle, `|n1 × n2|`, is at most `PARALLEL_EDGES`.
-pub const PARALLEL_EDGES: f64 = 1e-9;
-
 /// Absolute: magnitudes below this count as zero (the area of a texture's uv axes, a grid
 /// line's pixel footprint before dividing by it).
 pub const UNDERFLOW_ABS: f64 = 1e-300;

@@ -6,10 +6,11 @@ use std::collections::HashMap;
 
 use glam::{DAffine2, DMat3, DMat4, DVec2, DVec3, DVec4};
 
+use crate::seams::{ScreenPolygons, SharedEdges, outset_polygon};
 use crate::svg::{hex, project_sprite, sprite_polygon};
 use crate::tolerance::{
-    HTML_QUAD_WEIGHT_RATIO, HTML_SEAM_PX, HTML_SHARED_EDGE_PX, HTML_TEXTURE_MARGIN_PX,
-    HTML_TEXTURE_SEAM_PX, SINGULAR_DET, UNDERFLOW_ABS,
+    HTML_QUAD_WEIGHT_RATIO, HTML_SEAM_OUTSET_PX, HTML_SEAM_PX, HTML_SHARED_EDGE_PX,
+    HTML_TEXTURE_MARGIN_PX, SINGULAR_DET, UNDERFLOW_ABS,
 };
 use crate::{Brush, Scene, SceneSprite, id_colour, perspective_matrix};
 
@@ -53,8 +54,9 @@ pub struct HtmlOptions {
     pub mode: HtmlMode,
     /// Fill each face with its ID colour (CONVENTIONS.md). Default: false.
     pub ids: bool,
-    /// Page background. Default: black (ID 0).
-    pub background: [u8; 4],
+    /// Page background. Default: none, which is white in colour mode (the browser's page, as
+    /// raster-sink's PNG and the SVG and PDF writers) and black (ID 0) in ID mode.
+    pub background: Option<[u8; 4]>,
     /// Each element is laid out at this many times its projected extent, so that the
     /// browser rasters it at least at screen resolution (smaller layers are filtered and bleed
     /// colour past their edges). Default: 4.
@@ -81,7 +83,7 @@ impl HtmlOptions {
         height: 256,
         mode: HtmlMode::Flat,
         ids: false,
-        background: [0, 0, 0, 255],
+        background: None,
         oversize: 4.0,
         orthographic_distance: 1e8,
         pieces: HtmlPieces::Quads,
@@ -134,7 +136,7 @@ impl HtmlOptions {
 
     /// Background colour.
     #[must_use]
-    pub fn with_background(mut self, background: [u8; 4]) -> Self {
+    pub fn with_background(mut self, background: Option<[u8; 4]>) -> Self {
         self.background = background;
         self
     }
@@ -204,7 +206,11 @@ pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
          .x i{{position:absolute;left:0;top:0;width:100%;height:100%;transform-origin:0 0;background-size:100% 100%}}\n\
          {texture_rules}",
         texture_rules = texture_rules(options),
-        bg = hex(options.background),
+        bg = hex(options.background.unwrap_or(if options.ids {
+            [0, 0, 0, 255]
+        } else {
+            [255, 255, 255, 255]
+        })),
         scene_style = match options.mode {
             HtmlMode::Flat => format!(
                 "perspective:{}px;perspective-origin:{}px {}px",
@@ -232,6 +238,7 @@ pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
     for (k, s) in sprites.iter().enumerate() {
         by_face.entry(s.face).or_default().push(k);
     }
+    let seams = (!options.ids).then(|| Seams::of(&projections));
     for (index, sprite) in sprites.iter().copied().enumerate() {
         let projected = &projections[index];
         if projected.len() < 3 {
@@ -284,10 +291,10 @@ pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
                 .then(|| (extent.max(1.0) * options.oversize).ceil().max(size))
         });
         // The element is the unit square grown by a margin of `e` (HTML_TEXTURE_MARGIN_PX in
-        // pixels of the square), clipped to the sprite's polygon grown by
-        // HTML_TEXTURE_SEAM_PX: no edge of the element's box is an edge of the picture, so
-        // Chromium's composited anti-aliasing of layer edges leaves no hairline between
-        // neighbouring textured sprites.
+        // pixels of the square), clipped to the sprite's polygon grown across its shared
+        // edges: no edge of the element's box is an edge of the picture, so Chromium's
+        // composited anti-aliasing of layer edges leaves no hairline between neighbouring
+        // textured sprites.
         let grown = square_size.map(|size| HTML_TEXTURE_MARGIN_PX / size);
         if let Some((id, uv)) = texture
             && let Some(size) = square_size
@@ -306,7 +313,10 @@ pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
                 * DMat4::from_scale(DVec3::new(1.0 + 2.0 * e, 1.0 + 2.0 * e, 1.0));
             let m = outer * sprite.transform.matrix * box_to_square * unscale;
             let polygon = sprite_polygon(sprite);
-            let dilated = dilate_clip(scene.root(), sprite, &polygon);
+            let dilated = seams
+                .as_ref()
+                .and_then(|seams| seams.grown(scene.root(), sprite, index))
+                .unwrap_or(polygon);
             let clip = {
                 let mut c = String::from(" style=\"clip-path:polygon(");
                 for (k, p) in dilated.iter().enumerate() {
@@ -327,6 +337,24 @@ pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
                 "<div class=\"x\" style=\"width:{size}px;height:{size}px;transform:{}\"><div{clip}><i class=\"t{id}\" style=\"transform:{place}\"></i></div></div>",
                 css_matrix3d(&m)
             );
+            continue;
+        }
+        let opaque = options.ids || sprite.brush.solid_colour(sprite.face)[3] == 255;
+        if opaque
+            && let Some(grown) = seams
+                .as_ref()
+                .and_then(|seams| seams.grown(scene.root(), sprite, index))
+        {
+            for quad in opaque_clip_quads(&grown) {
+                let m = outer * sprite.transform.matrix * quad * unscale;
+                let _ = writeln!(
+                    page,
+                    "<div class=\"{} {}\" style=\"transform:{}\"></div>",
+                    classes.of(format!("width:{size}px;height:{size}px")),
+                    classes.of(format!("background:{colour}")),
+                    css_matrix3d(&m)
+                );
+            }
             continue;
         }
         match &sprite.clip {
@@ -368,18 +396,19 @@ pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
                     .iter()
                     .filter(|&&k| k > index)
                     .map(|&k| projections[k].as_slice());
-                let seams = seam_strips(scene.root(), sprite, projected, later);
-                let colour_alpha = if options.ids {
-                    255
+                // (Opaque sprites with shared edges grew across them above; these strips
+                // fill ID pages' cracks.)
+                let strips = if options.ids {
+                    seam_strips(scene.root(), sprite, projected, later)
                 } else {
-                    sprite.brush.solid_colour(sprite.face)[3]
+                    Vec::new()
                 };
-                let quads = if colour_alpha == 255 {
+                let quads = if opaque {
                     opaque_clip_quads(clip)
                 } else {
                     clip_quads(clip)
                 };
-                for quad in quads.into_iter().chain(seams) {
+                for quad in quads.into_iter().chain(strips) {
                     let m = outer * sprite.transform.matrix * quad * unscale;
                     let _ = writeln!(
                         page,
@@ -566,28 +595,46 @@ fn to_unit_square(to_square: &DMat3, p: DVec2) -> Option<DVec2> {
     (h.z.abs() > UNDERFLOW_ABS && s.is_finite()).then_some(s)
 }
 
-/// A textured sprite's clip polygon (unit-square coordinates) grown in pixels like the SVG
-/// writer's textured clips ([`dilate`](crate::svg::dilate)), by [`HTML_TEXTURE_SEAM_PX`], so
-/// that neighbouring clipped textures overlap instead of leaving anti-aliased hairlines of
-/// background between them. The clip as it is when a corner cannot be mapped.
-fn dilate_clip(root: &DMat4, sprite: &SceneSprite, clip: &[DVec2]) -> Vec<DVec2> {
-    let Some((plane, to_square)) = square_homography(root, sprite) else {
-        return clip.to_vec();
-    };
-    let pixels: Option<Vec<DVec2>> = clip
-        .iter()
-        .map(|c| {
-            let h = plane * DVec3::new(c.x, c.y, 1.0);
-            (h.z > 0.0).then(|| DVec2::new(h.x / h.z, h.y / h.z))
-        })
-        .collect();
-    let moved: Option<Vec<DVec2>> = pixels.and_then(|pixels| {
-        crate::svg::dilate(&pixels, HTML_TEXTURE_SEAM_PX)
-            .into_iter()
-            .map(|p| to_unit_square(&to_square, p))
+/// The sprites' projected polygons and which of their edges another sprite shares, for the
+/// seam outset of colour pages.
+struct Seams {
+    polygons: ScreenPolygons,
+    shared: SharedEdges,
+}
+
+impl Seams {
+    fn of(projections: &[Vec<DVec2>]) -> Self {
+        let mut polygons = ScreenPolygons::default();
+        polygons.clear();
+        for p in projections {
+            polygons.push(p);
+        }
+        let mut shared = SharedEdges::default();
+        shared.compute(&polygons);
+        Seams { polygons, shared }
+    }
+
+    /// Sprite `index`'s polygon (unit-square coordinates) grown [`HTML_SEAM_OUTSET_PX`]
+    /// pixels across the edges it shares; `None` when it shares none, or when a grown corner
+    /// cannot be mapped back onto the sprite's plane.
+    fn grown(&self, root: &DMat4, sprite: &SceneSprite, index: usize) -> Option<Vec<DVec2>> {
+        let flags = self.shared.flags(self.polygons.edges(index));
+        if !flags.contains(&true) {
+            return None;
+        }
+        let (_, to_square) = square_homography(root, sprite)?;
+        let mut grown = Vec::new();
+        outset_polygon(
+            self.polygons.polygon(index),
+            flags,
+            HTML_SEAM_OUTSET_PX,
+            &mut grown,
+        );
+        grown
+            .iter()
+            .map(|&p| to_unit_square(&to_square, p))
             .collect()
-    });
-    moved.unwrap_or_else(|| clip.to_vec())
+    }
 }
 
 /// CSS `matrix(…)` placing an `<img>` that fills a `size`-pixel box (texture space `[0,1]²`
@@ -653,23 +700,44 @@ pub(crate) fn clip_quads(clip: &[DVec2]) -> Vec<DMat4> {
     out
 }
 
-/// [`clip_quads`] for an opaque sprite, which may overlap itself: a lone triangle is two
-/// quads instead of three, the trapezoid `(a, b, m_bc, m_ca)` and the parallelogram
-/// `(m_ab, m_bc, c, m_ca)` (`m` the edge midpoints), overlapping on the medial triangle. Both
-/// are well-shaped whenever the triangle has area, and their union is the triangle: what the
-/// trapezoid leaves, the triangle `(m_ca, m_bc, c)`, lies in the parallelogram.
+/// [`clip_quads`] for an opaque sprite, which may overlap itself, so that no edge between
+/// two of its quads is an edge of the picture (anti-aliased edges of two layers that meet
+/// let the background through).
+///
+/// A triangle is two quads, the trapezoid `(a, b, m_bc, m_ca)` and the parallelogram
+/// `(m_ab, m_bc, c, m_ca)` (`m` the edge midpoints), overlapping on the medial triangle: both
+/// are well-shaped whenever the triangle has area, their union is the triangle (what the
+/// trapezoid leaves, the triangle `(m_ca, m_bc, c)`, lies in the parallelogram), and each
+/// one's inner edges lie inside the other. A larger polygon is the fan quads
+/// `(c0, ck, ck+1, ck+2)` for every `k`, each overlapping the next by one fan triangle: the
+/// diagonal `c0 ck` of quad `k` lies inside quad `k − 1`, and `c0 ck+2` inside quad `k + 1`.
 pub(crate) fn opaque_clip_quads(clip: &[DVec2]) -> Vec<DMat4> {
-    if let [a, b, c] = *clip {
-        let (ab, bc, ca) = ((a + b) * 0.5, (b + c) * 0.5, (c + a) * 0.5);
-        let quads: Option<Vec<DMat4>> = [[a, b, bc, ca], [ab, bc, c, ca]]
-            .into_iter()
-            .map(quad_matrix)
-            .collect();
-        if let Some(quads) = quads {
-            return quads;
+    let mut out = Vec::new();
+    if clip.len() == 3 {
+        opaque_triangle_quads(clip[0], clip[1], clip[2], &mut out);
+        return out;
+    }
+    for k in 1..clip.len().saturating_sub(2) {
+        let corners = [clip[0], clip[k], clip[k + 1], clip[k + 2]];
+        if let Some(m) = quad_matrix(corners) {
+            out.push(m);
+        } else {
+            opaque_triangle_quads(corners[0], corners[1], corners[2], &mut out);
+            opaque_triangle_quads(corners[0], corners[2], corners[3], &mut out);
         }
     }
-    clip_quads(clip)
+    out
+}
+
+/// A triangle as [`opaque_clip_quads`] draws it: two overlapping quads, or, when one of them
+/// is ill-shaped, three quads meeting at its centroid.
+fn opaque_triangle_quads(a: DVec2, b: DVec2, c: DVec2, out: &mut Vec<DMat4>) {
+    let (ab, bc, ca) = ((a + b) * 0.5, (b + c) * 0.5, (c + a) * 0.5);
+    if let (Some(p), Some(q)) = (quad_matrix([a, b, bc, ca]), quad_matrix([ab, bc, c, ca])) {
+        out.extend([p, q]);
+    } else {
+        triangle_quads(a, b, c, out);
+    }
 }
 
 /// The triangle `(a, b, c)` as three quads meeting at its centroid (corner, edge midpoint,

@@ -98,6 +98,7 @@ mod plane_textures;
 mod plot;
 mod recording;
 mod root;
+pub mod seams;
 mod spin;
 mod spin_culled;
 mod svg;

@@ -82,11 +82,20 @@ pub const HTML_SEAM_PX: f64 = 1.0 / 16.0;
 /// within this many pixels of the other's line and they overlap by more than it.
 pub const HTML_SHARED_EDGE_PX: f64 = 1e-6;
 
-/// The HTML writer moves each corner of a textured sprite's `clip-path` this many pixels away
-/// from the projected polygon's centre: neighbouring textured fragments then overlap instead
-/// of showing anti-aliased hairlines of background (it moves silhouettes out by as much,
-/// inside the 0.75 px that CONVENTIONS.md leaves ambiguous).
-pub const HTML_TEXTURE_SEAM_PX: f64 = 0.5;
+/// In colour pages, the HTML writer grows each opaque sprite this many pixels across every
+/// edge it shares with another sprite (silhouettes stay), as raster-sink's PNG does
+/// (`seam_outset`): anti-aliased neighbours then overlap instead of showing hairlines of
+/// background, and the two pictures agree along shared edges.
+pub const HTML_SEAM_OUTSET_PX: f64 = 0.5;
+
+/// Seams ([`seams`](crate::seams)): edges of two drawn polygons whose endpoints (or, for
+/// T-junctions, whose lines and overlap) agree within this many pixels count as shared for
+/// the seam outset.
+pub const SEAM_SHARED_EDGE_PX: f64 = 1e-3;
+
+/// Seams: two edge normals (unit vectors) are parallel for the seam outset's miter when the
+/// sine of their angle, `|n1 × n2|`, is at most `SEAM_PARALLEL_NORMALS`.
+pub const SEAM_PARALLEL_NORMALS: f64 = 1e-9;
 
 /// Plotter edges ([`plot_edges`](crate::plot_edges)): a point of an edge is covered by a
 /// piece only when its projection is inside the piece's by more than this many pixels.

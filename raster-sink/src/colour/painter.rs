@@ -12,9 +12,9 @@ use crate::RasterError;
 use crate::fill::for_each_span;
 use crate::grid::GridShader;
 use crate::project::Projector;
-use crate::seams::{ScreenPolygons, SharedEdges, outset_polygon};
 use crate::style::{Brush, Style};
 use face_sort::colours::{golden_angle_colour, id_colour};
+use sprite_compose::seams::{ScreenPolygons, SharedEdges, outset_polygon};
 
 /// What a draw step paints and how: the same for every polygon of the step.
 #[derive(Clone, Copy)]
@@ -84,10 +84,9 @@ impl Painter {
         let (cw, ch) = (canvas.width(), canvas.height());
         for i in 0..self.items.len() {
             let item = self.items[i];
-            let start = self.polygons.starts[i];
             let points = self.polygons.polygon(i);
             let flags = if seams {
-                &self.shared.shared[start..start + points.len()]
+                self.shared.flags(self.polygons.edges(i))
             } else {
                 &[][..]
             };

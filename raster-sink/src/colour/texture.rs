@@ -8,8 +8,8 @@ use tiny_skia::{Paint, Pattern, Pixmap, Shader, SpreadMode, Transform};
 use super::blend::{fill, paint_for};
 use super::painter::{DrawContext, Painter};
 use crate::project::is_degenerate;
-use crate::seams::outset_polygon;
 use crate::style::TextureBrush;
+use sprite_compose::seams::outset_polygon;
 
 /// The affine transform taking texture pixels `tex` to screen points `screen` (three pairs
 /// chosen among the polygon's corners for the largest uv area); `None` when degenerate.
@@ -68,8 +68,8 @@ impl Painter {
         let k = f64::from(factor);
         let seams = options.anti_alias && options.seam_outset > 0.0;
         let outset = if seams { options.seam_outset } else { 0.0 };
-        let start = self.polygons.starts[index];
-        let n_points = self.polygons.starts[index + 1] - start;
+        let edges = self.polygons.edges(index);
+        let n_points = edges.len();
         let size = DVec2::new(
             f64::from(texture.image.width()),
             f64::from(texture.image.height()),
@@ -82,7 +82,7 @@ impl Painter {
         let mut parts: Vec<(Vec<DVec3>, Vec<bool>)> = Vec::new();
         if n <= 1 || clipped {
             let flags = if seams {
-                self.shared.shared[start..start + n_points].to_vec()
+                self.shared.flags(edges.clone()).to_vec()
             } else {
                 vec![false; n_points]
             };
@@ -92,7 +92,7 @@ impl Painter {
                 let flags = (0..3)
                     .map(|e| match boundary[e] {
                         None => true,
-                        Some(edge) => seams && self.shared.shared[start + edge],
+                        Some(edge) => seams && self.shared.flags(edges.clone())[edge],
                     })
                     .collect();
                 parts.push((tri.to_vec(), flags));

@@ -342,7 +342,7 @@ fn lines_and_points_are_exact_in_html() {
             &HtmlOptions::DEFAULT
                 .with_size(SIZE, SIZE)
                 .with_ids(true)
-                .with_background(BACKGROUND)
+                .with_background(Some(BACKGROUND))
                 .with_overlay(overlay),
         );
         crate::browser::screenshot_at(browser, &html, "overlay", SIZE)

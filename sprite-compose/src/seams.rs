@@ -1,5 +1,6 @@
 //! Seam-free anti-aliasing: find the edges shared by two drawn polygons and push the fill
-//! out across them by a fraction of a pixel.
+//! out across them by a fraction of a pixel. raster-sink's PNG and the HTML writer's colour
+//! pages both use it, so that their pictures agree along every shared edge.
 //!
 //! Anti-aliased neighbours *conflate*: a pixel half covered by each of two adjacent polygons
 //! ends up 75 % colour and 25 % background after both are composited, a hairline of
@@ -11,37 +12,61 @@
 use std::collections::HashMap;
 use std::hash::{BuildHasherDefault, Hasher};
 
-use face_sort::glam::DVec2;
+use glam::DVec2;
 
-use crate::tolerance::{PARALLEL_EDGES, SHARED_EDGE_PX};
+use crate::tolerance::{SEAM_PARALLEL_NORMALS, SEAM_SHARED_EDGE_PX};
 
-/// Polygons drawn in one frame: screen points stored flat.
+/// Polygons drawn in one frame, in paint order: screen points (pixels) stored flat, so that
+/// a frame reuses the storage of the last.
 #[derive(Debug, Default)]
-pub(crate) struct ScreenPolygons {
-    pub(crate) points: Vec<DVec2>,
+pub struct ScreenPolygons {
+    points: Vec<DVec2>,
     /// `starts[i]..starts[i + 1]` are polygon `i`'s points; edge `k` runs from point `k` to the
     /// next point of the same polygon (cyclic).
-    pub(crate) starts: Vec<usize>,
+    starts: Vec<usize>,
 }
 
 impl ScreenPolygons {
-    pub(crate) fn clear(&mut self) {
+    /// Forgets every polygon (keeping the storage).
+    pub fn clear(&mut self) {
         self.points.clear();
         self.starts.clear();
         self.starts.push(0);
     }
-    pub(crate) fn push(&mut self, points: &[DVec2]) {
+
+    /// Appends a polygon (its corners in order, either orientation).
+    pub fn push(&mut self, points: &[DVec2]) {
         if self.starts.is_empty() {
             self.starts.push(0);
         }
         self.points.extend_from_slice(points);
         self.starts.push(self.points.len());
     }
-    pub(crate) fn len(&self) -> usize {
+
+    /// How many polygons there are.
+    #[must_use]
+    pub fn len(&self) -> usize {
         self.starts.len().saturating_sub(1)
     }
-    pub(crate) fn polygon(&self, i: usize) -> &[DVec2] {
-        &self.points[self.starts[i]..self.starts[i + 1]]
+
+    /// Whether there are none.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Polygon `i`'s corners. Panics when `i >= len()`.
+    #[must_use]
+    pub fn polygon(&self, i: usize) -> &[DVec2] {
+        &self.points[self.edges(i)]
+    }
+
+    /// The indices of polygon `i`'s edges among all polygons' edges (edge `k` runs from
+    /// corner `k` to the next corner of the same polygon), as [`SharedEdges::flags`] takes
+    /// them. Panics when `i >= len()`.
+    #[must_use]
+    pub fn edges(&self, i: usize) -> std::ops::Range<usize> {
+        self.starts[i]..self.starts[i + 1]
     }
     fn edge(&self, polygon: usize, k: usize) -> (DVec2, DVec2) {
         let (s, e) = (self.starts[polygon], self.starts[polygon + 1]);
@@ -73,11 +98,12 @@ impl Hasher for FxHasher {
 
 type EdgeKey = [i64; 4];
 
-/// Finds shared edges; reusable between frames.
+/// Which edges of a set of [`ScreenPolygons`] another polygon shares; reusable between
+/// frames.
 #[derive(Default)]
-pub(crate) struct SharedEdges {
+pub struct SharedEdges {
     /// Per point index (= edge index): whether that edge is shared.
-    pub(crate) shared: Vec<bool>,
+    shared: Vec<bool>,
     counts: HashMap<EdgeKey, u32, BuildHasherDefault<FxHasher>>,
     loose: Vec<(f64, f64, usize, usize)>,
 }
@@ -103,10 +129,17 @@ fn key(a: DVec2, b: DVec2) -> EdgeKey {
 }
 
 impl SharedEdges {
+    /// Whether each of the edges `edges` (a range from [`ScreenPolygons::edges`]) is shared,
+    /// as of the last [`compute`](Self::compute). Panics when the range is out of bounds.
+    #[must_use]
+    pub fn flags(&self, edges: std::ops::Range<usize>) -> &[bool] {
+        &self.shared[edges]
+    }
+
     /// Marks every edge of `polygons` that another polygon shares: same endpoints (within
-    /// [`SHARED_EDGE_PX`]), or collinear with a positive overlap (T-junctions, e.g. where a
+    /// [`SEAM_SHARED_EDGE_PX`]), or collinear with a positive overlap (T-junctions, e.g. where a
     /// sorter split one face but not its neighbour).
-    pub(crate) fn compute(&mut self, polygons: &ScreenPolygons) {
+    pub fn compute(&mut self, polygons: &ScreenPolygons) {
         let n_edges = polygons.points.len();
         self.shared.clear();
         self.shared.resize(n_edges, false);
@@ -130,7 +163,7 @@ impl SharedEdges {
         }
         // Unmatched edges: collinear overlaps, found by a sweep over x.
         self.loose.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
-        let eps = SHARED_EDGE_PX;
+        let eps = SEAM_SHARED_EDGE_PX;
         for s in 0..self.loose.len() {
             let (_, max_x, pi, ki) = self.loose[s];
             let (a0, a1) = polygons.edge(pi, ki);
@@ -174,8 +207,9 @@ const MITER_LIMIT: f64 = 3.0;
 
 /// Writes `points` outset by `outset` pixels along the edges whose flag is set (edge `k`
 /// runs from point `k` to `k + 1`) into `out`. Corners are mitred (bevelled beyond
-/// [`MITER_LIMIT`]); edges without the flag stay on their line.
-pub(crate) fn outset_polygon(points: &[DVec2], shared: &[bool], outset: f64, out: &mut Vec<DVec2>) {
+/// [`MITER_LIMIT`]); edges without the flag stay on their line. With `outset <= 0` or no
+/// flag set, `out` is `points`.
+pub fn outset_polygon(points: &[DVec2], shared: &[bool], outset: f64, out: &mut Vec<DVec2>) {
     out.clear();
     let n = points.len();
     if outset <= 0.0 || !shared.iter().any(|&s| s) {
@@ -205,7 +239,7 @@ pub(crate) fn outset_polygon(points: &[DVec2], shared: &[bool], outset: f64, out
         }
         let (n1, n2) = (normal(prev), normal(i));
         let det = n1.perp_dot(n2);
-        let miter = if det.abs() > PARALLEL_EDGES {
+        let miter = if det.abs() > SEAM_PARALLEL_NORMALS {
             Some(DVec2::new(o1 * n2.y - o2 * n1.y, n1.x * o2 - n2.x * o1) / det)
         } else if n1.dot(n2) > 0.0 && o1 == o2 {
             Some(n1 * o1)
@@ -256,11 +290,11 @@ mod tests {
         polys.push(&c);
         let mut shared = SharedEdges::default();
         shared.compute(&polys);
-        assert_eq!(&shared.shared[0..4], &[false, true, true, false]);
-        assert_eq!(&shared.shared[4..8], &[false, false, false, true]);
-        assert_eq!(&shared.shared[8..12], &[true, false, false, false]);
+        assert_eq!(shared.flags(0..4), &[false, true, true, false]);
+        assert_eq!(shared.flags(4..8), &[false, false, false, true]);
+        assert_eq!(shared.flags(8..12), &[true, false, false, false]);
         let mut out = Vec::new();
-        outset_polygon(&a, &shared.shared[0..4], 0.5, &mut out);
+        outset_polygon(&a, shared.flags(0..4), 0.5, &mut out);
         assert_eq!(
             out,
             [
