@@ -32,12 +32,30 @@ pub struct Export {
 }
 
 impl Export {
-    /// The picture of `geometry` through `view`, ordered by the BSP (exact), every face in
-    /// its palette colour until [`with_materials`](Self::with_materials).
+    /// The picture of `geometry` through `view`, every face in its palette colour until
+    /// [`with_materials`](Self::with_materials), ordered by whichever exact sorter of
+    /// [`Export::SORTERS`] draws the fewest sprites (a file's size follows its sprites):
+    /// Newell splits only faces in cycles, the BSP splits along its planes, and the merged
+    /// BSP draws split pieces whole where it can. The first wins a tie.
     #[must_use]
     pub fn new(geometry: &Geometry, view: View) -> Self {
-        Self::with_sorter(geometry, view, SorterKind::Bsp)
+        let mut best: Option<(usize, Self)> = None;
+        for sorter in Self::SORTERS {
+            let export = Self::with_sorter(geometry, view, sorter);
+            let sprites = export.painter.compositor().scene().visible().count();
+            if best.as_ref().is_none_or(|(fewest, _)| sprites < *fewest) {
+                best = Some((sprites, export));
+            }
+        }
+        best.map_or_else(
+            || Self::with_sorter(geometry, view, SorterKind::Bsp),
+            |(_, e)| e,
+        )
     }
+
+    /// The exact sorters [`new`](Self::new) chooses from, in order of preference.
+    pub const SORTERS: [SorterKind; 3] =
+        [SorterKind::Newell, SorterKind::BspMerged, SorterKind::Bsp];
 
     /// [`new`](Self::new) with another sorter.
     #[must_use]

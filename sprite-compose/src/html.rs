@@ -174,8 +174,14 @@ pub fn css_matrix3d(m: &DMat4) -> String {
 /// (projective) `matrix3d`, holding an `<img>` placed by the brush's affine uv map in the
 /// square's own plane, so the texture follows the homography exactly; its clip polygon, if
 /// any, is a `clip-path` on an untransformed inner `div` (rastered into the element's layer,
-/// anti-aliased, not the slow case), its corners moved [`HTML_TEXTURE_SEAM_PX`] pixels
-/// outward so that neighbours overlap rather than show hairlines of background.
+/// anti-aliased, not the slow case).
+///
+/// Seams: in colour mode every opaque sprite reaches [`HTML_SEAM_OUTSET_PX`] pixels past
+/// each edge it shares with another sprite ([`seams`](crate::seams), as raster-sink's PNG
+/// does), and its quads overlap one another, so that no background shows between
+/// anti-aliased neighbours; silhouettes stay where they are. In ID mode nothing grows: the
+/// page is exact at pixel centres, with thin strips under the split lines between fragments
+/// of one face instead.
 #[must_use]
 pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
     let (w, h) = (options.width, options.height);

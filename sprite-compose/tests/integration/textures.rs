@@ -236,6 +236,7 @@ pub fn textured_html(b: &TexturedBox) -> String {
         b.painter.compositor().scene(),
         &HtmlOptions::DEFAULT
             .with_size(SIZE, SIZE)
+            .with_background(Some([0, 0, 0, 255]))
             .with_textures(vec![b.data_uri.clone()]),
     )
 }
