@@ -207,7 +207,7 @@ const MITER_LIMIT: f64 = 3.0;
 
 /// Writes `points` outset by `outset` pixels along the edges whose flag is set (edge `k`
 /// runs from point `k` to `k + 1`) into `out`. Corners are mitred (bevelled beyond
-/// [`MITER_LIMIT`]); edges without the flag stay on their line. With `outset <= 0` or no
+/// three times the outset); edges without the flag stay on their line. With `outset <= 0` or no
 /// flag set, `out` is `points`.
 pub fn outset_polygon(points: &[DVec2], shared: &[bool], outset: f64, out: &mut Vec<DVec2>) {
     out.clear();
