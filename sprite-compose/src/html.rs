@@ -351,7 +351,7 @@ pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
                 .as_ref()
                 .and_then(|seams| seams.grown(scene.root(), sprite, index))
         {
-            for quad in opaque_clip_quads(&grown) {
+            for quad in overlapping_clip_quads(&grown) {
                 let m = outer * sprite.transform.matrix * quad * unscale;
                 let _ = writeln!(
                     page,
@@ -706,21 +706,31 @@ pub(crate) fn clip_quads(clip: &[DVec2]) -> Vec<DMat4> {
     out
 }
 
-/// [`clip_quads`] for an opaque sprite, which may overlap itself, so that no edge between
-/// two of its quads is an edge of the picture (anti-aliased edges of two layers that meet
-/// let the background through).
-///
-/// A triangle is two quads, the trapezoid `(a, b, m_bc, m_ca)` and the parallelogram
-/// `(m_ab, m_bc, c, m_ca)` (`m` the edge midpoints), overlapping on the medial triangle: both
+/// [`clip_quads`] for an opaque sprite, which may overlap itself: a lone triangle is two
+/// quads instead of three, the trapezoid `(a, b, m_bc, m_ca)` and the parallelogram
+/// `(m_ab, m_bc, c, m_ca)` (`m` the edge midpoints), overlapping on the medial triangle. Both
 /// are well-shaped whenever the triangle has area, their union is the triangle (what the
 /// trapezoid leaves, the triangle `(m_ca, m_bc, c)`, lies in the parallelogram), and each
-/// one's inner edges lie inside the other. A larger polygon is the fan quads
-/// `(c0, ck, ck+1, ck+2)` for every `k`, each overlapping the next by one fan triangle: the
-/// diagonal `c0 ck` of quad `k` lies inside quad `k − 1`, and `c0 ck+2` inside quad `k + 1`.
+/// one's inner edges lie inside the other.
 pub(crate) fn opaque_clip_quads(clip: &[DVec2]) -> Vec<DMat4> {
+    if let [a, b, c] = *clip {
+        let mut out = Vec::new();
+        opaque_triangle_quads(a, b, c, &mut out);
+        return out;
+    }
+    clip_quads(clip)
+}
+
+/// [`opaque_clip_quads`] for colour pages, where no edge between two quads of one sprite may
+/// be an edge of the picture (anti-aliased edges of two layers that meet let the background
+/// through): a polygon of four corners or more is the fan quads `(c0, ck, ck+1, ck+2)` for
+/// every `k`, each overlapping the next by one fan triangle, so the diagonal `c0 ck` of quad
+/// `k` lies inside quad `k − 1`, and `c0 ck+2` inside quad `k + 1`. (ID pages keep
+/// [`opaque_clip_quads`]: there the overlapping fan moved single pixels at pixel centres.)
+fn overlapping_clip_quads(clip: &[DVec2]) -> Vec<DMat4> {
     let mut out = Vec::new();
-    if clip.len() == 3 {
-        opaque_triangle_quads(clip[0], clip[1], clip[2], &mut out);
+    if let [a, b, c] = *clip {
+        opaque_triangle_quads(a, b, c, &mut out);
         return out;
     }
     for k in 1..clip.len().saturating_sub(2) {
