@@ -323,24 +323,14 @@ pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
                 .as_ref()
                 .and_then(|seams| seams.grown(scene.root(), sprite, index))
                 .unwrap_or(polygon);
-            let clip = {
-                let mut c = String::from(" style=\"clip-path:polygon(");
-                for (k, p) in dilated.iter().enumerate() {
-                    let b = (*p + DVec2::splat(e)) / (1.0 + 2.0 * e);
-                    let _ = write!(
-                        c,
-                        "{}{}% {}%",
-                        if k > 0 { "," } else { "" },
-                        crate::numbers::significant(b.x * 100.0, 6),
-                        crate::numbers::significant(b.y * 100.0, 6)
-                    );
-                }
-                c.push_str(")\"");
-                c
-            };
+            let clip = clip_path(
+                dilated
+                    .iter()
+                    .map(|p| (*p + DVec2::splat(e)) / (1.0 + 2.0 * e)),
+            );
             let _ = writeln!(
                 page,
-                "<div class=\"x\" style=\"width:{size}px;height:{size}px;transform:{}\"><div{clip}><i class=\"t{id}\" style=\"transform:{place}\"></i></div></div>",
+                "<div class=\"x\" style=\"width:{size}px;height:{size}px;transform:{}\"><div style=\"{clip}\"><i class=\"t{id}\" style=\"transform:{place}\"></i></div></div>",
                 css_matrix3d(&m)
             );
             continue;
@@ -350,17 +340,16 @@ pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
             && let Some(grown) = seams
                 .as_ref()
                 .and_then(|seams| seams.grown(scene.root(), sprite, index))
+            && let Some((to_square, clip)) = clipped_box(&grown, size)
         {
-            for quad in overlapping_clip_quads(&grown) {
-                let m = outer * sprite.transform.matrix * quad * unscale;
-                let _ = writeln!(
-                    page,
-                    "<div class=\"{} {}\" style=\"transform:{}\"></div>",
-                    classes.of(format!("width:{size}px;height:{size}px")),
-                    classes.of(format!("background:{colour}")),
-                    css_matrix3d(&m)
-                );
-            }
+            let m = outer * sprite.transform.matrix * to_square * unscale;
+            let _ = writeln!(
+                page,
+                "<div class=\"x {}\" style=\"transform:{}\"><div class=\"{}\" style=\"{clip}\"></div></div>",
+                classes.of(format!("width:{size}px;height:{size}px")),
+                css_matrix3d(&m),
+                classes.of(format!("background:{colour}")),
+            );
             continue;
         }
         match &sprite.clip {
@@ -721,28 +710,50 @@ pub(crate) fn opaque_clip_quads(clip: &[DVec2]) -> Vec<DMat4> {
     clip_quads(clip)
 }
 
-/// [`opaque_clip_quads`] for colour pages, where no edge between two quads of one sprite may
-/// be an edge of the picture (anti-aliased edges of two layers that meet let the background
-/// through): a polygon of four corners or more is the fan quads `(c0, ck, ck+1, ck+2)` for
-/// every `k`, each overlapping the next by one fan triangle, so the diagonal `c0 ck` of quad
-/// `k` lies inside quad `k − 1`, and `c0 ck+2` inside quad `k + 1`. (ID pages keep
-/// [`opaque_clip_quads`]: there the overlapping fan moved single pixels at pixel centres.)
-fn overlapping_clip_quads(clip: &[DVec2]) -> Vec<DMat4> {
-    let mut out = Vec::new();
-    if let [a, b, c] = *clip {
-        opaque_triangle_quads(a, b, c, &mut out);
-        return out;
+/// A colour page's opaque sprite as one element: the box of `polygon` (unit-square
+/// coordinates) grown by a margin of [`HTML_TEXTURE_MARGIN_PX`] (in pixels of a `size`-pixel
+/// element), clipped back to `polygon`. Returns the map from the element's unit box to the
+/// sprite's unit square and the element's `clip-path` declaration; `None` when the polygon has
+/// no area. No edge of the element's box is an edge of the picture, and the sprite's polygon is
+/// one clip, so no edge inside the sprite is drawn at all: only the grown outline is
+/// anti-aliased, where it lies under its neighbours.
+fn clipped_box(polygon: &[DVec2], size: f64) -> Option<(DMat4, String)> {
+    let (mut lo, mut hi) = (*polygon.first()?, polygon[0]);
+    for p in polygon {
+        lo = lo.min(*p);
+        hi = hi.max(*p);
     }
-    for k in 1..clip.len().saturating_sub(2) {
-        let corners = [clip[0], clip[k], clip[k + 1], clip[k + 2]];
-        if let Some(m) = quad_matrix(corners) {
-            out.push(m);
-        } else {
-            opaque_triangle_quads(corners[0], corners[1], corners[2], &mut out);
-            opaque_triangle_quads(corners[0], corners[2], corners[3], &mut out);
-        }
+    let span = hi - lo;
+    if !(span.min_element() > 0.0 && span.is_finite()) {
+        return None;
     }
-    out
+    let e = HTML_TEXTURE_MARGIN_PX / size;
+    let to_square = DMat4::from_translation(lo.extend(0.0))
+        * DMat4::from_scale(span.extend(1.0))
+        * DMat4::from_translation(DVec3::new(-e, -e, 0.0))
+        * DMat4::from_scale(DVec3::new(1.0 + 2.0 * e, 1.0 + 2.0 * e, 1.0));
+    let clip = clip_path(
+        polygon
+            .iter()
+            .map(|p| ((*p - lo) / span + DVec2::splat(e)) / (1.0 + 2.0 * e)),
+    );
+    Some((to_square, clip))
+}
+
+/// `clip-path:polygon(…)` through `points`, given in the element's unit box.
+fn clip_path(points: impl Iterator<Item = DVec2>) -> String {
+    let mut c = String::from("clip-path:polygon(");
+    for (k, b) in points.enumerate() {
+        let _ = write!(
+            c,
+            "{}{}% {}%",
+            if k > 0 { "," } else { "" },
+            crate::numbers::significant(b.x * 100.0, 6),
+            crate::numbers::significant(b.y * 100.0, 6)
+        );
+    }
+    c.push(')');
+    c
 }
 
 /// A triangle as [`opaque_clip_quads`] draws it: two overlapping quads, or, when one of them

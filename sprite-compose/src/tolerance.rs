@@ -131,7 +131,8 @@ pub const UV_TILE_SLACK: f64 = 1e-5;
 /// face keeps its untiled map.
 pub const MAX_TILED_PIXELS: u64 = 1 << 24;
 
-/// Pixels: a textured HTML element reaches this far beyond its sprite's unit square (and is
-/// clipped back to the sprite), so that the element's box edges, which Chromium's compositor
-/// anti-aliases, lie outside the picture.
+/// Pixels: a textured HTML element reaches this far beyond its sprite's unit square, and an
+/// opaque flat one of a colour page this far beyond its polygon's box (both clipped back to the
+/// sprite), so that the element's box edges, which Chromium's compositor anti-aliases, lie
+/// outside the picture.
 pub const HTML_TEXTURE_MARGIN_PX: f64 = 4.0;
