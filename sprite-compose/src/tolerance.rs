@@ -136,3 +136,9 @@ pub const MAX_TILED_PIXELS: u64 = 1 << 24;
 /// sprite), so that the element's box edges, which Chromium's compositor anti-aliases, lie
 /// outside the picture.
 pub const HTML_TEXTURE_MARGIN_PX: f64 = 4.0;
+
+/// Relative: the PDF writer cuts a texture tile into strips when the `x` reach of its
+/// parallelogram's two edges from the top corner differ by at most this fraction of the
+/// larger one, where poppler's Splash rasteriser could take either for the left edge
+/// (`pdf.rs`, `Tile::strips_for_splash`).
+pub const SPLASH_ORDER_MARGIN: f64 = 1e-3;

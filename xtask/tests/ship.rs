@@ -127,13 +127,10 @@ fn rendered_files_travel_alone_and_match_the_png() {
                 extra: extra.clone(),
                 yaw,
                 pitch,
-                shows: match (name, k) {
-                    (_, 0) => html_everywhere.clone(),
-                    // Known defect, left open (issue 50): poppler leaves whole textured
-                    // sprites blank near spot's snout at this view; see the ignored test
-                    // `spot_pdf_at_yaw_minus_100_has_no_holes`.
-                    ("spot", 2) => vec![("html", one), ("svg", one)],
-                    _ => files.clone(),
+                shows: if k == 0 {
+                    html_everywhere.clone()
+                } else {
+                    files.clone()
                 },
             });
         }
@@ -374,40 +371,4 @@ fn spot_pages_are_small_and_exact_in_id_mode_at_one_and_four_times() {
         }
     }
     let _ = std::fs::remove_dir_all(&work);
-}
-
-/// The textured spot's PDF at yaw −100°, pitch 10° through poppler. Fails today: poppler
-/// leaves textured sprites blank near the snout's silhouette (2.1 % of covered pixels off,
-/// 271 hole pixels), though the same sprites show in Chromium's SVG and HTML. Ignored until
-/// the PDF writer avoids it (`cargo test -p xtask --test ship -- --ignored --nocapture`).
-#[test]
-#[ignore = "known defect: poppler leaves holes in spot's textured PDF at this view"]
-fn spot_pdf_at_yaw_minus_100_has_no_holes() {
-    let (Some(browser), true) = (chromium(), pdftoppm_available()) else {
-        return;
-    };
-    let assets = Path::new(env!("CARGO_MANIFEST_DIR")).join("../assets/models");
-    let screen = Screen {
-        size: 512,
-        zoom: 1,
-        composited_antialiasing: true,
-        compositor: test_support::consumers::Compositor::Software,
-    };
-    check_against_the_png(
-        browser,
-        &ShipCase {
-            name: "spot",
-            model: assets.join("keenan-crane/spot/spot_quadrangulated.obj"),
-            extra: vec![
-                "--texture".to_owned(),
-                assets
-                    .join("keenan-crane/spot/spot_texture.png")
-                    .display()
-                    .to_string(),
-            ],
-            yaw: "-100",
-            pitch: "10",
-            shows: vec![("pdf", screen)],
-        },
-    );
 }
