@@ -80,8 +80,9 @@ pub use plane::{Plane, Side, newell_normal};
 pub use polygon::{Box2, clip_convex_2d, signed_area_2d, split_polygon};
 pub use polygon_set::PolygonSet;
 pub use presorted::{
-    CertifiedOrders, CertifiedOrdersError, CertifiedRegion, CoreOrders, MAX_CORE_PLANES, OrderStep,
-    PresortError, PresortOptions, Presorted,
+    CertifiedOrders, CertifiedOrdersError, CertifiedRegion, CoreOrders, FallbackReason,
+    MAX_CORE_PLANES, OrderStep, PRESORT_FORMAT_VERSION, PresortError, PresortLoadError,
+    PresortOptions, Presorted,
 };
 pub use scene::{Instance, Layer, MAX_LODS, SceneError, SceneSorter, SceneStats};
 pub use small::SmallPieceFilter;

@@ -230,14 +230,35 @@ impl Plan {
         } else {
             format!("{frames} frames")
         };
-        let mut predicted = [Strategy::Newell, Strategy::Bsp, Strategy::Presorted]
-            .map(|s| (s, costs.predict(s, n, frames)));
+        // Presorted only when its build is predicted to finish within its own time budget
+        // (a refused build would leave every frame to the BSP after paying for it).
+        let budget_ns = crate::PresortOptions::default()
+            .max_build_time
+            .as_secs_f64()
+            * 1e9;
+        let presort_build_ns = costs.presorted_build_per_pair * (n as f64).powi(2);
+        let over_budget = presort_build_ns > budget_ns;
+        let mut predicted: Vec<(Strategy, f64)> =
+            [Strategy::Newell, Strategy::Bsp, Strategy::Presorted]
+                .into_iter()
+                .filter(|&s| !(over_budget && s == Strategy::Presorted))
+                .map(|s| (s, costs.predict(s, n, frames)))
+                .collect();
         predicted.sort_by(|a, b| a.1.total_cmp(&b.1));
-        let [(strategy, cheaper), (_, dearer), _] = predicted;
+        let ((strategy, cheaper), (_, dearer)) = (predicted[0], predicted[1]);
+        let excluded = if over_budget {
+            format!(
+                "; presorted left out: its build is predicted at {:.0} s, over its {:.0} s budget",
+                presort_build_ns * 1e-9,
+                budget_ns * 1e-9
+            )
+        } else {
+            String::new()
+        };
         Plan {
             strategy,
             reason: format!(
-                "not convex; {frame_words}, {n} pieces → {} (predicted {:.1} ms against {:.1} ms)",
+                "not convex; {frame_words}, {n} pieces → {} (predicted {:.1} ms against {:.1} ms){excluded}",
                 strategy.name(),
                 cheaper * 1e-6,
                 dearer * 1e-6

@@ -27,6 +27,8 @@ pub struct SorterStats {
     /// Frames so far whose view no certificate covered, ordered by a fallback instead
     /// ([`Presorted`](crate::Presorted): eyes too near, other cull modes; exactness kept).
     pub fallback_frames: usize,
+    /// Why the last frame fell back, when it did ([`Presorted`](crate::Presorted)).
+    pub fallback: Option<crate::FallbackReason>,
 }
 
 /// Culls and orders a mesh's pieces for a view, back to front.

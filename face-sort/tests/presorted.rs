@@ -5,8 +5,8 @@ mod common;
 use common::{asset, read_obj};
 use face_sort::glam::{DQuat, DVec3};
 use face_sort::{
-    CertifiedOrdersError, CullMode, DrawList, FaceSorter, Geometry, PresortError, PresortOptions,
-    Presorted, View, oracle,
+    CertifiedOrdersError, CullMode, DrawList, FaceSorter, FallbackReason, Geometry, PresortError,
+    PresortLoadError, PresortOptions, Presorted, View, oracle,
 };
 
 /// Views at seeded random rotations (any yaw, pitch and roll), orthographic and perspective
@@ -65,16 +65,110 @@ fn uncovered_views_fall_back_to_the_bsp_and_stay_exact() {
         base.with_cull(CullMode::None),
         base.with_cull_margin(2.0),
     ];
+    let reasons = [
+        FallbackReason::EyeTooNear,
+        FallbackReason::CullMode,
+        FallbackReason::CullMode,
+    ];
     let mut list = DrawList::new();
     for (k, view) in uncovered.iter().enumerate() {
         sorter.sort(view, &mut list);
+        assert_eq!(sorter.last_fallback(), Some(reasons[k]), "view {k}");
+        assert_eq!(sorter.stats().fallback, Some(reasons[k]), "view {k}");
         assert!(sorter.last_frame_fell_back(), "view {k}");
         assert_eq!(oracle::count_violations(view, &list), 0, "view {k}");
         assert_eq!(sorter.fallback_frames(), k + 1);
     }
     sorter.sort(&base, &mut list);
     assert!(!sorter.last_frame_fell_back());
+    assert_eq!(sorter.last_fallback(), None);
     assert_eq!(sorter.stats().fallback_frames, 3);
+    assert!(sorter.refusal().is_none());
+}
+
+/// A saved certificate loads and orders every view exactly as the built one: the same draw
+/// list, item for item, with no violation, orthographic and perspective.
+#[test]
+fn a_saved_certificate_orders_exactly_as_the_built_one() {
+    for model in [
+        "keenan-crane/spot/spot_control_mesh.obj",
+        "suzanne/suzanne.obj",
+    ] {
+        let geometry = Geometry::with_exact_corners(&read_obj(&asset(model))).unwrap();
+        let mut built = Presorted::try_new(&geometry, &PresortOptions::default()).unwrap();
+        let bytes = built.to_bytes();
+        let mut loaded = Presorted::from_bytes(&bytes, &geometry).unwrap();
+        assert_eq!(loaded.regions(), built.regions(), "{model}");
+        assert_eq!(loaded.orders(), built.orders(), "{model}");
+        assert_eq!(loaded.cores(), built.cores(), "{model}");
+        assert_eq!(
+            loaded.to_bytes(),
+            bytes,
+            "{model}: saving again changes nothing"
+        );
+        let (mut a, mut b) = (DrawList::new(), DrawList::new());
+        for view in &random_views(&geometry, 12, 11) {
+            built.sort(view, &mut a);
+            loaded.sort(view, &mut b);
+            assert_eq!(a.items(), b.items(), "{model} at {view:?}");
+            assert!(!loaded.last_frame_fell_back(), "{model}");
+            assert_eq!(oracle::count_violations(view, &b), 0, "{model} at {view:?}");
+        }
+    }
+}
+
+/// Bytes that are not this geometry's certificate give a typed error and never a panic: no
+/// header, another version, another geometry, every cut-short prefix, and single bytes
+/// changed (each either refused or loaded and sorting without a panic).
+#[test]
+fn hostile_certificate_bytes_give_errors_not_panics() {
+    let geometry = Geometry::with_exact_corners(&read_obj(&asset("suzanne/suzanne.obj"))).unwrap();
+    let other =
+        Geometry::with_exact_corners(&read_obj(&asset("keenan-crane/spot/spot_control_mesh.obj")))
+            .unwrap();
+    let bytes = Presorted::try_new(&geometry, &PresortOptions::default())
+        .unwrap()
+        .to_bytes();
+    assert_eq!(
+        Presorted::from_bytes(b"not a certificate", &geometry).err(),
+        Some(PresortLoadError::NotACertificate)
+    );
+    let mut newer = bytes.clone();
+    newer[8] = 99;
+    assert!(matches!(
+        Presorted::from_bytes(&newer, &geometry),
+        Err(PresortLoadError::Version { found: 99 })
+    ));
+    assert_eq!(
+        Presorted::from_bytes(&bytes, &other).err(),
+        Some(PresortLoadError::OtherGeometry)
+    );
+    for cut in (0..bytes.len()).step_by((bytes.len() / 300).max(1)) {
+        assert!(
+            Presorted::from_bytes(&bytes[..cut], &geometry).is_err(),
+            "a prefix of {cut} bytes loaded"
+        );
+    }
+    let mut long = bytes.clone();
+    long.push(0);
+    assert_eq!(
+        Presorted::from_bytes(&long, &geometry).err(),
+        Some(PresortLoadError::Trailing(1))
+    );
+    let view = View::fit(&geometry.bounds(), 64, 64).with_yaw_pitch_roll(30.0, 20.0, 0.0);
+    let mut list = DrawList::new();
+    let mut rng = test_support::Rng::new(5);
+    let mut refused = 0;
+    for _ in 0..300 {
+        let mut changed = bytes.clone();
+        let at = (rng.range(0.0, 1.0) * changed.len() as f64) as usize % changed.len();
+        changed[at] ^= 1 << ((rng.range(0.0, 8.0) as u32) % 8);
+        match Presorted::from_bytes(&changed, &geometry) {
+            Ok(mut sorter) => sorter.sort(&view, &mut list),
+            Err(_) => refused += 1,
+        }
+    }
+    assert!(refused > 0, "no changed byte was refused");
 }
 
 #[test]

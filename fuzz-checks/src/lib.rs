@@ -15,6 +15,7 @@
 //! | [`sorters`](sorters::sorters) | a small mesh and a view, any numbers | a typed error, or an exact list from every exact sorter |
 //! | [`writers`](writers::writers) | a small mesh, materials, names, colours, options | SVG, HTML and PDF that real parsers accept |
 //! | [`bake`](bake::bake) | a small mesh, a spin axis | a typed error, or a bake that `verify` passes |
+//! | [`certificate`](certificate::certificate) | a saved `Presorted` certificate | a typed error, or a sorter that orders views |
 //!
 //! Every target keeps its own inputs small (a few faces, at most a few kilobytes read), so a
 //! run does millions of executions. Resource budgets are part of the contract: each check
@@ -27,6 +28,7 @@
 pub struct ReadmeDoctests;
 
 pub mod bake;
+pub mod certificate;
 mod input;
 pub mod loaders;
 pub mod sorters;
@@ -43,7 +45,7 @@ pub struct Target {
 }
 
 /// Every target, in the order of the table above.
-pub const TARGETS: [Target; 7] = [
+pub const TARGETS: [Target; 8] = [
     Target {
         name: "obj",
         check: loaders::obj,
@@ -71,6 +73,10 @@ pub const TARGETS: [Target; 7] = [
     Target {
         name: "bake",
         check: bake::bake,
+    },
+    Target {
+        name: "certificate",
+        check: certificate::certificate,
     },
 ];
 

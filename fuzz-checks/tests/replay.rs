@@ -73,3 +73,23 @@ fn open_findings_still_fail() {
         "fixed, move to fuzz/regressions/: {passing:?}"
     );
 }
+
+/// The `certificate` corpus's seed is the fixture's own certificate (the build and the format
+/// unchanged), so that libFuzzer starts from bytes that load. `WRITE_CERTIFICATE_SEED=1`
+/// writes it again after a deliberate change of either.
+#[test]
+fn the_certificate_seed_is_the_fixtures_certificate() {
+    let (geometry, bytes) = fuzz_checks::certificate::fixture();
+    let seed = fuzz_checks::fuzz_dir().join("corpus/certificate/valid");
+    if std::env::var_os("WRITE_CERTIFICATE_SEED").is_some() {
+        std::fs::create_dir_all(seed.parent().unwrap()).unwrap();
+        std::fs::write(&seed, bytes).unwrap();
+    }
+    let committed = std::fs::read(&seed).unwrap_or_else(|e| panic!("{}: {e}", seed.display()));
+    assert!(
+        &committed == bytes,
+        "{} is not the fixture's certificate",
+        seed.display()
+    );
+    assert!(face_sort::Presorted::from_bytes(&committed, geometry).is_ok());
+}

@@ -24,6 +24,7 @@ mod fuzz_libfuzzer;
 mod fuzz_loaders;
 mod oneshot;
 mod peer;
+mod presort_cache;
 mod progress;
 mod raster;
 mod render;

@@ -148,6 +148,10 @@ pub struct RenderArgs {
     /// Print one JSON object instead of the summary line.
     #[arg(long)]
     pub(crate) json: bool,
+    /// With `--sorter presorted`: load the certificate from FILE when it holds one for this
+    /// model, else build it and save it there.
+    #[arg(long, value_name = "FILE")]
+    pub(crate) presort_cache: Option<PathBuf>,
     /// Also measure the order: pixel error against the z-buffer truth, oracle violations.
     #[arg(long)]
     pub(crate) check: bool,
@@ -237,6 +241,8 @@ struct Summary {
     pdf: Option<VectorSummary>,
     #[serde(skip_serializing_if = "Option::is_none")]
     plot: Option<PlotSummary>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    presorted: Option<PresortSummary>,
 }
 
 /// What `--plot` (and `--hpgl`) wrote.
@@ -313,36 +319,126 @@ fn gltf_scene(
     })
 }
 
+/// What `--sorter presorted` built and did: the certificate's size, and whether this view
+/// fell back to the BSP, and why (a refused build names its budget).
+#[derive(Debug, Serialize)]
+struct PresortSummary {
+    regions: usize,
+    orders: usize,
+    /// Cycles left to per-frame BSP trees, and the pieces in them.
+    cores: usize,
+    core_pieces: usize,
+    /// Threads the build used.
+    threads: usize,
+    fallback_frames: usize,
+    /// Why the build stopped, when it did (every view is then drawn by the BSP).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    refused: Option<String>,
+    /// Why this view fell back to the whole BSP, when the build finished and it did.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    fell_back: Option<String>,
+    /// What drew the picture: "presorted" or "bsp".
+    drawn_by: &'static str,
+    /// Where the certificate came from: built, built and saved, or loaded (`--presort-cache`).
+    certificate: String,
+}
+
+impl PresortSummary {
+    /// The summary line's words.
+    fn words(&self) -> String {
+        if let Some(refused) = &self.refused {
+            return format!("presorted build refused ({refused}); drawn by the BSP instead");
+        }
+        let base = format!(
+            "presorted: {} regions, {} orders, {} cores of {} pieces, {} threads, certificate {}",
+            self.regions, self.orders, self.cores, self.core_pieces, self.threads, self.certificate
+        );
+        match &self.fell_back {
+            Some(why) => format!("{base}; this view fell back to the BSP ({why})"),
+            None => base,
+        }
+    }
+}
+
+/// `Presorted` for `--sorter presorted`: its sorter, or the BSP when the build is refused,
+/// with what it did.
+fn presorted(
+    mesh: &PolygonMesh,
+    geometry: &Geometry,
+    cache: Option<&std::path::Path>,
+) -> Result<(Box<dyn FaceSorter>, String, Option<PresortSummary>)> {
+    let own = SorterKind::Presorted.geometry_for(mesh)?;
+    Ok(match crate::presort_cache::load_or_build(&own, cache)? {
+        Ok((sorter, source, _)) => {
+            let (cores, core_pieces) = sorter.cores();
+            let report = PresortSummary {
+                regions: sorter.regions(),
+                orders: sorter.orders(),
+                cores,
+                core_pieces,
+                threads: sorter.threads(),
+                fallback_frames: 0,
+                refused: None,
+                fell_back: None,
+                drawn_by: "presorted",
+                certificate: source.words(cache),
+            };
+            (
+                Box::new(sorter),
+                "presorted (asked for)".to_owned(),
+                Some(report),
+            )
+        }
+        Err(error) => {
+            let report = PresortSummary {
+                regions: 0,
+                orders: 0,
+                cores: 0,
+                core_pieces: 0,
+                threads: 0,
+                fallback_frames: 0,
+                refused: Some(error.to_string()),
+                fell_back: None,
+                drawn_by: "bsp",
+                certificate: "none".to_owned(),
+            };
+            (
+                SorterKind::Bsp.build(geometry),
+                format!("presorted (asked for) refused: {error}; bsp instead"),
+                Some(report),
+            )
+        }
+    })
+}
+
 /// Builds the sorter; for `auto`, the planner's choice for one picture, and why.
 fn plan(
     choice: SorterChoice,
     mesh: &PolygonMesh,
     geometry: &Geometry,
-) -> Result<(Box<dyn FaceSorter>, String)> {
-    let asked = |kind: SorterKind| -> Result<(Box<dyn FaceSorter>, String)> {
-        let own;
-        let geometry = if kind == SorterKind::Presorted {
-            own = kind.geometry_for(mesh)?;
-            &own
-        } else {
-            geometry
-        };
-        Ok((kind.build(geometry), format!("{} (asked for)", kind.name())))
+    cache: Option<&std::path::Path>,
+) -> Result<(Box<dyn FaceSorter>, String, Option<PresortSummary>)> {
+    let asked = |kind: SorterKind| {
+        (
+            kind.build(geometry),
+            format!("{} (asked for)", kind.name()),
+            None,
+        )
     };
-    match choice {
+    Ok(match choice {
         SorterChoice::Auto => {
             // `render` draws one frame: the planner must not pay for a tree that only an
             // animation would amortise.
             let plan = Plan::analyse(geometry, PlanHint::ONE_FRAME);
-            Ok((plan.build(geometry), format!("auto: {}", plan.reason)))
+            (plan.build(geometry), format!("auto: {}", plan.reason), None)
         }
         SorterChoice::Centroid => asked(SorterKind::Centroid),
         SorterChoice::Topological => asked(SorterKind::Topological),
         SorterChoice::Newell => asked(SorterKind::Newell),
         SorterChoice::Bsp => asked(SorterKind::Bsp),
         SorterChoice::BspMerged => asked(SorterKind::BspMerged),
-        SorterChoice::Presorted => asked(SorterKind::Presorted),
-    }
+        SorterChoice::Presorted => return presorted(mesh, geometry, cache),
+    })
 }
 
 /// A camera on the command line: the model file's own, or a look-at built by hand.
@@ -542,9 +638,14 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
     let scene = (args.sorter == SorterChoice::Auto && grid.is_none())
         .then(|| gltf_scene(&model_path, args.allow_outside, &geometry))
         .flatten();
-    let (mut sorter, plan) = match scene {
-        Some(scene) => scene,
-        None => plan(args.sorter, &polygons, &geometry)?,
+    let (mut sorter, plan, mut presorted) = match scene {
+        Some((sorter, plan)) => (sorter, plan, None),
+        None => plan(
+            args.sorter,
+            &polygons,
+            &geometry,
+            args.presort_cache.as_deref(),
+        )?,
     };
     let build_ms = ms(start);
     let sorter_name = sorter.name();
@@ -552,6 +653,14 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
     let start = Instant::now();
     sorter.sort(&view, &mut list);
     let sort_ms = ms(start);
+    if let Some(report) = &mut presorted {
+        let stats = sorter.stats();
+        report.fallback_frames = stats.fallback_frames;
+        if let Some(reason) = stats.fallback.filter(|_| report.refused.is_none()) {
+            report.fell_back = Some(reason.to_string());
+            report.drawn_by = "bsp";
+        }
+    }
 
     let output = args
         .output
@@ -808,6 +917,7 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
         svg: svg_summary,
         pdf: pdf_summary,
         plot: plot_summary,
+        presorted,
     };
     if args.json {
         println!("{}", serde_json::to_string(&summary)?);
@@ -937,6 +1047,9 @@ fn line(s: &Summary) -> String {
                 v.bytes, v.write_ms
             ));
         }
+    }
+    if let Some(p) = &s.presorted {
+        out.push_str(&format!("; {}", p.words()));
     }
     if let Some(p) = &s.plot {
         out.push_str(&format!(

@@ -3,7 +3,6 @@
 
 use std::path::PathBuf;
 use std::process::ExitCode;
-use std::time::Instant;
 
 use anyhow::{Context, Result};
 use clap::Args;
@@ -53,6 +52,10 @@ pub struct TurnArgs {
     /// Which faces the loader accepts.
     #[arg(long, value_enum, default_value_t = PolicyChoice::Polygons)]
     policy: PolicyChoice,
+    /// Load the certificate from FILE when it holds one for this model, else build it and
+    /// save it there.
+    #[arg(long, value_name = "FILE")]
+    presort_cache: Option<PathBuf>,
 }
 
 /// Runs `turn`.
@@ -69,9 +72,9 @@ pub fn run(args: &TurnArgs) -> Result<ExitCode> {
         );
         view = view.with_perspective(d);
     }
-    let start = Instant::now();
-    let sorter = face_sort::Presorted::try_new(&geometry, &face_sort::PresortOptions::default())?;
-    let build_ms = start.elapsed().as_secs_f64() * 1e3;
+    let (sorter, had, build_ms) =
+        crate::presort_cache::load_or_build(&geometry, args.presort_cache.as_deref())??;
+    let certificate = had.words(args.presort_cache.as_deref());
     let colour = crate::raster::solid_colours(&geometry, &source)?;
     let options = sprite_compose::TurnPageOptions::DEFAULT
         .with_ids(args.ids)
@@ -101,7 +104,7 @@ pub fn run(args: &TurnArgs) -> Result<ExitCode> {
         }
         std::fs::write(path, &page.html).with_context(|| format!("writing {}", path.display()))?;
         println!(
-            "{}: presorted in {build_ms:.0} ms; {what} {} B: {} regions, {} orders, {} cycles, {} elements{}",
+            "{}: presorted in {build_ms:.0} ms (certificate {certificate}); {what} {} B: {} regions, {} orders, {} cycles, {} elements{}",
             args.model.display(),
             page.html.len(),
             page.regions,

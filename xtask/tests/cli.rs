@@ -250,6 +250,72 @@ fn presorted_renders_exactly_at_any_rotation() {
     }
 }
 
+/// `--sorter presorted` never falls back silently: a near eye says that this view was drawn by
+/// the BSP and why, in `--json` and in the summary line; a certificate saved with
+/// `--presort-cache` is loaded on the next run and orders as exactly.
+#[test]
+fn presorted_says_when_it_falls_back_and_reuses_its_cache() {
+    let model = test_support::model_path("keenan-crane/spot/spot_control_mesh.obj");
+    let model = model.to_str().unwrap();
+    // The eye 60 px from the centre at 96 px: nearer than 1.5 bounding radii.
+    let near = ["--sorter", "presorted", "--yaw", "30", "--persp", "60"];
+    let value = render_summary(model, &near, "presorted-near");
+    assert_eq!(value["presorted"]["drawn_by"], "bsp", "{value}");
+    assert!(
+        value["presorted"]["fell_back"]
+            .as_str()
+            .is_some_and(|why| why.contains("nearer than min_eye_distance")),
+        "{value}"
+    );
+    assert_eq!(value["presorted"]["fallback_frames"], 1, "{value}");
+    assert_eq!(value["violations"], 0, "{value}");
+    let out = temp_dir("presorted-near-line").join("out.png");
+    let line = xtask(
+        &[
+            &["render", model][..],
+            &near,
+            &["-o", out.to_str().unwrap()],
+        ]
+        .concat(),
+    );
+    assert!(
+        text(&line.stdout).contains("this view fell back to the BSP"),
+        "{}",
+        text(&line.stdout)
+    );
+
+    let cache = temp_dir("presorted-cache").join("spot.presort");
+    let _ = std::fs::remove_file(&cache);
+    let cached = [
+        "--sorter",
+        "presorted",
+        "--yaw",
+        "30",
+        "--presort-cache",
+        cache.to_str().unwrap(),
+    ];
+    let first = render_summary(model, &cached, "presorted-cache-1");
+    assert!(
+        first["presorted"]["certificate"]
+            .as_str()
+            .is_some_and(|c| c.starts_with("built and saved")),
+        "{first}"
+    );
+    let second = render_summary(model, &cached, "presorted-cache-2");
+    assert!(
+        second["presorted"]["certificate"]
+            .as_str()
+            .is_some_and(|c| c.starts_with("loaded from")),
+        "{second}"
+    );
+    for value in [&first, &second] {
+        assert_eq!(value["presorted"]["drawn_by"], "presorted", "{value}");
+        assert_eq!(value["violations"], 0, "{value}");
+        assert_eq!(value["pixel_error"], 0.0, "{value}");
+    }
+    assert_eq!(first["fragments"], second["fragments"]);
+}
+
 #[test]
 fn bench_docs_check_accepts_the_committed_report() {
     let result = xtask(&["bench", "--docs", "--check"]);

@@ -21,6 +21,8 @@ pub(super) struct Built {
     pub candidate_pairs: usize,
     /// Cuts made by [`crate::split_crossing`].
     pub cuts: usize,
+    /// Threads the octants were certified on.
+    pub threads: usize,
 }
 
 impl Built {
@@ -35,6 +37,7 @@ impl Built {
             pair_tests: 0,
             candidate_pairs: 0,
             cuts: 0,
+            threads: 1,
         }
     }
 }
@@ -48,6 +51,8 @@ pub(super) struct Core {
     /// Face of each of the tree's pieces (the tree numbers them by position in the core).
     pub faces: Vec<u32>,
     pub pieces: usize,
+    /// The core's pieces: ascending indices into the pieces (what a saved certificate keeps).
+    pub set: Vec<u32>,
 }
 
 struct Builder<'a> {
@@ -151,6 +156,7 @@ pub(super) fn build(geometry: &Geometry, options: &PresortOptions) -> Result<Bui
             pair_tests: 0,
             candidate_pairs: 0,
             cuts,
+            threads: 1,
         });
     }
     let pieces = &pieces;
@@ -191,6 +197,7 @@ pub(super) fn build(geometry: &Geometry, options: &PresortOptions) -> Result<Bui
             pair_tests: 0,
             candidate_pairs: targets.len(),
             cuts,
+            threads,
         });
     }
     let bounds = PieceBounds::of(pieces);
@@ -284,16 +291,7 @@ pub(super) fn build(geometry: &Geometry, options: &PresortOptions) -> Result<Bui
         cores.extend(part.cores);
         pair_tests += part.pair_tests;
     }
-    // The shared set: the pieces, then each core's fragments.
-    let mut shared = pieces.clone();
-    for core in &mut cores {
-        core.offset = shared.len() as u32;
-        let fragments = core.tree.fragments();
-        for f in 0..fragments.len() {
-            let face = core.faces[fragments.face(f) as usize];
-            shared.push(fragments.corners(f), face, *fragments.plane(f));
-        }
-    }
+    let shared = share_cores(pieces, &mut cores);
     Ok(Built {
         nodes,
         leaves,
@@ -303,6 +301,7 @@ pub(super) fn build(geometry: &Geometry, options: &PresortOptions) -> Result<Bui
         pair_tests,
         candidate_pairs,
         cuts,
+        threads,
     })
 }
 
@@ -490,23 +489,51 @@ impl<'a> Builder<'a> {
         if let Some(k) = self.core_sets.iter().position(|s| s == set) {
             return Ok(k as u32);
         }
-        let mut pieces = PolygonSet::new();
-        for (k, &p) in set.iter().enumerate() {
-            let p = p as usize;
-            pieces.push(self.pieces.corners(p), k as u32, *self.pieces.plane(p));
-        }
-        let geometry = Geometry::from_pieces(pieces, self.geometry.bounds());
-        let tree =
-            BspTree::try_build(&geometry, &BspOptions::default()).map_err(PresortError::Core)?;
-        self.cores.push(Core {
-            tree: Arc::new(tree),
-            offset: 0,
-            faces: set.iter().map(|&p| self.pieces.face(p as usize)).collect(),
-            pieces: set.len(),
-        });
+        self.cores
+            .push(Core::of(self.pieces, set, self.geometry.bounds())?);
         self.core_sets.push(set.to_vec());
         Ok(self.cores.len() as u32 - 1)
     }
+}
+
+impl Core {
+    /// The core of the pieces `set` (ascending indices into `pieces`): a BSP tree of their
+    /// own, in a geometry with `bounds` (the whole geometry's, for its tolerances).
+    pub fn of(
+        pieces: &PolygonSet,
+        set: &[u32],
+        bounds: crate::Bounds,
+    ) -> Result<Core, PresortError> {
+        let mut own = PolygonSet::new();
+        for (k, &p) in set.iter().enumerate() {
+            let p = p as usize;
+            own.push(pieces.corners(p), k as u32, *pieces.plane(p));
+        }
+        let geometry = Geometry::from_pieces(own, bounds);
+        let tree =
+            BspTree::try_build(&geometry, &BspOptions::default()).map_err(PresortError::Core)?;
+        Ok(Core {
+            tree: Arc::new(tree),
+            offset: 0,
+            faces: set.iter().map(|&p| pieces.face(p as usize)).collect(),
+            pieces: set.len(),
+            set: set.to_vec(),
+        })
+    }
+}
+
+/// The shared set: `pieces`, then each core's fragments (setting each core's offset).
+pub(super) fn share_cores(pieces: &PolygonSet, cores: &mut [Core]) -> PolygonSet {
+    let mut shared = pieces.clone();
+    for core in cores {
+        core.offset = shared.len() as u32;
+        let fragments = core.tree.fragments();
+        for f in 0..fragments.len() {
+            let face = core.faces[fragments.face(f) as usize];
+            shared.push(fragments.corners(f), face, *fragments.plane(f));
+        }
+    }
+    shared
 }
 
 /// How far the direction toward a piece turns as the eye moves across the region's

@@ -36,12 +36,21 @@
 //!   octant: per-frame BSP trees of such cycles would cost as much as the whole one;
 //! - every view of a soup of crossing polygons ([`PresortOptions::soup_cuts_per_piece`]).
 //!
+//! [`Presorted::last_fallback`] says why the last frame fell back ([`FallbackReason`]), and
+//! [`Presorted::refusal`] why a build of [`Presorted::new`] stopped.
+//!
 //! # Cost
 //! The build tests every pair that can ever need an order (the plane-side test of
 //! `occlusion.rs`) against the regions it reaches: quadratic in the pieces, stopped by
 //! [`PresortOptions::max_pairs`] and [`PresortOptions::max_build_time`].
+//!
+//! # Kept on disk
+//! [`Presorted::to_bytes`] writes the region tree, the orders and the cores' piece sets,
+//! nothing the geometry gives; [`Presorted::from_bytes`] checks them against the geometry
+//! and builds the cores' trees again (the format and its checks are in `bytes.rs`).
 
 mod build;
+mod bytes;
 mod certified;
 mod cones;
 mod occlusion;
@@ -55,6 +64,7 @@ use glam::DVec3;
 use crate::{
     Bsp, BspError, CullTest, DrawList, FaceSorter, Geometry, PolygonSet, SorterStats, View, Viewer,
 };
+pub use bytes::{FORMAT_VERSION as PRESORT_FORMAT_VERSION, PresortLoadError};
 pub use certified::{
     CertifiedOrders, CertifiedOrdersError, CertifiedRegion, CoreOrders, MAX_CORE_PLANES, OrderStep,
 };
@@ -136,6 +146,35 @@ pub enum PresortError {
     EyeDistance(f64),
 }
 
+/// Why a [`Presorted`] frame was ordered by the whole BSP instead of a certified order
+/// (exactness is kept either way; only the per-frame cost differs).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+#[non_exhaustive]
+pub enum FallbackReason {
+    /// The build stopped on a budget or a cycle's tree ([`Presorted::refusal`] says which):
+    /// no view is certified.
+    Refused,
+    /// A perspective eye nearer the centre than [`PresortOptions::min_eye_distance`] (or a
+    /// viewer that is not a finite eye or direction).
+    EyeTooNear,
+    /// A cull mode other than back faces with no margin.
+    CullMode,
+    /// The viewer's region was left uncertified: its cycles hold too many of its pieces, or
+    /// the geometry is a soup of crossing polygons.
+    UncertifiedRegion,
+}
+
+impl std::fmt::Display for FallbackReason {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            FallbackReason::Refused => "the build was refused",
+            FallbackReason::EyeTooNear => "the eye is nearer than min_eye_distance",
+            FallbackReason::CullMode => "the cull mode is not back faces without a margin",
+            FallbackReason::UncertifiedRegion => "the view's region is uncertified",
+        })
+    }
+}
+
 /// A node of the region tree.
 #[derive(Clone, Copy, Debug)]
 struct Node {
@@ -182,12 +221,19 @@ pub struct Presorted {
     near: f64,
     fallback: Bsp,
     last_leaf: Option<u32>,
-    last_fallback: bool,
+    last_fallback: Option<FallbackReason>,
     fallback_frames: usize,
+    refusal: Option<PresortError>,
+    threads: usize,
     build_ms: f64,
     pair_tests: usize,
     candidate_pairs: usize,
     cuts: usize,
+    /// The geometry's fingerprint and piece count (a saved certificate names them).
+    fingerprint: u64,
+    geometry_pieces: usize,
+    /// Pieces after cutting those that pass through each other (the shared set's first).
+    pieces: usize,
 }
 
 impl std::fmt::Debug for Presorted {
@@ -202,11 +248,17 @@ impl std::fmt::Debug for Presorted {
 
 impl Presorted {
     /// Builds with [`PresortOptions::default`]; on a budget error, every view falls back to
-    /// the BSP ([`fallback_frames`](Self::fallback_frames) counts them).
+    /// the BSP, and says so: [`refusal`](Self::refusal) holds the error,
+    /// [`last_fallback`](Self::last_fallback) is [`FallbackReason::Refused`] after every frame
+    /// and [`fallback_frames`](Self::fallback_frames) counts them. Use
+    /// [`try_new`](Self::try_new) to handle the error instead.
     #[must_use]
     pub fn new(geometry: &Geometry) -> Self {
-        Self::try_new(geometry, &PresortOptions::default()).unwrap_or_else(|_| {
-            Self::assemble(geometry, build::Built::uncovered(geometry), Instant::now())
+        Self::try_new(geometry, &PresortOptions::default()).unwrap_or_else(|error| {
+            let mut sorter =
+                Self::assemble(geometry, build::Built::uncovered(geometry), Instant::now());
+            sorter.refusal = Some(error);
+            sorter
         })
     }
 
@@ -227,6 +279,10 @@ impl Presorted {
     /// time counted from `start`.
     fn assemble(geometry: &Geometry, built: build::Built, start: Instant) -> Self {
         let fallback = Bsp::new(geometry);
+        let pieces = built
+            .cores
+            .first()
+            .map_or(built.shared.len(), |c| c.offset as usize);
         let core_sorters = built
             .cores
             .iter()
@@ -242,12 +298,17 @@ impl Presorted {
             near: built.near,
             fallback,
             last_leaf: None,
-            last_fallback: false,
+            last_fallback: None,
             fallback_frames: 0,
+            refusal: None,
+            threads: built.threads,
             build_ms: start.elapsed().as_secs_f64() * 1e3,
             pair_tests: built.pair_tests,
             candidate_pairs: built.candidate_pairs,
             cuts: built.cuts,
+            fingerprint: bytes::geometry_fingerprint(geometry.pieces()),
+            geometry_pieces: geometry.pieces().len(),
+            pieces,
         }
     }
 
@@ -308,13 +369,34 @@ impl Presorted {
     /// Whether the last frame fell back to the whole BSP.
     #[must_use]
     pub fn last_frame_fell_back(&self) -> bool {
+        self.last_fallback.is_some()
+    }
+
+    /// Why the last frame fell back to the whole BSP (`None`: it was certified).
+    #[must_use]
+    pub fn last_fallback(&self) -> Option<FallbackReason> {
         self.last_fallback
     }
 
-    /// The leaf whose region holds the viewer, when the certificate covers it.
-    fn locate(&mut self, cull: &CullTest) -> Option<u32> {
-        if cull.facing_rule() != Some((true, false)) || self.nodes.is_empty() {
-            return None;
+    /// The error that stopped the build of [`new`](Self::new) (`None` when it finished).
+    #[must_use]
+    pub fn refusal(&self) -> Option<&PresortError> {
+        self.refusal.as_ref()
+    }
+
+    /// Threads the build used (1 when it certified nothing or one order serves every view).
+    #[must_use]
+    pub fn threads(&self) -> usize {
+        self.threads
+    }
+
+    /// The leaf whose region holds the viewer, or why the certificate does not cover it.
+    fn locate(&mut self, cull: &CullTest) -> Result<u32, FallbackReason> {
+        if self.refusal.is_some() || self.nodes.is_empty() {
+            return Err(FallbackReason::Refused);
+        }
+        if cull.facing_rule() != Some((true, false)) {
+            return Err(FallbackReason::CullMode);
         }
         let (u, t) = match cull.viewer {
             Viewer::Direction(d) => (d, f64::INFINITY),
@@ -324,19 +406,19 @@ impl Presorted {
             }
         };
         if t.is_nan() || t < self.near || !u.is_finite() {
-            return None;
+            return Err(FallbackReason::EyeTooNear);
         }
         if let Some(leaf) = self.last_leaf
             && self.leaf_holds(leaf, u, t)
         {
-            return Some(leaf);
+            return Ok(leaf);
         }
         let mut node = Region::octant_of(u);
         loop {
             match self.nodes[node].kind {
                 NodeKind::Leaf(leaf) => {
                     self.last_leaf = Some(leaf);
-                    return Some(leaf);
+                    return Ok(leaf);
                 }
                 NodeKind::Directions { first } => {
                     node = first as usize + self.nodes[node].region.child_holding(u);
@@ -346,7 +428,7 @@ impl Presorted {
                 }
                 NodeKind::Uncertified => {
                     self.last_leaf = None;
-                    return None;
+                    return Err(FallbackReason::UncertifiedRegion);
                 }
             }
         }
@@ -368,16 +450,19 @@ impl Presorted {
     }
 
     fn sort_in(&mut self, cull: &CullTest, view: Option<&View>, out: &mut DrawList) {
-        let Some(leaf) = self.locate(cull) else {
-            self.fallback_frames += 1;
-            self.last_fallback = true;
-            match view {
-                Some(view) => self.fallback.sort(view, out),
-                None => self.fallback.sort_culled(cull, out),
+        let leaf = match self.locate(cull) {
+            Ok(leaf) => leaf,
+            Err(reason) => {
+                self.fallback_frames += 1;
+                self.last_fallback = Some(reason);
+                match view {
+                    Some(view) => self.fallback.sort(view, out),
+                    None => self.fallback.sort_culled(cull, out),
+                }
+                return;
             }
-            return;
         };
-        self.last_fallback = false;
+        self.last_fallback = None;
         let cull = *cull;
         let (point, w) = cull.viewer_point();
         out.begin(&self.shared);
@@ -422,6 +507,7 @@ impl FaceSorter for Presorted {
             cycles: self.cores.len(),
             orders: self.leaves.len(),
             fallback_frames: self.fallback_frames,
+            fallback: self.last_fallback,
             ..SorterStats::default()
         }
     }

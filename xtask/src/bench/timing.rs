@@ -237,7 +237,12 @@ pub(super) fn bench_scene(scene: &Scene, budget: &Budget, resolution: u32) -> Re
                 };
                 let mut row = acc.row(sorter.name(), scene, &geometry, projection, build_ms);
                 let stats = sorter.stats();
-                if stats.orders > 0 {
+                if stats.fallback == Some(face_sort::FallbackReason::Refused) {
+                    row.note = format!(
+                        "build refused (a budget of PresortOptions): all {} frames drawn by the BSP",
+                        stats.fallback_frames
+                    );
+                } else if stats.orders > 0 {
                     row.note = format!(
                         "{} orders, {} small cycles; {} fallback frames",
                         stats.orders, stats.cycles, stats.fallback_frames
