@@ -154,6 +154,46 @@ fn bench_smoke_writes_the_reports() {
     assert!(dir.join("report.md").exists() && dir.join("chart.svg").exists());
 }
 
+/// `bench --presort-cache DIR` builds each scene's certificate once and loads it on the next
+/// run, and the presorted rows say which, with no violation either way.
+#[test]
+fn bench_reuses_its_presort_cache() {
+    let dir = temp_dir("bench-cache");
+    let cache = dir.join("certificates");
+    let _ = std::fs::remove_dir_all(&cache);
+    for (run, had) in [(1, "built and saved"), (2, "loaded from")] {
+        let out = dir.join(format!("run{run}"));
+        let result = xtask(&[
+            "bench",
+            "--smoke",
+            "--out",
+            out.to_str().unwrap(),
+            "--presort-cache",
+            cache.to_str().unwrap(),
+        ]);
+        assert!(result.status.success(), "{}", text(&result.stderr));
+        let rows: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap())
+                .unwrap();
+        let presorted: Vec<&serde_json::Value> = rows
+            .as_array()
+            .expect("an array of rows")
+            .iter()
+            .filter(|r| r["sorter"] == "presorted")
+            .collect();
+        assert!(!presorted.is_empty());
+        for row in presorted {
+            assert!(
+                row["note"]
+                    .as_str()
+                    .is_some_and(|n| n.contains(&format!("certificate {had}"))),
+                "run {run}: {row}"
+            );
+            assert_eq!(row["violations"], 0, "{row}");
+        }
+    }
+}
+
 #[test]
 fn fuzz_few_cases_passes() {
     let dir = temp_dir("fuzz");

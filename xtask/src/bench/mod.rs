@@ -55,6 +55,11 @@ pub struct BenchArgs {
     /// Tiny run for tests: one small scene, one view, no scaling series.
     #[arg(long, hide = true)]
     smoke: bool,
+    /// Keep each scene's `Presorted` certificate in DIR (`SCENE.presort`): load it when it
+    /// holds one for the scene, else build it and save it there. The row's build time is then
+    /// the load time, and its note says so.
+    #[arg(long, value_name = "DIR")]
+    presort_cache: Option<PathBuf>,
 }
 
 /// The whole JSON report.
@@ -181,7 +186,12 @@ pub fn run(args: &BenchArgs) -> Result<ExitCode> {
     let mut rows = Vec::new();
     for scene in &scenes {
         bar.set_message(scene.name.clone());
-        rows.extend(timing::bench_scene(scene, &budget, args.resolution)?);
+        rows.extend(timing::bench_scene(
+            scene,
+            &budget,
+            args.resolution,
+            args.presort_cache.as_deref(),
+        )?);
         bar.inc(1);
     }
     let mut scaling = Vec::new();

@@ -170,14 +170,36 @@ impl Acc {
 }
 
 /// Every sorter and the peer on one scene, orthographic and perspective.
-pub(super) fn bench_scene(scene: &Scene, budget: &Budget, resolution: u32) -> Result<Vec<Row>> {
+pub(super) fn bench_scene(
+    scene: &Scene,
+    budget: &Budget,
+    resolution: u32,
+    presort_cache: Option<&std::path::Path>,
+) -> Result<Vec<Row>> {
     let geometry = Geometry::new(&scene.mesh).with_context(|| format!("scene {}", scene.name))?;
+    // Where the presorted certificate came from, when a cache directory is given.
+    let mut certificate = None;
     let mut sorters: Vec<(Box<dyn FaceSorter>, f64)> = SorterKind::ALL
         .into_iter()
         .map(|kind| {
             let start = Instant::now();
             let own = kind.geometry_for(&scene.mesh)?;
-            let sorter = kind.build(&own);
+            let cached = match presort_cache {
+                Some(dir) if kind == SorterKind::Presorted => {
+                    std::fs::create_dir_all(dir)
+                        .with_context(|| format!("creating {}", dir.display()))?;
+                    let file = dir.join(format!("{}.presort", scene.name.replace('/', "_")));
+                    match crate::presort_cache::load_or_build(&own, Some(&file))? {
+                        Ok((sorter, had, _)) => {
+                            certificate = Some(had.words(Some(&file)));
+                            Some(Box::new(sorter) as Box<dyn FaceSorter>)
+                        }
+                        Err(_) => None,
+                    }
+                }
+                _ => None,
+            };
+            let sorter = cached.unwrap_or_else(|| kind.build(&own));
             let measured = start.elapsed().as_secs_f64() * 1e3;
             Ok((sorter, measured))
         })
@@ -247,6 +269,9 @@ pub(super) fn bench_scene(scene: &Scene, budget: &Budget, resolution: u32) -> Re
                         "{} orders, {} small cycles; {} fallback frames",
                         stats.orders, stats.cycles, stats.fallback_frames
                     );
+                    if let Some(had) = &certificate {
+                        row.note.push_str(&format!("; certificate {had}"));
+                    }
                 }
                 row
             })
