@@ -133,6 +133,11 @@ impl CostModel {
         presorted_frame_per_piece: 2.9,
     };
 
+    /// Predicted nanoseconds of a `Presorted` build of `n` pieces.
+    fn presorted_build(&self, n: f64) -> f64 {
+        self.presorted_build_per_pair * n * n
+    }
+
     /// Predicted nanoseconds for `pieces` pieces over `frames` frames.
     #[must_use]
     pub fn predict(&self, strategy: Strategy, pieces: usize, frames: u64) -> f64 {
@@ -146,7 +151,7 @@ impl CostModel {
                     + frames * self.bsp_frame_per_piece * n
             }
             Strategy::Presorted => {
-                self.presorted_build_per_pair * n * n + frames * self.presorted_frame_per_piece * n
+                self.presorted_build(n) + frames * self.presorted_frame_per_piece * n
             }
         }
     }
@@ -236,7 +241,7 @@ impl Plan {
             .max_build_time
             .as_secs_f64()
             * 1e9;
-        let presort_build_ns = costs.presorted_build_per_pair * (n as f64).powi(2);
+        let presort_build_ns = costs.presorted_build(n.max(1) as f64);
         let over_budget = presort_build_ns > budget_ns;
         let mut predicted: Vec<(Strategy, f64)> =
             [Strategy::Newell, Strategy::Bsp, Strategy::Presorted]

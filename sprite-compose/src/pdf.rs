@@ -276,9 +276,9 @@ const TILE_TEXELS: u32 = 64;
 /// that neighbouring tiles overlap and their smoothed edges lie under each other.
 ///
 /// Each textured cell draws only the tiles under it, never the whole texture: a PDF viewer
-/// scales an image XObject to its full device size before clipping it, and poppler left whole
-/// sprites blank (and took a minute per page) where a sprite covering a few texels stretched
-/// the whole texture to tens of thousands of pixels.
+/// scales an image XObject to its full device size before clipping it, so a sprite showing a
+/// few texels made poppler scale the whole texture. (The blank sprites poppler left were
+/// another cause: see [`Tile::strips_for_splash`].)
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 struct Tile {
     x0: u32,

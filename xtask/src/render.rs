@@ -321,7 +321,7 @@ fn gltf_scene(
 
 /// What `--sorter presorted` built and did: the certificate's size, and whether this view
 /// fell back to the BSP, and why (a refused build names its budget).
-#[derive(Debug, Serialize)]
+#[derive(Debug, Default, Serialize)]
 struct PresortSummary {
     regions: usize,
     orders: usize,
@@ -377,11 +377,9 @@ fn presorted(
                 cores,
                 core_pieces,
                 threads: sorter.threads(),
-                fallback_frames: 0,
-                refused: None,
-                fell_back: None,
                 drawn_by: "presorted",
                 certificate: source.words(cache),
+                ..PresortSummary::default()
             };
             (
                 Box::new(sorter),
@@ -391,16 +389,10 @@ fn presorted(
         }
         Err(error) => {
             let report = PresortSummary {
-                regions: 0,
-                orders: 0,
-                cores: 0,
-                core_pieces: 0,
-                threads: 0,
-                fallback_frames: 0,
                 refused: Some(error.to_string()),
-                fell_back: None,
                 drawn_by: "bsp",
                 certificate: "none".to_owned(),
+                ..PresortSummary::default()
             };
             (
                 SorterKind::Bsp.build(geometry),

@@ -82,7 +82,7 @@ pub enum PresortLoadError {
 }
 
 /// FNV-1a over the pieces' faces and corner bits: which geometry a certificate belongs to.
-fn fingerprint(pieces: &PolygonSet) -> u64 {
+pub(super) fn fingerprint(pieces: &PolygonSet) -> u64 {
     let mut hash = 0xcbf2_9ce4_8422_2325u64;
     let mut eat = |bytes: &[u8]| {
         for &b in bytes {
@@ -425,9 +425,4 @@ fn children_follow(
     } else {
         Err(r.invalid("a region's children"))
     }
-}
-
-/// [`fingerprint`] for the sorter's own use.
-pub(super) fn geometry_fingerprint(pieces: &PolygonSet) -> u64 {
-    fingerprint(pieces)
 }

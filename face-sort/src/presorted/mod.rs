@@ -306,7 +306,7 @@ impl Presorted {
             pair_tests: built.pair_tests,
             candidate_pairs: built.candidate_pairs,
             cuts: built.cuts,
-            fingerprint: bytes::geometry_fingerprint(geometry.pieces()),
+            fingerprint: bytes::fingerprint(geometry.pieces()),
             geometry_pieces: geometry.pieces().len(),
             pieces,
         }
