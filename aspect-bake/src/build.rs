@@ -1,7 +1,7 @@
 //! Baking: events, intervals, the live sorter inside each, merged cells.
 
 use std::f64::consts::TAU;
-use std::time::Instant;
+use web_time::Instant;
 
 use face_sort::{DrawList, View};
 use rayon::prelude::*;

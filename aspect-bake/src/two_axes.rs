@@ -36,7 +36,7 @@
 
 use std::f64::consts::TAU;
 use std::sync::Arc;
-use std::time::Instant;
+use web_time::Instant;
 
 use face_sort::{DrawList, PolygonSet, Projection, View};
 use glam::DVec3;

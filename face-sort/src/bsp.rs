@@ -1,7 +1,7 @@
 //! A BSP tree built once per geometry and traversed per view: exact for any rigid mesh.
 
 use std::sync::Arc;
-use std::time::Instant;
+use web_time::Instant;
 
 use glam::DVec3;
 

@@ -1,7 +1,6 @@
 //! The BSP builder: chooses each node's splitter, splits the polygons that span it, and lays
 //! the nodes and their fragments out in pre-order for [`BspTree`](crate::BspTree).
 
-use std::num::NonZeroUsize;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 use glam::DVec3;
@@ -70,10 +69,7 @@ pub(crate) fn build(
     options: &BspOptions,
     budget: usize,
 ) -> Result<Built, ()> {
-    let threads = match options.threads {
-        0 => std::thread::available_parallelism().map_or(1, NonZeroUsize::get),
-        threads => threads,
-    };
+    let threads = crate::workers::threads(options.threads);
     build_on(pieces, tolerance, options, budget, threads)
 }
 

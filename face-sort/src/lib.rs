@@ -64,6 +64,7 @@ mod t_junctions;
 pub mod tolerance;
 mod topological;
 mod view;
+mod workers;
 
 pub use bsp::{Bsp, BspFallback, BspOptions, BspTree};
 pub use camera::{Camera, CameraError, ClipSpace, Lens};

@@ -542,6 +542,19 @@ impl CullTest {
         CullTest { viewer, ..*self }
     }
 
+    /// The test a GPU's back-face culling makes for `viewer` (centred coordinates):
+    /// counter-clockwise fronts kept, back faces culled, no margin.
+    #[must_use]
+    pub fn back_faces_culled(viewer: Viewer) -> CullTest {
+        CullTest {
+            viewer,
+            sign: 1.0,
+            keep_front: true,
+            keep_back: false,
+            sin_margin: 0.0,
+        }
+    }
+
     /// Whether a piece with this plane and first corner is drawn.
     #[inline]
     #[must_use]

@@ -176,6 +176,36 @@ impl Mesh {
         Ok(self)
     }
 
+    /// Paints face `i` in `colours[i]` (sRGB with straight alpha): one material per distinct
+    /// colour, named `colour0`, `colour1`, … in order of first use. Errors as
+    /// [`with_materials`](Self::with_materials) does, when `colours` is not one per face.
+    ///
+    /// ```
+    /// use glam::DVec3;
+    /// use obj_quads::Mesh;
+    /// let positions = vec![DVec3::ZERO, DVec3::X, DVec3::Y, DVec3::Z];
+    /// let mesh = Mesh::from_faces(positions, [[0u32, 1, 2], [0, 1, 3], [0, 2, 3]]).unwrap();
+    /// let red = [255, 0, 0, 255];
+    /// let mesh = mesh.with_face_colours(&[red, [0, 0, 255, 128], red]).unwrap();
+    /// assert_eq!(mesh.materials().len(), 2);
+    /// ```
+    pub fn with_face_colours(self, colours: &[[u8; 4]]) -> Result<Mesh, LoadError> {
+        let mut materials: Vec<Material> = Vec::new();
+        let mut slots = std::collections::HashMap::new();
+        let face_materials = colours
+            .iter()
+            .map(|c| {
+                let slot = *slots.entry(*c).or_insert_with(|| {
+                    let diffuse = c.map(|v| f32::from(v) / 255.0);
+                    materials.push(Material::new(format!("colour{}", materials.len()), diffuse));
+                    materials.len() as u32 - 1
+                });
+                Some(slot)
+            })
+            .collect();
+        self.with_materials(materials, face_materials)
+    }
+
     /// Sets per-corner texture coordinates, parallel to the faces' corners
     /// (face 0's corners first, then face 1's, ...).
     pub fn with_uvs(mut self, uvs: Vec<Vec2>) -> Result<Mesh, LoadError> {

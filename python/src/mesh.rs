@@ -84,20 +84,11 @@ impl Mesh {
             let count = faces.len();
             let mut model = obj_quads::Mesh::from_faces(positions, &faces)
                 .map_err(|e| value_error("mesh", e))?;
-            let mut materials = Vec::new();
-            let mut face_materials = vec![None; count];
             if let Some(colours) = colours {
                 let colours = input::colours(colours, count)?;
-                let mut index = std::collections::HashMap::new();
-                for (face, c) in colours.iter().enumerate() {
-                    let slot = *index.entry(*c).or_insert_with(|| {
-                        let diffuse = c.map(|v| f32::from(v) / 255.0);
-                        materials
-                            .push(Material::new(format!("colour{}", materials.len()), diffuse));
-                        materials.len() - 1
-                    });
-                    face_materials[face] = Some(slot as u32);
-                }
+                model = model
+                    .with_face_colours(&colours)
+                    .map_err(|e| value_error("colours", e))?;
             }
             match (uvs, texture) {
                 (Some(uvs), Some(texture)) => {
@@ -119,10 +110,12 @@ impl Mesh {
                             )
                         })
                         .collect();
-                    let textured = materials.len();
-                    materials.push(Material::new("texture", [1.0; 4]).with_texture(texture));
-                    face_materials.fill(Some(textured as u32));
-                    model = model.with_uvs(corners).map_err(|e| value_error("uvs", e))?;
+                    // A texture paints every face: it takes the place of any colours.
+                    let texture = Material::new("texture", [1.0; 4]).with_texture(texture);
+                    model = model
+                        .with_materials(vec![texture], vec![Some(0); count])
+                        .and_then(|m| m.with_uvs(corners))
+                        .map_err(|e| value_error("uvs", e))?;
                 }
                 (None, None) => {}
                 _ => {
@@ -130,11 +123,6 @@ impl Mesh {
                         "uvs and texture go together: give both or neither",
                     ));
                 }
-            }
-            if !materials.is_empty() {
-                model = model
-                    .with_materials(materials, face_materials)
-                    .map_err(|e| value_error("colours", e))?;
             }
             Self::from_model(model)
         })

@@ -31,6 +31,7 @@ mod render;
 mod scene_demo;
 mod scenes;
 mod stress;
+mod truth;
 mod turn;
 
 use std::path::PathBuf;
@@ -72,6 +73,10 @@ enum Command {
     /// Write a page that turns the model with the pointer, showing orders certified by
     /// face-sort's `Presorted` (the script only looks up the viewer's region).
     Turn(turn::TurnArgs),
+    /// Write raster-sink's references (ID truth with its unambiguous pixels, exact
+    /// compositing) for triangles seen by an engine's camera, given as JSON: for checks
+    /// outside Rust, such as the npm package's browser tests.
+    Truth(truth::TruthArgs),
 }
 
 fn main() -> ExitCode {
@@ -99,6 +104,7 @@ fn main() -> ExitCode {
         Command::Ci(args) => ci::run(&args),
         Command::Oneshot(args) => oneshot::run(&args),
         Command::Stress(args) => stress::run(&args),
+        Command::Truth(args) => truth::run(&args),
     });
     match result {
         Ok(Ok(code)) => code,

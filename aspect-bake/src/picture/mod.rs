@@ -56,7 +56,7 @@ mod sweep;
 
 use face_sort::sorter_api::DrawListWriter;
 use std::sync::Arc;
-use std::time::Instant;
+use web_time::Instant;
 
 use face_sort::glam::DVec3;
 use face_sort::{DrawList, Geometry, PolygonSet, Projection, oracle};

@@ -1,7 +1,7 @@
 //! Building the region tree: certify a region's order, or split the region.
 
 use std::sync::Arc;
-use std::time::Instant;
+use web_time::Instant;
 
 use super::occlusion::{OcclusionTest, PieceBounds, may_ever_hide, may_face};
 use super::region::Region;
@@ -83,34 +83,25 @@ fn pairs_ever(
 ) -> Result<Adjacency, PresortError> {
     let n = pieces.len();
     let chunk = n.div_ceil(threads.max(1)).max(1);
-    let parts: Vec<Result<Adjacency, PresortError>> = std::thread::scope(|scope| {
-        let handles: Vec<_> = (0..n)
-            .step_by(chunk)
-            .map(|first| {
-                scope.spawn(move || {
-                    let mut counts = Vec::with_capacity(chunk);
-                    let mut targets = Vec::new();
-                    for a in first..(first + chunk).min(n) {
-                        let before = targets.len();
-                        for b in 0..n {
-                            if a != b && may_ever_hide(pieces, a, b, tolerance) {
-                                if targets.len() >= max_pairs {
-                                    return Err(PresortError::PairBudget { limit: max_pairs });
-                                }
-                                targets.push(b as u32);
-                            }
+    let parts: Vec<Result<Adjacency, PresortError>> =
+        crate::workers::map(n.div_ceil(chunk), threads, |k| {
+            let first = k * chunk;
+            let mut counts = Vec::with_capacity(chunk);
+            let mut targets = Vec::new();
+            for a in first..(first + chunk).min(n) {
+                let before = targets.len();
+                for b in 0..n {
+                    if a != b && may_ever_hide(pieces, a, b, tolerance) {
+                        if targets.len() >= max_pairs {
+                            return Err(PresortError::PairBudget { limit: max_pairs });
                         }
-                        counts.push((targets.len() - before) as u32);
+                        targets.push(b as u32);
                     }
-                    Ok((counts, targets))
-                })
-            })
-            .collect();
-        handles
-            .into_iter()
-            .map(|h| h.join().expect("a pair scan does not panic"))
-            .collect()
-    });
+                }
+                counts.push((targets.len() - before) as u32);
+            }
+            Ok((counts, targets))
+        });
     let mut start = Vec::with_capacity(n + 1);
     start.push(0u32);
     let mut all = Vec::new();
@@ -161,11 +152,7 @@ pub(super) fn build(geometry: &Geometry, options: &PresortOptions) -> Result<Bui
     }
     let pieces = &pieces;
     let n = pieces.len();
-    let threads = match options.threads {
-        0 => std::thread::available_parallelism().map_or(1, std::num::NonZero::get),
-        n => n,
-    }
-    .min(8);
+    let threads = crate::workers::threads(options.threads).min(8);
     let (start, targets) = pairs_ever(pieces, tolerance, options.max_pairs, threads)?;
     // The pairs that may ever need an order are necessary for every viewer, orthographic or
     // perspective, wherever the eye: when they have no cycle, one order serves every view.
@@ -204,31 +191,22 @@ pub(super) fn build(geometry: &Geometry, options: &PresortOptions) -> Result<Bui
     let started = Instant::now();
     // Each octant is certified on its own, the octants shared out among the threads.
     let next = std::sync::atomic::AtomicUsize::new(0);
-    let built: Vec<Vec<(usize, Result<Builder<'_>, PresortError>)>> = std::thread::scope(|scope| {
-        let handles: Vec<_> = (0..threads)
-            .map(|_| {
-                scope.spawn(|| {
-                    let mut done = Vec::new();
-                    loop {
-                        let k = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-                        if k >= octants.len() {
-                            return done;
-                        }
-                        let mut builder = Builder::new(geometry, pieces, &bounds, options, started);
-                        let result = builder.octant(octants[k], &start, &targets).map(|kind| {
-                            builder.nodes[0].kind = kind;
-                            builder
-                        });
-                        done.push((k, result));
-                    }
-                })
-            })
-            .collect();
-        handles
-            .into_iter()
-            .map(|h| h.join().expect("a region build does not panic"))
-            .collect()
-    });
+    let built: Vec<Vec<(usize, Result<Builder<'_>, PresortError>)>> =
+        crate::workers::map(threads, threads, |_| {
+            let mut done = Vec::new();
+            loop {
+                let k = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                if k >= octants.len() {
+                    return done;
+                }
+                let mut builder = Builder::new(geometry, pieces, &bounds, options, started);
+                let result = builder.octant(octants[k], &start, &targets).map(|kind| {
+                    builder.nodes[0].kind = kind;
+                    builder
+                });
+                done.push((k, result));
+            }
+        });
     let mut by_octant: Vec<Option<Builder<'_>>> = (0..octants.len()).map(|_| None).collect();
     for (k, result) in built.into_iter().flatten() {
         by_octant[k] = Some(result?);

@@ -26,7 +26,7 @@
 //! ones a build certifies: bytes changed by hand load, and order wrongly without panicking.
 
 use std::sync::Arc;
-use std::time::Instant;
+use web_time::Instant;
 
 use glam::DVec3;
 

@@ -167,6 +167,47 @@ impl CertifiedOrders {
 }
 
 impl Presorted {
+    /// The pieces orders refer to: the geometry's, cut where they pass through each other,
+    /// then every cycle's fragments; corners in centred model space.
+    #[must_use]
+    pub fn pieces(&self) -> &Arc<PolygonSet> {
+        &self.shared
+    }
+
+    /// Every certified order as stored, one per leaf region, back faces included: a sink
+    /// that culls back faces itself (a GPU) draws a leaf without cycles as it stands; an
+    /// [`OrderStep::Core`] is a cycle that [`sort_culled`](Self::sort_culled) orders per
+    /// frame (its index is the cycle's, not one of [`CertifiedOrders::cores`]).
+    #[must_use]
+    pub fn leaf_orders(&self) -> Vec<Vec<OrderStep>> {
+        self.leaves
+            .iter()
+            .map(|leaf| {
+                leaf.pieces
+                    .iter()
+                    .map(|&p| {
+                        if p & CORE == 0 {
+                            OrderStep::Piece(p)
+                        } else {
+                            OrderStep::Core(p & !CORE)
+                        }
+                    })
+                    .collect()
+            })
+            .collect()
+    }
+
+    /// The index into [`leaf_orders`](Self::leaf_orders) of the order
+    /// [`sort_culled`](Self::sort_culled) follows for this viewer, or why the certificate
+    /// does not cover it (then `sort_culled` falls back to the whole BSP). A region lookup,
+    /// no allocation; the fallback count is not touched.
+    ///
+    /// # Errors
+    /// The [`FallbackReason`] of a view the certificate does not cover.
+    pub fn leaf_for(&mut self, cull: &crate::CullTest) -> Result<usize, super::FallbackReason> {
+        self.locate(cull).map(|leaf| leaf as usize)
+    }
+
     /// The certified orders for orthographic viewers (`eye_distance: None`) or eyes at
     /// `eye_distance` from the geometry's centre (centred model units: a [`View`]
     /// with perspective distance `d` pixels and scale `s` has its eye at `d / s`).

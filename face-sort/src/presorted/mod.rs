@@ -57,7 +57,8 @@ mod occlusion;
 mod region;
 
 use std::sync::Arc;
-use std::time::{Duration, Instant};
+use std::time::Duration;
+use web_time::Instant;
 
 use glam::DVec3;
 

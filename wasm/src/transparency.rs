@@ -1,0 +1,290 @@
+//! A certified order of a static mesh's triangles for a GPU that blends without sorting:
+//! every certified order in one index buffer, and per frame the range of the viewer's
+//! region (Chen, Sander, Nehab et al.'s depth-presorted triangle lists, with face-sort's
+//! certificates in place of duplicated triangles).
+//!
+//! The GPU culls back faces; each order lists its region's pieces back faces included, so
+//! a frame in a region without cycles is a range and nothing is uploaded. Regions whose
+//! order holds small cycles are ordered per frame by [`Presorted`] (its per-cycle BSP
+//! trees) into the scratch tail of the buffer, and so are views the certificate does not
+//! cover (an eye nearer than its reach): those are drawn far to near by piece centroid and
+//! counted, never silently.
+
+use face_sort::{
+    CullTest, DrawList, Geometry, OrderStep, PresortOptions, Presorted, Viewer,
+};
+use glam::DVec3;
+
+use crate::error::BindError;
+use crate::input::Triangles;
+
+/// One certified order's place in the index buffer.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LeafRange {
+    /// First index.
+    pub start: u32,
+    /// Indices (three per triangle).
+    pub count: u32,
+    /// Whether the order holds cycles ordered per frame (then the range is unused).
+    pub cycles: bool,
+}
+
+/// What a frame draws: a range of the index buffer, and whether its scratch tail changed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Frame {
+    /// First index to draw.
+    pub start: u32,
+    /// Indices to draw.
+    pub count: u32,
+    /// Whether `indices()[scratch_start..scratch_start + count]` was rewritten (upload it).
+    pub rewritten: bool,
+    /// Whether the view was outside the certificate (drawn by centroid, not exact).
+    pub fell_back: bool,
+}
+
+/// The certificate of a mesh's triangles as GPU buffers (module docs).
+pub struct Transparency {
+    sorter: Presorted,
+    centre: DVec3,
+    /// Per piece: its first vertex.
+    piece_first: Vec<u32>,
+    /// Per piece: its corners.
+    piece_corners: Vec<u32>,
+    /// Per piece: its centroid (centred).
+    centroids: Vec<DVec3>,
+    positions: Vec<f32>,
+    vertex_triangles: Vec<u32>,
+    indices: Vec<u32>,
+    leaves: Vec<LeafRange>,
+    scratch_start: u32,
+    /// The scratch tail as the next frame composes it (capacity reserved once).
+    next: Vec<u32>,
+    list: DrawList,
+    by_depth: Vec<(f64, u32)>,
+    last_scratch: Option<usize>,
+    frames: u64,
+    fallback_frames: u64,
+}
+
+/// The fan of triangles of piece `p` (corners from `first`), appended to `out`.
+fn push_piece(out: &mut Vec<u32>, first: u32, corners: u32) {
+    for k in 1..corners.saturating_sub(1) {
+        out.extend_from_slice(&[first, first + k, first + k + 1]);
+    }
+}
+
+impl Transparency {
+    /// Certifies the triangles (model space of the mesh) for every viewer at least
+    /// `min_eye_distance` times the bounding sphere's radius from its centre, within
+    /// `max_build_ms` milliseconds.
+    pub fn new(
+        triangles: &Triangles,
+        min_eye_distance: f64,
+        max_build_ms: f64,
+    ) -> Result<Self, BindError> {
+        if !(max_build_ms.is_finite() && max_build_ms > 0.0) {
+            return Err(BindError::argument(
+                "maxBuildMs",
+                format!("must be a positive number of milliseconds, got {max_build_ms}"),
+            ));
+        }
+        let geometry = Geometry::with_exact_corners(&triangles.polygon_mesh()?)?;
+        let mut options = PresortOptions::default();
+        options.min_eye_distance = min_eye_distance;
+        options.max_build_time = std::time::Duration::from_secs_f64(max_build_ms / 1000.0);
+        let sorter = Presorted::try_new(&geometry, &options)?;
+        Ok(Self::of(sorter, geometry.bounds().centre()))
+    }
+
+    /// A certificate that [`to_bytes`](Self::to_bytes) wrote for the same triangles (as a
+    /// worker hands one to the page): validated, far quicker than certifying.
+    pub fn from_bytes(triangles: &Triangles, bytes: &[u8]) -> Result<Self, BindError> {
+        let geometry = Geometry::with_exact_corners(&triangles.polygon_mesh()?)?;
+        let sorter = Presorted::from_bytes(bytes, &geometry)
+            .map_err(|e| BindError::argument("bytes", e.to_string()))?;
+        Ok(Self::of(sorter, geometry.bounds().centre()))
+    }
+
+    /// The certificate, versioned and compact ([`Presorted::to_bytes`]).
+    pub fn to_bytes(&self) -> Vec<u8> {
+        self.sorter.to_bytes()
+    }
+
+    fn of(sorter: Presorted, centre: DVec3) -> Self {
+        let pieces = sorter.pieces().clone();
+        let (mut piece_first, mut piece_corners) = (Vec::new(), Vec::new());
+        let (mut positions, mut vertex_triangles, mut centroids) =
+            (Vec::new(), Vec::new(), Vec::new());
+        for p in 0..pieces.len() {
+            let corners = pieces.corners(p);
+            piece_first.push((positions.len() / 3) as u32);
+            piece_corners.push(corners.len() as u32);
+            let mut sum = DVec3::ZERO;
+            for &c in corners {
+                let at = c + centre;
+                positions.extend_from_slice(&[at.x as f32, at.y as f32, at.z as f32]);
+                vertex_triangles.push(pieces.face(p));
+                sum += c;
+            }
+            centroids.push(sum / corners.len().max(1) as f64);
+        }
+        let mut indices = Vec::new();
+        let mut leaves = Vec::new();
+        for order in sorter.leaf_orders() {
+            let start = indices.len() as u32;
+            let cycles = order.iter().any(|s| matches!(s, OrderStep::Core(_)));
+            if !cycles {
+                for step in order {
+                    if let OrderStep::Piece(p) = step {
+                        push_piece(&mut indices, piece_first[p as usize], piece_corners[p as usize]);
+                    }
+                }
+            }
+            leaves.push(LeafRange {
+                start,
+                count: indices.len() as u32 - start,
+                cycles,
+            });
+        }
+        let scratch_start = indices.len() as u32;
+        let mut all = Vec::new();
+        for p in 0..pieces.len() {
+            push_piece(&mut all, piece_first[p], piece_corners[p]);
+        }
+        let scratch = all.len();
+        indices.extend(all);
+        Transparency {
+            sorter,
+            centre,
+            piece_first,
+            piece_corners,
+            by_depth: Vec::with_capacity(centroids.len()),
+            centroids,
+            positions,
+            vertex_triangles,
+            indices,
+            leaves,
+            scratch_start,
+            next: Vec::with_capacity(scratch),
+            list: DrawList::new(),
+            last_scratch: None,
+            frames: 0,
+            fallback_frames: 0,
+        }
+    }
+
+    /// Vertex positions (x, y, z per vertex, model space): every piece's corners.
+    pub fn positions(&self) -> &[f32] {
+        &self.positions
+    }
+
+    /// Per vertex, the triangle (of the input) its piece comes from: for colours.
+    pub fn vertex_triangles(&self) -> &[u32] {
+        &self.vertex_triangles
+    }
+
+    /// The index buffer: every order without cycles, then the scratch tail.
+    pub fn indices(&self) -> &[u32] {
+        &self.indices
+    }
+
+    /// Each certified order's range.
+    pub fn leaves(&self) -> &[LeafRange] {
+        &self.leaves
+    }
+
+    /// Where the scratch tail begins.
+    pub fn scratch_start(&self) -> u32 {
+        self.scratch_start
+    }
+
+    /// The sorter (its counts and budgets).
+    pub fn sorter(&self) -> &Presorted {
+        &self.sorter
+    }
+
+    /// Frames so far, and those drawn by centroid outside the certificate.
+    pub fn frames(&self) -> (u64, u64) {
+        (self.frames, self.fallback_frames)
+    }
+
+    /// The range to draw for a viewer at the homogeneous point `(x, y, z, w)` of model
+    /// space (an eye with `w = 1`, a direction toward the viewer with `w = 0`). Allocates
+    /// nothing once the buffers have grown.
+    pub fn frame(&mut self, viewer: [f64; 4]) -> Result<Frame, BindError> {
+        let [x, y, z, w] = viewer;
+        if !viewer.iter().all(|v| v.is_finite()) || (w == 0.0 && x == 0.0 && y == 0.0 && z == 0.0)
+        {
+            return Err(BindError::argument(
+                "viewer",
+                format!("{viewer:?} is not a point or direction"),
+            ));
+        }
+        let viewer = if w == 0.0 {
+            Viewer::Direction(DVec3::new(x, y, z).normalize())
+        } else {
+            Viewer::Eye(DVec3::new(x, y, z) / w - self.centre)
+        };
+        let cull = CullTest::back_faces_culled(viewer);
+        self.frames += 1;
+        let leaf = match self.sorter.leaf_for(&cull) {
+            Ok(leaf) => leaf,
+            Err(_) => {
+                self.fallback_frames += 1;
+                self.by_centroid(viewer);
+                return Ok(self.scratch(usize::MAX, true));
+            }
+        };
+        let range = self.leaves[leaf];
+        if !range.cycles {
+            return Ok(Frame {
+                start: range.start,
+                count: range.count,
+                rewritten: false,
+                fell_back: false,
+            });
+        }
+        self.sorter.sort_culled(&cull, &mut self.list);
+        self.next.clear();
+        for item in self.list.items() {
+            let p = item.polygon as usize;
+            push_piece(&mut self.next, self.piece_first[p], self.piece_corners[p]);
+        }
+        Ok(self.scratch(leaf, false))
+    }
+
+    /// Every piece far to near by centroid, into `next`.
+    fn by_centroid(&mut self, viewer: Viewer) {
+        self.by_depth.clear();
+        for (p, c) in self.centroids.iter().enumerate() {
+            let nearness = match viewer {
+                Viewer::Direction(d) => c.dot(d),
+                Viewer::Eye(e) => -(e - *c).length(),
+            };
+            self.by_depth.push((nearness, p as u32));
+        }
+        self.by_depth.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
+        self.next.clear();
+        for &(_, p) in &self.by_depth {
+            let p = p as usize;
+            push_piece(&mut self.next, self.piece_first[p], self.piece_corners[p]);
+        }
+    }
+
+    /// `next` into the scratch tail, rewritten only where it changed.
+    fn scratch(&mut self, key: usize, fell_back: bool) -> Frame {
+        let start = self.scratch_start as usize;
+        let tail = &mut self.indices[start..start + self.next.len()];
+        let rewritten = self.last_scratch != Some(key) || tail != self.next.as_slice();
+        if rewritten {
+            tail.copy_from_slice(&self.next);
+        }
+        self.last_scratch = (!fell_back).then_some(key);
+        Frame {
+            start: self.scratch_start,
+            count: self.next.len() as u32,
+            rewritten,
+            fell_back,
+        }
+    }
+}
