@@ -247,9 +247,12 @@ impl Camera {
                 what: "projection matrix",
             });
         }
-        if view.row(3) != DVec4::W {
+        // An engine's inverse of its camera's world matrix leaves rounding in the bottom row
+        // (three.js's `matrixWorldInverse` holds 0.9999999999999998 there).
+        let bottom = (view.row(3) - DVec4::W).abs().max_element();
+        if bottom > CAMERA_MATRIX {
             return Err(CameraError::NotARotation {
-                deviation: (view.row(3) - DVec4::W).abs().max_element(),
+                deviation: bottom,
                 limit: CAMERA_MATRIX,
             });
         }
@@ -548,6 +551,20 @@ mod tests {
         let c = clip_from_model * p.extend(1.0);
         let ndc = c.truncate() / c.w;
         DVec2::new(w * 0.5 * (1.0 + ndc.x), h * 0.5 * (1.0 - ndc.y))
+    }
+
+    #[test]
+    fn rounding_in_the_view_matrix_bottom_row_is_accepted_and_more_is_not() {
+        let projection = opengl::perspective(0.8, 1.0, 0.05, 50.0);
+        let mut view = look_at_mat4(DVec3::new(2.5, 1.7, 3.1), DVec3::ZERO, DVec3::Y);
+        // What three.js's matrixWorldInverse holds after inverting a camera's world matrix.
+        view.w_axis.w = 0.9999999999999998;
+        assert!(Camera::from_matrices(view, projection, ClipSpace::MinusOneToOne).is_ok());
+        view.w_axis.w = 0.99;
+        assert!(matches!(
+            Camera::from_matrices(view, projection, ClipSpace::MinusOneToOne),
+            Err(CameraError::NotARotation { .. })
+        ));
     }
 
     #[test]

@@ -91,7 +91,7 @@ impl Certificate {
                 start: 0,
                 count: 0,
                 rewritten: false,
-                fell_back: false,
+                fallback: None,
             },
         }
     }
@@ -194,7 +194,13 @@ impl Certificate {
     /// Whether the last frame was outside the certificate (drawn by centroid).
     #[wasm_bindgen(getter, js_name = fellBack)]
     pub fn fell_back(&self) -> bool {
-        self.frame.fell_back
+        self.frame.fallback.is_some()
+    }
+
+    /// Why the last frame was outside the certificate, or `undefined`.
+    #[wasm_bindgen(getter, js_name = fallbackReason)]
+    pub fn fallback_reason(&self) -> Option<String> {
+        self.frame.fallback.map(|r| r.to_string())
     }
 
     /// The scratch tail's indices of the last frame (to upload when `rewritten`).

@@ -11,7 +11,7 @@
 //! counted, never silently.
 
 use face_sort::{
-    CullTest, DrawList, Geometry, OrderStep, PresortOptions, Presorted, Viewer,
+    CullTest, DrawList, FallbackReason, Geometry, OrderStep, PresortOptions, Presorted, Viewer,
 };
 use glam::DVec3;
 
@@ -38,8 +38,8 @@ pub struct Frame {
     pub count: u32,
     /// Whether `indices()[scratch_start..scratch_start + count]` was rewritten (upload it).
     pub rewritten: bool,
-    /// Whether the view was outside the certificate (drawn by centroid, not exact).
-    pub fell_back: bool,
+    /// Why the view was outside the certificate (drawn by centroid, not exact), or `None`.
+    pub fallback: Option<FallbackReason>,
 }
 
 /// The certificate of a mesh's triangles as GPU buffers (module docs).
@@ -92,8 +92,17 @@ impl Transparency {
         let mut options = PresortOptions::default();
         options.min_eye_distance = min_eye_distance;
         options.max_build_time = std::time::Duration::from_secs_f64(max_build_ms / 1000.0);
+        // A GPU draws a per-frame order of a cycle as cheaply as a stored one: let cycles of
+        // crossing pieces (a soup of meshes passing through each other) be ordered per frame
+        // by their own BSP trees rather than leave whole regions to the fallback.
+        options.small_cycle_pieces = 512;
+        options.soup_cuts_per_piece = f64::INFINITY;
         let sorter = Presorted::try_new(&geometry, &options)?;
-        Ok(Self::of(sorter, geometry.bounds().centre()))
+        Ok(Self::of(
+            sorter,
+            geometry.bounds().centre(),
+            geometry.bounds().diagonal(),
+        ))
     }
 
     /// A certificate that [`to_bytes`](Self::to_bytes) wrote for the same triangles (as a
@@ -102,7 +111,11 @@ impl Transparency {
         let geometry = Geometry::with_exact_corners(&triangles.polygon_mesh()?)?;
         let sorter = Presorted::from_bytes(bytes, &geometry)
             .map_err(|e| BindError::argument("bytes", e.to_string()))?;
-        Ok(Self::of(sorter, geometry.bounds().centre()))
+        Ok(Self::of(
+            sorter,
+            geometry.bounds().centre(),
+            geometry.bounds().diagonal(),
+        ))
     }
 
     /// The certificate, versioned and compact ([`Presorted::to_bytes`]).
@@ -110,8 +123,12 @@ impl Transparency {
         self.sorter.to_bytes()
     }
 
-    fn of(sorter: Presorted, centre: DVec3) -> Self {
-        let pieces = sorter.pieces().clone();
+    fn of(sorter: Presorted, centre: DVec3, size: f64) -> Self {
+        // Cuts divide faces: with their T-junctions closed the GPU covers each pixel of a
+        // face once (no pinholes along a cut).
+        let pieces = sorter
+            .pieces()
+            .without_t_junctions(face_sort::tolerance::PLANE_SIDE * size);
         let (mut piece_first, mut piece_corners) = (Vec::new(), Vec::new());
         let (mut positions, mut vertex_triangles, mut centroids) =
             (Vec::new(), Vec::new(), Vec::new());
@@ -229,10 +246,10 @@ impl Transparency {
         self.frames += 1;
         let leaf = match self.sorter.leaf_for(&cull) {
             Ok(leaf) => leaf,
-            Err(_) => {
+            Err(reason) => {
                 self.fallback_frames += 1;
                 self.by_centroid(viewer);
-                return Ok(self.scratch(usize::MAX, true));
+                return Ok(self.scratch(usize::MAX, Some(reason)));
             }
         };
         let range = self.leaves[leaf];
@@ -241,7 +258,7 @@ impl Transparency {
                 start: range.start,
                 count: range.count,
                 rewritten: false,
-                fell_back: false,
+                fallback: None,
             });
         }
         self.sorter.sort_culled(&cull, &mut self.list);
@@ -250,7 +267,7 @@ impl Transparency {
             let p = item.polygon as usize;
             push_piece(&mut self.next, self.piece_first[p], self.piece_corners[p]);
         }
-        Ok(self.scratch(leaf, false))
+        Ok(self.scratch(leaf, None))
     }
 
     /// Every piece far to near by centroid, into `next`.
@@ -272,19 +289,19 @@ impl Transparency {
     }
 
     /// `next` into the scratch tail, rewritten only where it changed.
-    fn scratch(&mut self, key: usize, fell_back: bool) -> Frame {
+    fn scratch(&mut self, key: usize, fallback: Option<FallbackReason>) -> Frame {
         let start = self.scratch_start as usize;
         let tail = &mut self.indices[start..start + self.next.len()];
         let rewritten = self.last_scratch != Some(key) || tail != self.next.as_slice();
         if rewritten {
             tail.copy_from_slice(&self.next);
         }
-        self.last_scratch = (!fell_back).then_some(key);
+        self.last_scratch = fallback.is_none().then_some(key);
         Frame {
             start: self.scratch_start,
             count: self.next.len() as u32,
             rewritten,
-            fell_back,
+            fallback,
         }
     }
 }
