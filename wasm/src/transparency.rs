@@ -18,6 +18,10 @@ use glam::DVec3;
 use crate::error::BindError;
 use crate::input::Triangles;
 
+/// Width, in model sizes, up to which a piece is a sliver that the GPU does not draw: a
+/// ten-thousandth of a pixel where the model spans a thousand.
+const SLIVER_WIDTH: f64 = 1e-7;
+
 /// One certified order's place in the index buffer.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct LeafRange {
@@ -46,10 +50,11 @@ pub struct Frame {
 pub struct Transparency {
     sorter: Presorted,
     centre: DVec3,
-    /// Per piece: its first vertex.
-    piece_first: Vec<u32>,
-    /// Per piece: its corners.
-    piece_corners: Vec<u32>,
+    /// Per piece, where its triangles' indices start in `piece_triangles` (one more entry
+    /// than pieces).
+    piece_start: Vec<u32>,
+    /// Every piece's triangles (vertex indices), piece after piece.
+    piece_triangles: Vec<u32>,
     /// Per piece: its centroid (centred).
     centroids: Vec<DVec3>,
     positions: Vec<f32>,
@@ -66,11 +71,48 @@ pub struct Transparency {
     fallback_frames: u64,
 }
 
-/// The fan of triangles of piece `p` (corners from `first`), appended to `out`.
-fn push_piece(out: &mut Vec<u32>, first: u32, corners: u32) {
-    for k in 1..corners.saturating_sub(1) {
-        out.extend_from_slice(&[first, first + k, first + k + 1]);
+/// Triangles covering a convex polygon (corners from vertex `first`) with none of zero
+/// area: a fan from a corner whose fan has no degenerate triangle, else a fan from the
+/// centroid (`centroid` is its vertex index). A closed T-junction leaves corners on the
+/// line of an edge; a fan through them would hold slivers that a GPU's snapped vertices
+/// can turn into double cover. A sliver left by cuts (no wider than `min_width`) gets no
+/// triangle, for the same reason.
+fn triangulate(
+    corners: &[DVec3],
+    first: u32,
+    centroid: u32,
+    min_width: f64,
+    out: &mut Vec<u32>,
+) -> bool {
+    let n = corners.len();
+    let scale = corners
+        .iter()
+        .map(|c| (*c - corners[0]).length_squared())
+        .fold(0.0, f64::max);
+    let flat = |a: DVec3, b: DVec3, c: DVec3| (b - a).cross(c - a).length() <= 1e-9 * scale;
+    let double_area: f64 = (1..n - 1)
+        .map(|k| (corners[k] - corners[0]).cross(corners[k + 1] - corners[0]).length())
+        .sum();
+    if double_area <= min_width * scale.sqrt() {
+        return false;
     }
+    for apex in 0..n {
+        let at = |k: usize| corners[(apex + k) % n];
+        if (1..n - 1).all(|k| !flat(at(0), at(k), at(k + 1))) {
+            for k in 1..n - 1 {
+                out.extend_from_slice(&[
+                    first + apex as u32,
+                    first + ((apex + k) % n) as u32,
+                    first + ((apex + k + 1) % n) as u32,
+                ]);
+            }
+            return false;
+        }
+    }
+    for k in 0..n {
+        out.extend_from_slice(&[centroid, first + k as u32, first + ((k + 1) % n) as u32]);
+    }
+    true
 }
 
 impl Transparency {
@@ -128,22 +170,33 @@ impl Transparency {
         // face once (no pinholes along a cut).
         let pieces = sorter
             .pieces()
-            .without_t_junctions(face_sort::tolerance::PLANE_SIDE * size);
-        let (mut piece_first, mut piece_corners) = (Vec::new(), Vec::new());
+            .without_t_junctions(1e-9 * size);
+        let (mut piece_start, mut piece_triangles) = (vec![0u32], Vec::new());
         let (mut positions, mut vertex_triangles, mut centroids) =
             (Vec::new(), Vec::new(), Vec::new());
+        let mut push_vertex = |at: DVec3, face: u32, positions: &mut Vec<f32>| {
+            positions.extend_from_slice(&[at.x as f32, at.y as f32, at.z as f32]);
+            vertex_triangles.push(face);
+        };
         for p in 0..pieces.len() {
             let corners = pieces.corners(p);
-            piece_first.push((positions.len() / 3) as u32);
-            piece_corners.push(corners.len() as u32);
-            let mut sum = DVec3::ZERO;
+            let first = (positions.len() / 3) as u32;
             for &c in corners {
-                let at = c + centre;
-                positions.extend_from_slice(&[at.x as f32, at.y as f32, at.z as f32]);
-                vertex_triangles.push(pieces.face(p));
-                sum += c;
+                push_vertex(c + centre, pieces.face(p), &mut positions);
             }
-            centroids.push(sum / corners.len().max(1) as f64);
+            let centroid = corners.iter().copied().sum::<DVec3>() / corners.len().max(1) as f64;
+            let centre_vertex = first + corners.len() as u32;
+            if triangulate(
+                corners,
+                first,
+                centre_vertex,
+                SLIVER_WIDTH * size,
+                &mut piece_triangles,
+            ) {
+                push_vertex(centroid + centre, pieces.face(p), &mut positions);
+            }
+            piece_start.push(piece_triangles.len() as u32);
+            centroids.push(centroid);
         }
         let mut indices = Vec::new();
         let mut leaves = Vec::new();
@@ -153,7 +206,10 @@ impl Transparency {
             if !cycles {
                 for step in order {
                     if let OrderStep::Piece(p) = step {
-                        push_piece(&mut indices, piece_first[p as usize], piece_corners[p as usize]);
+                        let p = p as usize;
+                        indices.extend_from_slice(
+                            &piece_triangles[piece_start[p] as usize..piece_start[p + 1] as usize],
+                        );
                     }
                 }
             }
@@ -164,17 +220,13 @@ impl Transparency {
             });
         }
         let scratch_start = indices.len() as u32;
-        let mut all = Vec::new();
-        for p in 0..pieces.len() {
-            push_piece(&mut all, piece_first[p], piece_corners[p]);
-        }
-        let scratch = all.len();
-        indices.extend(all);
+        let scratch = piece_triangles.len();
+        indices.extend_from_slice(&piece_triangles);
         Transparency {
             sorter,
             centre,
-            piece_first,
-            piece_corners,
+            piece_start,
+            piece_triangles,
             by_depth: Vec::with_capacity(centroids.len()),
             centroids,
             positions,
@@ -265,7 +317,8 @@ impl Transparency {
         self.next.clear();
         for item in self.list.items() {
             let p = item.polygon as usize;
-            push_piece(&mut self.next, self.piece_first[p], self.piece_corners[p]);
+            let range = self.piece_start[p] as usize..self.piece_start[p + 1] as usize;
+            self.next.extend_from_slice(&self.piece_triangles[range]);
         }
         Ok(self.scratch(leaf, None))
     }
@@ -283,8 +336,8 @@ impl Transparency {
         self.by_depth.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
         self.next.clear();
         for &(_, p) in &self.by_depth {
-            let p = p as usize;
-            push_piece(&mut self.next, self.piece_first[p], self.piece_corners[p]);
+            let range = self.piece_start[p as usize] as usize..self.piece_start[p as usize + 1] as usize;
+            self.next.extend_from_slice(&self.piece_triangles[range]);
         }
     }
 

@@ -167,14 +167,33 @@ function crossingMerged(material) {
   return scene;
 }
 
+/** One colour per triangle in bands along the mesh's height, so that the order of
+ * overlapping layers shows (a translucent mesh of one colour hides most order errors). */
+function bandedColours(mesh) {
+  const g = mesh.geometry.index ? mesh.geometry.toNonIndexed() : mesh.geometry;
+  const p = g.getAttribute('position');
+  g.computeBoundingBox();
+  const { min, max } = g.boundingBox;
+  const palette = [[0.85, 0.3, 0.25], [0.25, 0.7, 0.35], [0.25, 0.4, 0.85], [0.9, 0.75, 0.2]];
+  const colours = new Float32Array(3 * p.count);
+  for (let v = 0; v + 2 < p.count; v += 3) {
+    const y = (p.getY(v) + p.getY(v + 1) + p.getY(v + 2)) / 3;
+    const band = Math.min(3, Math.floor((4 * (y - min.y)) / (max.y - min.y)));
+    for (let k = 0; k < 3; k++) colours.set(palette[band], 3 * (v + k));
+  }
+  g.setAttribute('color', new THREE.BufferAttribute(colours, 3));
+  mesh.geometry = g;
+}
+
 const built = new Map();
 
 /** A translucent scene, with ExactTransparency (`exact`) or as three.js draws it. */
 async function translucent(name, exact) {
   const material = (hex, vertexColors = false) => new THREE.MeshBasicMaterial({ color: hex, transparent: true, opacity: 0.55, vertexColors });
-  const root = name === 'crossing' ? crossingMerged(material) : await scene(name, material);
+  const root = name === 'crossing' ? crossingMerged(material) : await scene(name, (hex) => material(hex, true));
   const meshes = [];
   root.traverse((o) => o.isMesh && meshes.push(o));
+  if (name !== 'crossing') meshes.forEach(bandedColours);
   const buildMs = [];
   if (exact) {
     for (const [k, mesh] of meshes.entries()) {
