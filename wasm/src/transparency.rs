@@ -55,7 +55,7 @@ pub struct Transparency {
     piece_start: Vec<u32>,
     /// Every piece's triangles (vertex indices), piece after piece.
     piece_triangles: Vec<u32>,
-    /// Per piece: its centroid (centred).
+    /// Per piece of the cut geometry (not the cycles' fragments): its centroid (centred).
     centroids: Vec<DVec3>,
     positions: Vec<f32>,
     vertex_triangles: Vec<u32>,
@@ -196,7 +196,9 @@ impl Transparency {
                 push_vertex(centroid + centre, pieces.face(p), &mut positions);
             }
             piece_start.push(piece_triangles.len() as u32);
-            centroids.push(centroid);
+            if p < sorter.cut_pieces() {
+                centroids.push(centroid);
+            }
         }
         let mut indices = Vec::new();
         let mut leaves = Vec::new();
@@ -220,8 +222,9 @@ impl Transparency {
             });
         }
         let scratch_start = indices.len() as u32;
+        // The scratch tail: room for any list a frame composes (each piece at most once).
         let scratch = piece_triangles.len();
-        indices.extend_from_slice(&piece_triangles);
+        indices.resize(indices.len() + scratch, 0);
         Transparency {
             sorter,
             centre,

@@ -174,6 +174,14 @@ impl Presorted {
         &self.shared
     }
 
+    /// How many of [`pieces`](Self::pieces) come first as the geometry's pieces cut where
+    /// they pass through each other: those tile every face once (the rest are cycles'
+    /// fragments, which tile their cycle's pieces again).
+    #[must_use]
+    pub fn cut_pieces(&self) -> usize {
+        self.pieces
+    }
+
     /// Every certified order as stored, one per leaf region, back faces included: a sink
     /// that culls back faces itself (a GPU) draws a leaf without cycles as it stands; an
     /// [`OrderStep::Core`] is a cycle that [`sort_culled`](Self::sort_culled) orders per
