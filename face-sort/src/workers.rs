@@ -4,7 +4,11 @@
 
 /// `work(k)` for every `k` in `0..count`, in `k` order: on `count` scoped threads when
 /// `threads > 1`, else one after another on the calling thread.
-pub(crate) fn map<T: Send>(count: usize, threads: usize, work: impl Fn(usize) -> T + Sync) -> Vec<T> {
+pub(crate) fn map<T: Send>(
+    count: usize,
+    threads: usize,
+    work: impl Fn(usize) -> T + Sync,
+) -> Vec<T> {
     if threads <= 1 || count <= 1 {
         return (0..count).map(work).collect();
     }

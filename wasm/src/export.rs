@@ -2,7 +2,9 @@
 //! `Export`) and the visible edges for pen plotters.
 
 use face_sort::Geometry;
-use sprite_compose::{Export, HiddenParts, Materials, PlotOptions, SvgOptions, plot_edges, write_svg};
+use sprite_compose::{
+    Export, HiddenParts, Materials, PlotOptions, SvgOptions, plot_edges, write_svg,
+};
 
 use crate::error::BindError;
 use crate::input::{self, Triangles};
@@ -48,15 +50,16 @@ pub fn svg(
 ) -> Result<String, BindError> {
     let hidden = hidden_parts(hidden)?;
     let model = triangles.coloured_model(colours)?;
-    if hidden == HiddenParts::Remove && !ids {
-        if let Some(k) = colours.chunks_exact(4).position(|c| c[3] < 255) {
-            return Err(BindError::argument(
-                "hidden",
-                format!(
-                    "\"remove\" hides what lies behind, but triangle {k} is translucent: use \"keep\""
-                ),
-            ));
-        }
+    if hidden == HiddenParts::Remove
+        && !ids
+        && let Some(k) = colours.chunks_exact(4).position(|c| c[3] < 255)
+    {
+        return Err(BindError::argument(
+            "hidden",
+            format!(
+                "\"remove\" hides what lies behind, but triangle {k} is translucent: use \"keep\""
+            ),
+        ));
     }
     let geometry = Geometry::new(&triangles.polygon_mesh()?)?;
     let view = input::view(

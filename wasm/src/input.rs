@@ -25,13 +25,13 @@ pub struct Triangles {
 impl Triangles {
     /// Checks lengths, finiteness and indices.
     pub fn new(positions: &[f64], indices: &[u32]) -> Result<Self, BindError> {
-        if positions.len() % 3 != 0 {
+        if !positions.len().is_multiple_of(3) {
             return Err(BindError::argument(
                 "positions",
                 format!("length {} is not a multiple of 3", positions.len()),
             ));
         }
-        if indices.len() % 3 != 0 {
+        if !indices.len().is_multiple_of(3) {
             return Err(BindError::argument(
                 "indices",
                 format!("length {} is not a multiple of 3", indices.len()),
@@ -169,7 +169,10 @@ mod tests {
         let e = Triangles::new(&[0.0; 7], &[0, 1, 2]).unwrap_err();
         assert!(e.to_string().starts_with("positions: length 7"), "{e}");
         let e = Triangles::new(&[0.0; 9], &[0, 1, 3]).unwrap_err();
-        assert!(e.to_string().contains("triangle 0 refers to vertex 3"), "{e}");
+        assert!(
+            e.to_string().contains("triangle 0 refers to vertex 3"),
+            "{e}"
+        );
         let e = Triangles::new(&[0.0, f64::NAN, 0.0], &[0, 0, 0]).unwrap_err();
         assert!(e.to_string().contains("vertex 0 has a NaN"), "{e}");
         let t = Triangles::new(&[0.0; 9], &[0, 1, 2]).unwrap();

@@ -109,7 +109,8 @@ impl Certificate {
         max_build_ms: f64,
     ) -> Result<Certificate, JsError> {
         let triangles = Triangles::new(positions, indices).map_err(thrown)?;
-        let inner = Transparency::new(&triangles, min_eye_distance, max_build_ms).map_err(thrown)?;
+        let inner =
+            Transparency::new(&triangles, min_eye_distance, max_build_ms).map_err(thrown)?;
         Ok(Certificate::with(inner))
     }
 

@@ -91,7 +91,11 @@ fn triangulate(
         .fold(0.0, f64::max);
     let flat = |a: DVec3, b: DVec3, c: DVec3| (b - a).cross(c - a).length() <= 1e-9 * scale;
     let double_area: f64 = (1..n - 1)
-        .map(|k| (corners[k] - corners[0]).cross(corners[k + 1] - corners[0]).length())
+        .map(|k| {
+            (corners[k] - corners[0])
+                .cross(corners[k + 1] - corners[0])
+                .length()
+        })
         .sum();
     if double_area <= min_width * scale.sqrt() {
         return false;
@@ -131,15 +135,27 @@ impl Transparency {
             ));
         }
         let geometry = Geometry::with_exact_corners(&triangles.polygon_mesh()?)?;
-        let mut options = PresortOptions::default();
-        options.min_eye_distance = min_eye_distance;
-        options.max_build_time = std::time::Duration::from_secs_f64(max_build_ms / 1000.0);
-        // A GPU draws a per-frame order of a cycle as cheaply as a stored one: let cycles of
-        // crossing pieces (a soup of meshes passing through each other) be ordered per frame
-        // by their own BSP trees rather than leave whole regions to the fallback.
-        options.small_cycle_pieces = 512;
-        options.soup_cuts_per_piece = f64::INFINITY;
-        let sorter = Presorted::try_new(&geometry, &options)?;
+        let started = web_time::Instant::now();
+        let budget = std::time::Duration::from_secs_f64(max_build_ms / 1000.0);
+        let options = PresortOptions {
+            min_eye_distance,
+            max_build_time: budget,
+            ..PresortOptions::default()
+        };
+        let mut sorter = Presorted::try_new(&geometry, &options)?;
+        if sorter.uncertified_regions() > 0 {
+            // Cycles too large for the defaults (a soup of meshes passing through each
+            // other): a GPU draws a per-frame order of a cycle as cheaply as a stored one,
+            // so certify again with large cycles ordered per frame by their own BSP trees
+            // rather than leave those regions to the fallback.
+            let relaxed = PresortOptions {
+                max_build_time: budget.saturating_sub(started.elapsed()),
+                small_cycle_pieces: 512,
+                soup_cuts_per_piece: f64::INFINITY,
+                ..options
+            };
+            sorter = Presorted::try_new(&geometry, &relaxed)?;
+        }
         Ok(Self::of(
             sorter,
             geometry.bounds().centre(),
@@ -168,9 +184,7 @@ impl Transparency {
     fn of(sorter: Presorted, centre: DVec3, size: f64) -> Self {
         // Cuts divide faces: with their T-junctions closed the GPU covers each pixel of a
         // face once (no pinholes along a cut).
-        let pieces = sorter
-            .pieces()
-            .without_t_junctions(1e-9 * size);
+        let pieces = sorter.pieces().without_t_junctions(1e-9 * size);
         let (mut piece_start, mut piece_triangles) = (vec![0u32], Vec::new());
         let (mut positions, mut vertex_triangles, mut centroids) =
             (Vec::new(), Vec::new(), Vec::new());
@@ -285,8 +299,7 @@ impl Transparency {
     /// nothing once the buffers have grown.
     pub fn frame(&mut self, viewer: [f64; 4]) -> Result<Frame, BindError> {
         let [x, y, z, w] = viewer;
-        if !viewer.iter().all(|v| v.is_finite()) || (w == 0.0 && x == 0.0 && y == 0.0 && z == 0.0)
-        {
+        if !viewer.iter().all(|v| v.is_finite()) || (w == 0.0 && x == 0.0 && y == 0.0 && z == 0.0) {
             return Err(BindError::argument(
                 "viewer",
                 format!("{viewer:?} is not a point or direction"),
@@ -339,7 +352,8 @@ impl Transparency {
         self.by_depth.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
         self.next.clear();
         for &(_, p) in &self.by_depth {
-            let range = self.piece_start[p as usize] as usize..self.piece_start[p as usize + 1] as usize;
+            let range =
+                self.piece_start[p as usize] as usize..self.piece_start[p as usize + 1] as usize;
             self.next.extend_from_slice(&self.piece_triangles[range]);
         }
     }

@@ -62,7 +62,7 @@ pub fn run(args: &TruthArgs) -> Result<ExitCode> {
     let text = std::fs::read_to_string(&args.scene)
         .with_context(|| format!("reading {}", args.scene.display()))?;
     let scene: SceneFile = serde_json::from_str(&text).context("scene JSON")?;
-    if scene.positions.len() % 3 != 0 || scene.indices.len() % 3 != 0 {
+    if !scene.positions.len().is_multiple_of(3) || !scene.indices.len().is_multiple_of(3) {
         bail!("positions and indices must come in threes");
     }
     let positions: Vec<[f64; 3]> = scene
@@ -116,8 +116,7 @@ pub fn run(args: &TruthArgs) -> Result<ExitCode> {
                 .get(4 * face as usize..4 * face as usize + 4)
                 .map_or([128, 128, 128, 255], |c| [c[0], c[1], c[2], c[3]])
         };
-        let composite =
-            raster_sink::composite_truth(&view, &geometry, colour, scene.background)?;
+        let composite = raster_sink::composite_truth(&view, &geometry, colour, scene.background)?;
         let mut rgba = Vec::with_capacity(composite.image.pixels().len() * 4);
         for p in composite.image.pixels() {
             let c = p.demultiply();

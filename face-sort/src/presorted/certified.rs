@@ -211,7 +211,7 @@ impl Presorted {
     /// no allocation; the fallback count is not touched.
     ///
     /// # Errors
-    /// The [`FallbackReason`] of a view the certificate does not cover.
+    /// The [`FallbackReason`](crate::FallbackReason) of a view the certificate does not cover.
     pub fn leaf_for(&mut self, cull: &crate::CullTest) -> Result<usize, super::FallbackReason> {
         self.locate(cull).map(|leaf| leaf as usize)
     }
