@@ -25,6 +25,20 @@ pub struct CameraArgs<'a> {
     pub cull: &'a str,
 }
 
+impl CameraArgs<'_> {
+    /// The view of `geometry` through this camera.
+    fn view_of(&self, geometry: &Geometry) -> Result<face_sort::View, BindError> {
+        input::view(
+            geometry,
+            self.view,
+            self.projection,
+            self.width,
+            self.height,
+            input::cull_mode(self.cull)?,
+        )
+    }
+}
+
 /// What the SVG holds of what cannot be seen.
 fn hidden_parts(hidden: &str) -> Result<HiddenParts, BindError> {
     match hidden {
@@ -62,14 +76,7 @@ pub fn svg(
         ));
     }
     let geometry = Geometry::new(&triangles.polygon_mesh()?)?;
-    let view = input::view(
-        &geometry,
-        camera.view,
-        camera.projection,
-        camera.width,
-        camera.height,
-        input::cull_mode(camera.cull)?,
-    )?;
+    let view = camera.view_of(&geometry)?;
     let export = Export::new(&geometry, view).with_hidden(hidden);
     if ids {
         let options = SvgOptions::DEFAULT
@@ -106,14 +113,7 @@ pub fn plot_svg(
     }
     let mesh = triangles.polygon_mesh()?;
     let geometry = Geometry::new(&mesh)?;
-    let view = input::view(
-        &geometry,
-        camera.view,
-        camera.projection,
-        camera.width,
-        camera.height,
-        input::cull_mode(camera.cull)?,
-    )?;
+    let view = camera.view_of(&geometry)?;
     let plot = plot_edges(
         &mesh,
         &geometry,
