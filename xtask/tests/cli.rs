@@ -154,6 +154,34 @@ fn bench_smoke_writes_the_reports() {
     assert!(dir.join("report.md").exists() && dir.join("chart.svg").exists());
 }
 
+/// `bench --presort-scaling` writes a row per size with build time, memory, certificate
+/// bytes and per-frame ratios against the centroid sort, and a certificate that covers the
+/// frames it measured (no fallback frame).
+#[test]
+fn bench_presort_scaling_writes_its_table() {
+    let dir = temp_dir("bench-presort");
+    let result = xtask(&[
+        "bench",
+        "--smoke",
+        "--presort-scaling",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(result.status.success(), "{}", text(&result.stderr));
+    let table = std::fs::read_to_string(dir.join("presort-scaling.md")).unwrap();
+    let row = table
+        .lines()
+        .find(|l| l.starts_with("| 200 |"))
+        .unwrap_or_else(|| panic!("no row for 200 faces in {table}"));
+    let cells: Vec<&str> = row.split('|').map(str::trim).collect();
+    assert!(
+        cells[3].ends_with(" s") && cells[5].ends_with(" KB"),
+        "{row}"
+    );
+    assert!(cells[8].contains('×') && cells[9].contains('×'), "{row}");
+    assert_eq!(cells[11], "0", "fallback frames: {row}");
+}
+
 /// `bench --presort-cache DIR` builds each scene's certificate once and loads it on the next
 /// run, and the presorted rows say which, with no violation either way.
 #[test]

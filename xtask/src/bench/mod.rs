@@ -6,6 +6,7 @@
 //! summary, [`chart`] draws time against error with plotters.
 
 mod chart;
+mod presort_scaling;
 mod report;
 mod scaling;
 mod timing;
@@ -60,6 +61,12 @@ pub struct BenchArgs {
     /// the load time, and its note says so.
     #[arg(long, value_name = "DIR")]
     presort_cache: Option<PathBuf>,
+    /// Run only the `Presorted` scaling series (bumpy tori of 10³ to 10⁶ faces; with
+    /// --quick 10³ and 10⁴): build time, peak memory, certificate bytes, per-frame time and
+    /// items against the centroid sort. Writes OUT/presort-scaling.md (with --docs also
+    /// docs/bench-presort.md).
+    #[arg(long)]
+    presort_scaling: bool,
 }
 
 /// The whole JSON report.
@@ -181,6 +188,30 @@ pub fn run(args: &BenchArgs) -> Result<ExitCode> {
         "cargo xtask bench"
     };
 
+    if args.presort_scaling {
+        let sizes: &[usize] = if args.smoke {
+            &[200]
+        } else if args.quick {
+            &[1_000, 10_000]
+        } else {
+            &[1_000, 10_000, 100_000, 1_000_000]
+        };
+        let command = format!("{command} --presort-scaling");
+        let out = args
+            .out
+            .clone()
+            .unwrap_or_else(|| crate::target_dir().join("bench"));
+        let table =
+            presort_scaling::run(sizes, &budget, &command, &out.join("presort-scaling.md"))?;
+        if args.docs {
+            write(
+                &crate::workspace_root().join("docs/bench-presort.md"),
+                &table,
+            )?;
+        }
+        println!("{table}");
+        return Ok(ExitCode::SUCCESS);
+    }
     let scenes = load_scenes(args.smoke)?;
     let bar = progress::bar(scenes.len() as u64 + budget.scaling.len() as u64, "bench");
     let mut rows = Vec::new();
