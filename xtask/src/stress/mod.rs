@@ -50,7 +50,7 @@ pub struct StressArgs {
     /// Also write the report as JSON to this file.
     #[arg(long, value_name = "FILE")]
     json: Option<PathBuf>,
-    /// Write the table into docs/ROBUSTNESS.md between its markers.
+    /// Write the table into docs/stress.md between its markers.
     #[arg(long)]
     docs: bool,
     /// Seconds one case may take (all sorters and views) before it counts as hung.

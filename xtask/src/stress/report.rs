@@ -1,4 +1,4 @@
-//! The stress report: the markdown table, and its copy into docs/ROBUSTNESS.md.
+//! The stress report: the markdown table, and its copy into docs/stress.md.
 
 use super::*;
 
@@ -87,7 +87,7 @@ pub(super) const BEGIN: &str = "<!-- stress:begin (cargo xtask stress --docs) --
 pub(super) const END: &str = "<!-- stress:end -->";
 
 pub(super) fn write_docs(table: &str, args: &StressArgs) -> Result<()> {
-    let path = crate::workspace_root().join("docs/ROBUSTNESS.md");
+    let path = crate::workspace_root().join("docs/stress.md");
     let text =
         std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?;
     let (Some(b), Some(e)) = (text.find(BEGIN), text.find(END)) else {
