@@ -113,14 +113,7 @@ impl std::str::FromStr for ViewSpec {
                 "roll" => spec.roll = number()?,
                 "eye" if value == "ortho" => spec.eye_distance = None,
                 "eye" => spec.eye_distance = Some(number()?),
-                "cull" => {
-                    spec.cull = match value {
-                        "back" => CullMode::Back,
-                        "front" => CullMode::Front,
-                        "none" => CullMode::None,
-                        _ => return Err(bad()),
-                    }
-                }
+                "cull" => spec.cull = CullMode::from_name(value).ok_or_else(bad)?,
                 _ => return Err(bad()),
             }
         }

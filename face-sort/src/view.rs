@@ -30,6 +30,25 @@ pub enum CullMode {
     None,
 }
 
+impl CullMode {
+    /// The mode a command line or a binding names: `"back"`, `"front"` or `"none"`.
+    ///
+    /// ```
+    /// use face_sort::CullMode;
+    /// assert_eq!(CullMode::from_name("none"), Some(CullMode::None));
+    /// assert_eq!(CullMode::from_name("sideways"), None);
+    /// ```
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<CullMode> {
+        match name {
+            "back" => Some(CullMode::Back),
+            "front" => Some(CullMode::Front),
+            "none" => Some(CullMode::None),
+            _ => None,
+        }
+    }
+}
+
 /// Which winding, seen from outside, is the front.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum FrontFace {

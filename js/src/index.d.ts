@@ -22,8 +22,10 @@ export interface Certificate {
   readonly count: number;
   /** Whether the last frame rewrote the scratch tail (upload `scratch()` at `scratchStart`). */
   readonly rewritten: boolean;
-  /** The scratch tail's indices of the last frame. */
+  /** The scratch tail's indices of the last frame, copied. */
   scratch(): Uint32Array;
+  /** Byte offset of those indices in the module's memory (valid until the next call into it). */
+  readonly scratchPointer: number;
   /** Whether the last frame was outside the certificate (drawn far to near by centroid, not exact), and why. */
   readonly fellBack: boolean;
   readonly fallbackReason: string | undefined;

@@ -1,8 +1,8 @@
 // facesort-three: exact painter's order for three.js scenes (module docs in README.md).
 import { BufferAttribute, BufferGeometry, DynamicDrawUsage, FrontSide, Matrix4, Vector3 } from 'three';
 
-import { bindings } from './wasm.js';
-import { cameraMatrices, gatherTriangles } from './scene.js';
+import { bindings, memory } from './wasm.js';
+import { cameraMatrices, gatherTriangles, triangleIndices } from './scene.js';
 
 export { gatherTriangles } from './scene.js';
 
@@ -63,20 +63,13 @@ function meshTriangles(mesh) {
     throw new Error('ExactTransparency: the material must have side = FrontSide (the order leaves back faces to the GPU\'s culling)');
   }
   const geometry = mesh.geometry;
+  const indices = triangleIndices(geometry, 'ExactTransparency');
   const position = geometry.getAttribute('position');
-  if (!position) throw new Error('ExactTransparency: the geometry has no position attribute');
   const positions = new Float64Array(3 * position.count);
   for (let v = 0; v < position.count; v++) {
     positions[3 * v] = position.getX(v);
     positions[3 * v + 1] = position.getY(v);
     positions[3 * v + 2] = position.getZ(v);
-  }
-  let indices;
-  if (geometry.index) {
-    indices = new Uint32Array(geometry.index.count - (geometry.index.count % 3));
-    for (let k = 0; k < indices.length; k++) indices[k] = geometry.index.getX(k);
-  } else {
-    indices = Uint32Array.from({ length: position.count - (position.count % 3) }, (_, k) => k);
   }
   return { positions, indices };
 }
@@ -187,7 +180,8 @@ export class ExactTransparency {
       }
       const count = certificate.count;
       if (certificate.rewritten) {
-        index.array.set(certificate.scratch(), this.scratchStart);
+        // Straight from the module's memory: no copy of the order on the way.
+        index.array.set(new Uint32Array(memory.buffer, certificate.scratchPointer, count), this.scratchStart);
         index.clearUpdateRanges();
         index.addUpdateRange(this.scratchStart, count);
         index.needsUpdate = true;

@@ -16,7 +16,7 @@ export function cullOf(material, where) {
 }
 
 /** Vertex indices of a geometry's triangles: its index, or 0, 1, 2, ... */
-function triangleIndices(geometry, where) {
+export function triangleIndices(geometry, where) {
   const position = geometry.getAttribute('position');
   if (!position) throw new Error(`${where}: the geometry has no position attribute`);
   if (geometry.index) {

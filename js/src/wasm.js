@@ -3,11 +3,15 @@
 import init, * as bindings from '../pkg/facesort_wasm.js';
 
 const url = new URL('../pkg/facesort_wasm_bg.wasm', import.meta.url);
+let exports;
 if (url.protocol === 'file:') {
   const { readFile } = await import('node:fs/promises');
-  await init({ module_or_path: await readFile(url) });
+  exports = await init({ module_or_path: await readFile(url) });
 } else {
-  await init({ module_or_path: url });
+  exports = await init({ module_or_path: url });
 }
 
-export { bindings };
+/** The module's memory (read `memory.buffer` anew: it is replaced when the memory grows). */
+const memory = exports.memory;
+
+export { bindings, memory };

@@ -35,14 +35,11 @@ pub struct Camera {
 }
 
 fn cull_mode(cull: &str) -> PyResult<CullMode> {
-    match cull {
-        "back" => Ok(CullMode::Back),
-        "front" => Ok(CullMode::Front),
-        "none" => Ok(CullMode::None),
-        other => Err(PyValueError::new_err(format!(
-            "cull must be \"back\", \"front\" or \"none\", not {other:?}"
-        ))),
-    }
+    CullMode::from_name(cull).ok_or_else(|| {
+        PyValueError::new_err(format!(
+            "cull must be \"back\", \"front\" or \"none\", not {cull:?}"
+        ))
+    })
 }
 
 fn size(width: u32, height: u32) -> PyResult<(u32, u32)> {

@@ -120,15 +120,12 @@ fn matrix(elements: &[f64], what: &'static str) -> Result<DMat4, BindError> {
 /// Which faces are drawn: `"back"` culls back faces (three.js's `FrontSide`), `"front"`
 /// culls front faces (`BackSide`), `"none"` draws both (`DoubleSide`).
 pub fn cull_mode(cull: &str) -> Result<CullMode, BindError> {
-    match cull {
-        "back" => Ok(CullMode::Back),
-        "front" => Ok(CullMode::Front),
-        "none" => Ok(CullMode::None),
-        other => Err(BindError::argument(
+    CullMode::from_name(cull).ok_or_else(|| {
+        BindError::argument(
             "cull",
-            format!("must be \"back\", \"front\" or \"none\", not {other:?}"),
-        )),
-    }
+            format!("must be \"back\", \"front\" or \"none\", not {cull:?}"),
+        )
+    })
 }
 
 /// The view of `geometry` through a WebGL camera: its view matrix (world → camera,

@@ -24,6 +24,26 @@ fn thrown(e: BindError) -> JsError {
     JsError::new(&e.to_string())
 }
 
+/// The triangles and the camera of a file export, checked.
+fn inputs<'a>(
+    positions: &[f64],
+    indices: &[u32],
+    view: &'a [f64],
+    projection: &'a [f64],
+    (width, height): (u32, u32),
+    cull: &'a str,
+) -> Result<(Triangles, CameraArgs<'a>), JsError> {
+    let triangles = Triangles::new(positions, indices).map_err(thrown)?;
+    let camera = CameraArgs {
+        view,
+        projection,
+        width,
+        height,
+        cull,
+    };
+    Ok((triangles, camera))
+}
+
 /// The exact SVG of triangles seen by a camera (see `exportSVG` in the npm package).
 #[wasm_bindgen(js_name = exportSvg)]
 #[allow(clippy::too_many_arguments)]
@@ -39,14 +59,7 @@ pub fn export_svg(
     hidden: &str,
     ids: bool,
 ) -> Result<String, JsError> {
-    let triangles = Triangles::new(positions, indices).map_err(thrown)?;
-    let camera = CameraArgs {
-        view,
-        projection,
-        width,
-        height,
-        cull,
-    };
+    let (triangles, camera) = inputs(positions, indices, view, projection, (width, height), cull)?;
     svg(&triangles, colours, camera, hidden, ids).map_err(thrown)
 }
 
@@ -64,14 +77,7 @@ pub fn plot_edges(
     crease_deg: f64,
     stroke_px: f64,
 ) -> Result<String, JsError> {
-    let triangles = Triangles::new(positions, indices).map_err(thrown)?;
-    let camera = CameraArgs {
-        view,
-        projection,
-        width,
-        height,
-        cull,
-    };
+    let (triangles, camera) = inputs(positions, indices, view, projection, (width, height), cull)?;
     plot_svg(&triangles, camera, crease_deg, stroke_px).map_err(thrown)
 }
 
@@ -204,7 +210,15 @@ impl Certificate {
         self.frame.fallback.map(|r| r.to_string())
     }
 
-    /// The scratch tail's indices of the last frame (to upload when `rewritten`).
+    /// Where the scratch tail's indices of the last frame sit in the module's memory (a
+    /// byte offset): a page uploads them from a view of `memory.buffer` without a copy.
+    /// Valid until the next call into the module.
+    #[wasm_bindgen(getter, js_name = scratchPointer)]
+    pub fn scratch_pointer(&self) -> usize {
+        self.inner.indices()[self.inner.scratch_start() as usize..].as_ptr() as usize
+    }
+
+    /// The scratch tail's indices of the last frame (to upload when `rewritten`), copied.
     #[wasm_bindgen(js_name = scratch)]
     pub fn scratch(&self) -> Vec<u32> {
         let start = self.inner.scratch_start() as usize;

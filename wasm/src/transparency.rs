@@ -18,9 +18,19 @@ use glam::DVec3;
 use crate::error::BindError;
 use crate::input::Triangles;
 
+// The tolerances of the GPU layout, together (relative, as face-sort's).
+
 /// Width, in model sizes, up to which a piece is a sliver that the GPU does not draw: a
 /// ten-thousandth of a pixel where the model spans a thousand.
 const SLIVER_WIDTH: f64 = 1e-7;
+
+/// Distance, in model sizes, within which a cut's corner lies on another piece's edge of
+/// the same face and is inserted there (T-junctions closed).
+const SEAM: f64 = 1e-9;
+
+/// Twice a fan triangle's area, relative to its polygon's squared size, up to which the
+/// triangle is degenerate (its corners on one line).
+const COLLINEAR: f64 = 1e-9;
 
 /// One certified order's place in the index buffer.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -89,7 +99,7 @@ fn triangulate(
         .iter()
         .map(|c| (*c - corners[0]).length_squared())
         .fold(0.0, f64::max);
-    let flat = |a: DVec3, b: DVec3, c: DVec3| (b - a).cross(c - a).length() <= 1e-9 * scale;
+    let flat = |a: DVec3, b: DVec3, c: DVec3| (b - a).cross(c - a).length() <= COLLINEAR * scale;
     let double_area: f64 = (1..n - 1)
         .map(|k| {
             (corners[k] - corners[0])
@@ -184,7 +194,7 @@ impl Transparency {
     fn of(sorter: Presorted, centre: DVec3, size: f64) -> Self {
         // Cuts divide faces: with their T-junctions closed the GPU covers each pixel of a
         // face once (no pinholes along a cut).
-        let pieces = sorter.pieces().without_t_junctions(1e-9 * size);
+        let pieces = sorter.pieces().without_t_junctions(SEAM * size);
         let (mut piece_start, mut piece_triangles) = (vec![0u32], Vec::new());
         let (mut positions, mut vertex_triangles, mut centroids) =
             (Vec::new(), Vec::new(), Vec::new());
@@ -282,11 +292,6 @@ impl Transparency {
     /// Where the scratch tail begins.
     pub fn scratch_start(&self) -> u32 {
         self.scratch_start
-    }
-
-    /// The sorter (its counts and budgets).
-    pub fn sorter(&self) -> &Presorted {
-        &self.sorter
     }
 
     /// Frames so far, and those drawn by centroid outside the certificate.

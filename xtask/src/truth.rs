@@ -76,11 +76,8 @@ pub fn run(args: &TruthArgs) -> Result<ExitCode> {
         .map(|t| [t[0], t[1], t[2]])
         .collect();
     let geometry = Geometry::new(&PolygonMesh::new(positions, &faces)?)?;
-    let cull = match scene.cull.as_str() {
-        "back" => CullMode::Back,
-        "front" => CullMode::Front,
-        "none" => CullMode::None,
-        other => bail!("cull must be back, front or none, not {other:?}"),
+    let Some(cull) = CullMode::from_name(&scene.cull) else {
+        bail!("cull must be back, front or none, not {:?}", scene.cull);
     };
     let camera = Camera::from_matrices(
         matrix(&scene.view, "view")?,
