@@ -2,7 +2,7 @@
 //! or perspective) give a typed error, or bakes that their `verify` passes: the picture bake
 //! ([`aspect_bake::bake_picture`], checked by [`aspect_bake::verify_picture`]) and the exact
 //! BSP-signature bake ([`aspect_bake::bake`], checked by [`aspect_bake::verify`]). A picture
-//! bake's spinning page ([`sprite_compose::write_culled_spin_html`]) parses as HTML (the
+//! bake's spinning page ([`vector_sink::write_culled_spin_html`]) parses as HTML (the
 //! writers target's check), and every number in its elements' rules is finite.
 //!
 //! Coordinates have a modest dynamic range (the `input` module's `modest`): the bakes'
@@ -69,13 +69,13 @@ pub fn bake(data: &[u8]) {
             panic!("picture bake: {e}; mesh {mesh:?}; spin {spin:?}");
         }
         if let Ok(lists) = aspect_bake::drawn_lists(&baked, &spin) {
-            let page = sprite_compose::write_culled_spin_html(
+            let page = vector_sink::write_culled_spin_html(
                 &baked,
                 &lists,
                 &spin,
                 &geometry,
                 &|face| [face as u8, 0, 0, 255],
-                &sprite_compose::SpinOptions::DEFAULT,
+                &vector_sink::SpinOptions::DEFAULT,
             );
             crate::writers::check_html(&page);
             check_numbers(&page);
@@ -139,13 +139,13 @@ mod tests {
         .expect("a spin");
         let (baked, _) = aspect_bake::bake_picture(&geometry, &spin, &PICTURE).expect("a bake");
         let lists = aspect_bake::drawn_lists(&baked, &spin).expect("lists");
-        sprite_compose::write_culled_spin_html(
+        vector_sink::write_culled_spin_html(
             &baked,
             &lists,
             &spin,
             &geometry,
             &|_| [200, 100, 50, 255],
-            &sprite_compose::SpinOptions::DEFAULT,
+            &vector_sink::SpinOptions::DEFAULT,
         )
     }
 

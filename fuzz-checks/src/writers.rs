@@ -13,9 +13,9 @@ use arbitrary::{Result, Unstructured};
 use face_sort::{Geometry, PolygonMesh, SorterKind, View};
 use glam::Vec2;
 use obj_quads::{AlphaMode, EmbeddedTexture, Material, Mesh, WrapMode};
-use sprite_compose::{
-    Export, HiddenParts, HtmlOptions, Image, Materials, PdfOptions, SvgOptions, write_html,
-    write_pdf, write_svg,
+use sprite_compose::{Image, Materials};
+use vector_sink::{
+    Export, HiddenParts, HtmlOptions, PdfOptions, SvgOptions, write_html, write_pdf, write_svg,
 };
 
 use crate::input::{number, soup, tame};
@@ -41,7 +41,10 @@ fn embedded(u: &mut Unstructured) -> Result<EmbeddedTexture> {
         .map(|_| u.arbitrary())
         .collect::<Result<Vec<u8>>>()?;
     let image = Image::from_rgba(w, h, rgba, name.clone()).expect("the length matches");
-    Ok(EmbeddedTexture::new(name, image.encoded().0.into_owned()))
+    Ok(EmbeddedTexture::new(
+        name,
+        vector_sink::encoded_image(&image).0.into_owned(),
+    ))
 }
 
 fn material(u: &mut Unstructured) -> Result<Material> {

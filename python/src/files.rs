@@ -6,9 +6,10 @@ use numpy::{IntoPyArray, PyArray2, PyArrayMethods};
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyBytes;
-use sprite_compose::{
-    Export, HiddenParts, HtmlOptions, Materials, PdfOptions, SpinOptions, SvgOptions, write_html,
-    write_pdf, write_svg,
+use sprite_compose::Materials;
+use vector_sink::{
+    Export, HiddenParts, HtmlOptions, PdfOptions, SpinOptions, SvgOptions, write_html, write_pdf,
+    write_svg,
 };
 
 use crate::camera::Camera;
@@ -166,7 +167,7 @@ impl Plot {
                 "stroke must be positive, got {stroke}"
             )));
         }
-        Ok(self.plot.to_svg(stroke))
+        Ok(vector_sink::plot_svg(&self.plot, stroke))
     }
 
     /// HP-GL for a pen plotter, `units_per_px` plotter units per pixel (HP-GL's unit is
@@ -178,7 +179,7 @@ impl Plot {
                 "units_per_px must be positive, got {units_per_px}"
             )));
         }
-        Ok(self.plot.to_hpgl(units_per_px))
+        Ok(vector_sink::plot_hpgl(&self.plot, units_per_px))
     }
 }
 
@@ -251,7 +252,7 @@ impl YawBake {
                 .with_ids(ids)
                 .with_paused_at(paused);
             let colours = &self.colours;
-            Ok(sprite_compose::write_culled_spin_html(
+            Ok(vector_sink::write_culled_spin_html(
                 &self.bake,
                 &lists,
                 &self.spin,

@@ -13,7 +13,7 @@ use glam::{DMat3, DVec2, DVec3};
 
 use aspect_bake::{AngleRange, Bake};
 
-use crate::{Brush, PieceMaps, SpriteSpace, SpriteTransform};
+use crate::{Brush, PieceMap, PieceMaps, SpriteSpace, SpriteTransform};
 
 /// One sprite of a baked container.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -39,7 +39,7 @@ pub struct BakedContainer {
 /// [`brush`](Self::brush) results; the containers are reused.
 #[derive(Clone, Debug)]
 pub struct BakedSpriteTree {
-    maps: Vec<PolygonMap>,
+    maps: Vec<Option<PieceMap>>,
     containers: Vec<BakedContainer>,
     brushes: Vec<Brush>,
 }
@@ -95,7 +95,7 @@ impl BakedSpriteTree {
         self.maps
             .get(polygon as usize)?
             .as_ref()
-            .map(|(t, c)| (t, c.as_deref()))
+            .map(|m| (&m.transform, m.clip.as_deref()))
     }
 
     /// Brush of a face.
@@ -130,10 +130,11 @@ impl BakedSpriteTree {
     }
 }
 
-/// Per polygon of `set`, its source piece's transform in the sprite space of `view` (the
-/// piece of the same face whose plane is nearest the polygon's) and a clip polygon unless
-/// it is that whole piece; `None` when no piece has a map.
-pub(crate) fn polygon_maps(set: &PolygonSet, geometry: &Geometry, view: &View) -> Vec<PolygonMap> {
+/// Per polygon of `set` (e.g. a bake's polygons), its source piece's transform in the sprite
+/// space of `view` (the piece of the same face whose plane is nearest the polygon's) and a
+/// clip polygon unless it is that whole piece; `None` when no piece has a map.
+#[must_use]
+pub fn polygon_maps(set: &PolygonSet, geometry: &Geometry, view: &View) -> Vec<Option<PieceMap>> {
     let maps = PieceMaps::new(geometry, view);
     let space = *maps.space();
     let pieces = geometry.pieces();
@@ -155,13 +156,13 @@ pub(crate) fn polygon_maps(set: &PolygonSet, geometry: &Geometry, view: &View) -
             } else {
                 Some(clip_of(&space, &map.transform, corners))
             };
-            Some((map.transform, clip))
+            Some(PieceMap {
+                transform: map.transform,
+                clip,
+            })
         })
         .collect()
 }
-
-/// A polygon's sprite transform and clip ([`polygon_maps`]).
-pub(crate) type PolygonMap = Option<(SpriteTransform, Option<Vec<DVec2>>)>;
 
 fn clip_of(space: &SpriteSpace, t: &SpriteTransform, corners: &[DVec3]) -> Vec<DVec2> {
     corners

@@ -4,12 +4,12 @@
 use aspect_bake::{Bake, Spin};
 use face_sort::Geometry;
 
-use crate::spin_culled::copies;
+use crate::culled_copies;
 use crate::{BakedSpriteTree, Brush, Compositor, SpriteId, root_transform};
 
 /// A picture bake ([`aspect_bake::bake_picture`]) realised on a [`Compositor`]: one sprite
 /// per piece and place (the elements of
-/// [`write_culled_spin_html`](crate::write_culled_spin_html)), created once in paint order
+/// vector-sink's `write_culled_spin_html`, [`culled_copies`](crate::culled_copies)), created once in paint order
 /// with their backs hidden; [`play`](Self::play) sets the root transform of an angle and,
 /// when the angle enters another cell, switches only the sprites whose visibility differs.
 pub struct BakePlayer<C: Compositor> {
@@ -37,9 +37,9 @@ impl<C: Compositor> BakePlayer<C> {
         mut compositor: C,
     ) -> Self {
         let graph = BakedSpriteTree::realise(&bake, geometry, &spin.view_at(0.0));
-        let copies = copies(lists, bake.polygons().len());
+        let copies = culled_copies(lists, bake.polygons().len());
         let shown = copies.visibility(lists);
-        for (e, &p) in copies.pieces.iter().enumerate() {
+        for (e, &p) in copies.pieces().iter().enumerate() {
             let id = SpriteId(e as u32);
             let face = bake.polygons().face(p as usize);
             compositor.create_sprite(id, face);
@@ -55,7 +55,7 @@ impl<C: Compositor> BakePlayer<C> {
             bake,
             spin,
             shown,
-            pieces: copies.pieces,
+            pieces: copies.pieces().to_vec(),
             cell: None,
         }
     }

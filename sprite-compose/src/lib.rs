@@ -9,10 +9,15 @@
 //! and sends a retained [`Compositor`] only what changed, with few reorders (the longest
 //! increasing subsequence of the previous stack stays in place).
 //!
-//! Also here: picking and selection outlines ([`ProjectedFrame`]), the SVG writer
-//! ([`write_svg`]) and the HTML/CSS 3D writer ([`write_html`], flat or `preserve-3d`), both
-//! with a CONVENTIONS.md ID-colour mode, and the realisation of an `aspect-bake` bake
-//! ([`Bake`]) as containers of sprites ([`BakedSpriteTree`], [`FacingPredicate`]).
+//! Also here: picking and selection outlines ([`ProjectedFrame`]), the visible lines of a
+//! view (plotter edges, [`plot_edges`]; overlays, [`visible_overlay`]), materials as plain
+//! data ([`Materials`]), and the realisation of an `aspect-bake` bake ([`Bake`]) as
+//! containers of sprites ([`BakedSpriteTree`]) or on a retained compositor
+//! ([`BakePlayer`]).
+//!
+//! The crate links no encoder and no loader: the file writers (SVG, PDF, HTML pages,
+//! HP-GL) are the crate `vector-sink`, the PNG rasteriser `raster-sink`; both stand on
+//! this one.
 //!
 //! ```
 //! use sprite_compose::face_sort::{Geometry, PolygonMesh, SorterKind, View};
@@ -45,104 +50,57 @@
 //! assert!(painter.pick(128.0, 128.0).is_some());
 //! ```
 //!
-//! # Export a loaded model
-//! From a model file to SVG, PDF and HTML in the model's own materials, without a raster
-//! crate: the size is the view's, textures are embedded once per file.
-//!
-//! ```
-//! use sprite_compose::face_sort::{Geometry, PolygonMesh, View};
-//! use sprite_compose::obj_quads::{LoadOptions, load};
-//! use sprite_compose::{Export, Materials};
-//! # fn main() -> Result<(), Box<dyn std::error::Error>> {
-//! # let model = concat!(env!("CARGO_MANIFEST_DIR"), "/../assets/models/keenan-crane/spot/spot_control_mesh_texture.obj");
-//! # let out = std::env::temp_dir().join(format!("sprite-compose-export-{}", std::process::id()));
-//! # std::fs::create_dir_all(&out)?;
-//! let (mesh, _) = load(model, &LoadOptions::DEFAULT)?;
-//! let geometry = Geometry::new(&PolygonMesh::new(mesh.positions(), mesh.faces())?)?;
-//! let view = View::fit(&geometry.bounds(), 512, 512).with_yaw_pitch_roll(145.0, -25.0, 0.0);
-//! let export = Export::new(&geometry, view).with_materials(&Materials::of(&mesh, &geometry)?);
-//! std::fs::write(out.join("spot.svg"), export.svg())?;
-//! std::fs::write(out.join("spot.pdf"), export.pdf())?;
-//! std::fs::write(out.join("spot.html"), export.html())?;
-//! # let svg = export.svg();
-//! # let uris: Vec<&str> = svg.split("xlink:href=\"data:").skip(1).map(|u| &u[..u.find('"').unwrap()]).collect();
-//! # let distinct: std::collections::HashSet<&&str> = uris.iter().collect();
-//! # assert!(!uris.is_empty() && distinct.len() == uris.len(), "each image once");
-//! # assert!(export.html().contains("data:image/png;base64,"));
-//! # std::fs::remove_dir_all(&out)?;
-//! # Ok(()) }
-//! ```
-//!
 //! # Feature flags
-//! None yet. Beside `face-sort` and `glam` the crate depends on `i_overlay` (hidden-part
-//! removal: 2D boolean operations), `pdf-writer` (the PDF writer) and `aspect-bake` (the
-//! bake it realises).
+//! - `obj-quads` (off by default): materials from a loaded `obj_quads::Mesh`
+//!   (`FaceMaterials`, `Materials::resolve`, `Materials::of`, `load_image`,
+//!   `decode_image`), decoding textures through obj-quads. Without it the crate depends on
+//!   `face-sort`, `aspect-bake`, `glam` and `thiserror` only.
 
 mod bake;
 mod bake_player;
-mod canvas;
 mod compositor;
-mod export;
-mod hidden;
-mod html;
+mod copies;
 mod materials;
-mod numbers;
 mod occlusion;
 mod order;
 mod overlay;
-mod page_pieces;
 mod painter;
-mod pdf;
 mod pick;
 mod plane_textures;
 mod plot;
 mod recording;
 mod root;
 pub mod seams;
-mod spin;
-mod spin_culled;
-mod svg;
 pub mod tolerance;
 mod transform;
-mod turn_page;
 
 pub use aspect_bake;
 pub use aspect_bake::{AngleRange, Bake, BakeCell};
 pub use bake::{
     BakedContainer, BakedSprite, BakedSpriteTree, BakedTreeSlot, FacingPredicate,
-    convex_facing_predicates,
+    convex_facing_predicates, polygon_maps,
 };
 pub use bake_player::BakePlayer;
-pub use canvas::{write_canvas_spin_html, write_canvas_turn_html};
 pub use compositor::{Brush, Compositor, OpCounts, SpriteId, TextureId};
-pub use export::Export;
-pub use hidden::{HiddenParts, Visibility, visible_parts};
-pub use html::{HtmlMode, HtmlOptions, HtmlPieces, css_matrix3d, write_html};
-pub use materials::{
-    FaceMaterials, FacePaint, Image, MaterialOptions, Materials, TextureError, UvMap, decode_image,
-    load_image,
-};
+pub use copies::{CulledCopies, culled_copies};
+#[cfg(feature = "obj-quads")]
+pub use materials::{FaceMaterials, MaterialOptions, TextureError, decode_image, load_image};
+pub use materials::{FacePaint, Image, Materials, UvMap};
 pub use overlay::{
     Dot, DrawnOverlay, Line, OrderedPart, Overlay, Point, Stroke, overlay_in_order, visible_overlay,
 };
 pub use painter::{FrameStats, RotationHandle, RotationSource, SpritePainter};
-pub use pdf::{PdfOptions, write_pdf};
-pub use pick::{ProjectedFrame, contains, outline_svg_path};
+pub use pick::{ProjectedFrame, contains};
 pub use plane_textures::set_plane_textures;
 pub use plot::{EdgeKind, Plot, PlotEdge, PlotOptions, plot_edges, plot_edges_where};
-pub use recording::{RecordingCompositor, Scene, SceneSprite};
+pub use recording::{RecordingCompositor, Scene, SceneSprite, project_sprite, sprite_polygon};
 pub use root::{perspective_matrix, root_transform, rotation_from_yaw_pitch_roll};
-pub use spin::{SpinOptions, write_spin_html};
-pub use spin_culled::write_culled_spin_html;
-pub use svg::{SvgOptions, project_sprite, write_svg};
 pub use transform::{MapKind, PieceMap, PieceMaps, SpriteSpace, SpriteTransform, piece_map};
-pub use turn_page::{TurnPage, TurnPageOptions, write_turn_html};
 
 pub use face_sort;
-pub use obj_quads;
-// The ID colour for the writers (`crate::id_colour`); exported once, by face-sort.
-use face_sort::colours::id_colour;
 pub use glam;
+#[cfg(feature = "obj-quads")]
+pub use obj_quads;
 
 /// The crate's README: its examples are compiled and run as doctests.
 #[cfg(doctest)]

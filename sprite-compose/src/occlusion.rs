@@ -4,7 +4,9 @@
 //! exact).
 
 use face_sort::tolerance::NEAR_W;
-use face_sort::{Geometry, Plane, ProjectionScratch, View};
+use std::collections::HashMap;
+
+use face_sort::{Geometry, Plane, PolygonMesh, ProjectionScratch, View};
 use glam::{DVec2, DVec3};
 
 use crate::tolerance::{PLOT_BEHIND, PLOT_INSIDE_PX, PLOT_MIN_LENGTH_PX};
@@ -278,4 +280,18 @@ impl Segment {
         push(from, self.range[1]);
         out
     }
+}
+
+/// One id per position of `mesh`: positions equal bit for bit (`-0.0` is `0.0`) share an id,
+/// ids numbered in order of first appearance.
+pub(crate) fn weld(mesh: &PolygonMesh) -> Vec<u32> {
+    let key = |p: DVec3| (p + DVec3::ZERO).to_array().map(f64::to_bits);
+    let mut welded: HashMap<[u64; 3], u32> = HashMap::new();
+    mesh.positions()
+        .iter()
+        .map(|&p| {
+            let next = welded.len() as u32;
+            *welded.entry(key(p)).or_insert(next)
+        })
+        .collect()
 }

@@ -14,8 +14,7 @@ use glam::{DVec2, DVec3};
 
 use face_sort::{Geometry, PolygonMesh, View};
 
-use crate::occlusion::{Occluder, Occluders, Segment};
-use crate::plot::weld;
+use crate::occlusion::{Occluder, Occluders, Segment, weld};
 use crate::tolerance::PLOT_SAME_CORNER;
 
 /// A straight line in model space, stroked `width_px` pixels wide with butt ends.
@@ -162,56 +161,6 @@ pub struct DrawnOverlay {
     pub strokes: Vec<Stroke>,
     /// Visible points, in order.
     pub dots: Vec<Dot>,
-}
-
-impl DrawnOverlay {
-    /// SVG markup of the strokes (butt ends) then the dots, for
-    /// [`SvgOptions::with_overlay`](crate::SvgOptions::with_overlay): drawn after the faces.
-    #[must_use]
-    pub fn to_svg(&self) -> String {
-        use std::fmt::Write as _;
-        let f = crate::numbers::pixel;
-        let mut s = String::from("<g fill=\"none\" stroke-linecap=\"butt\">\n");
-        for stroke in &self.strokes {
-            let [a, b] = stroke.ends;
-            let _ = writeln!(
-                s,
-                "<line x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\" stroke=\"{}\" stroke-width=\"{}\"{}/>",
-                f(a.x),
-                f(a.y),
-                f(b.x),
-                f(b.y),
-                crate::svg::hex(stroke.colour),
-                f(stroke.width_px),
-                alpha("stroke-opacity", stroke.colour)
-            );
-        }
-        for dot in &self.dots {
-            let _ = writeln!(
-                s,
-                "<circle cx=\"{}\" cy=\"{}\" r=\"{}\" fill=\"{}\"{}/>",
-                f(dot.centre.x),
-                f(dot.centre.y),
-                f(dot.radius_px),
-                crate::svg::hex(dot.colour),
-                alpha("fill-opacity", dot.colour)
-            );
-        }
-        s.push_str("</g>\n");
-        s
-    }
-}
-
-/// ` name="a"` for a translucent colour, nothing for an opaque one.
-fn alpha(name: &str, colour: [u8; 4]) -> String {
-    if colour[3] == 255 {
-        String::new()
-    } else {
-        format!(
-            " {name}=\"{}\"",
-            crate::numbers::pixel(f64::from(colour[3]) / 255.0)
-        )
-    }
 }
 
 /// The parts of `overlay` that the drawn pieces of `geometry` leave visible in `view`

@@ -204,21 +204,6 @@ pub fn contains(polygon: &[DVec2], p: DVec2) -> bool {
     })
 }
 
-/// An SVG `<path>` drawing outline segments (e.g. a selection highlight overlay).
-#[must_use]
-pub fn outline_svg_path(segments: &[[DVec2; 2]], stroke: [u8; 4], width: f64) -> String {
-    use std::fmt::Write as _;
-    let mut d = String::new();
-    for [a, b] in segments {
-        let _ = write!(d, "M{:.3} {:.3}L{:.3} {:.3}", a.x, a.y, b.x, b.y);
-    }
-    format!(
-        "<path d=\"{d}\" fill=\"none\" stroke=\"{}\" stroke-opacity=\"{:.3}\" stroke-width=\"{width}\" stroke-linecap=\"round\"/>",
-        crate::svg::hex(stroke),
-        f64::from(stroke[3]) / 255.0
-    )
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

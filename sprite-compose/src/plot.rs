@@ -27,11 +27,10 @@
 //! one more edge, clipped the same way ([`EdgeKind::Intersection`]).
 
 use std::collections::HashMap;
-use std::fmt::Write as _;
 
 use face_sort::{Geometry, PolygonMesh, View, Viewer, newell_normal};
 
-use crate::occlusion::{Occluder, Occluders, Segment};
+use crate::occlusion::{Occluder, Occluders, Segment, weld};
 use glam::{DVec2, DVec3};
 
 use crate::tolerance::{PLOT_BEHIND, PLOT_JOIN_PX, PLOT_SAME_CORNER};
@@ -192,73 +191,6 @@ pub fn plot_edges_where(
         pen_up_px,
         size: (view.width(), view.height()),
     }
-}
-
-impl Plot {
-    /// An SVG of strokes only (no fills), one `<path>` per polyline, black, `stroke_px` wide.
-    #[must_use]
-    pub fn to_svg(&self, stroke_px: f64) -> String {
-        let (w, h) = self.size;
-        let mut s = format!(
-            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\">\n<g fill=\"none\" stroke=\"black\" stroke-width=\"{}\" stroke-linecap=\"round\" stroke-linejoin=\"round\">\n",
-            crate::numbers::pixel(stroke_px)
-        );
-        for line in &self.polylines {
-            s.push_str("<path d=\"");
-            for (k, p) in line.iter().enumerate() {
-                let _ = write!(
-                    s,
-                    "{}{} {}",
-                    if k == 0 { "M" } else { " L" },
-                    crate::numbers::pixel(p.x),
-                    crate::numbers::pixel(p.y)
-                );
-            }
-            s.push_str("\"/>\n");
-        }
-        s.push_str("</g>\n</svg>\n");
-        s
-    }
-
-    /// HP-GL for plotters that take it: `IN;SP1;`, then per polyline `PU x,y;PD x,y,…;`,
-    /// then `PU;SP0;`. `units_per_px` plotter units per pixel (40 units are 1 mm); y grows
-    /// upward, so the picture is flipped into the plotter's frame.
-    #[must_use]
-    pub fn to_hpgl(&self, units_per_px: f64) -> String {
-        let h = f64::from(self.size.1);
-        let unit = |p: DVec2| {
-            (
-                (p.x * units_per_px).round() as i64,
-                ((h - p.y) * units_per_px).round() as i64,
-            )
-        };
-        let mut s = String::from("IN;SP1;\n");
-        for line in &self.polylines {
-            let (x, y) = unit(line[0]);
-            let _ = write!(s, "PU{x},{y};PD");
-            for (k, &p) in line[1..].iter().enumerate() {
-                let (x, y) = unit(p);
-                let _ = write!(s, "{}{x},{y}", if k == 0 { "" } else { "," });
-            }
-            s.push_str(";\n");
-        }
-        s.push_str("PU;SP0;\n");
-        s
-    }
-}
-
-/// One id per position of `mesh`: positions equal bit for bit (`-0.0` is `0.0`) share an id,
-/// ids numbered in order of first appearance.
-pub(crate) fn weld(mesh: &PolygonMesh) -> Vec<u32> {
-    let key = |p: DVec3| (p + DVec3::ZERO).to_array().map(f64::to_bits);
-    let mut welded: HashMap<[u64; 3], u32> = HashMap::new();
-    mesh.positions()
-        .iter()
-        .map(|&p| {
-            let next = welded.len() as u32;
-            *welded.entry(key(p)).or_insert(next)
-        })
-        .collect()
 }
 
 /// An edge to draw, before clipping.

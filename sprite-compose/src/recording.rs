@@ -1,6 +1,7 @@
 //! A retained in-memory scene and the recording backend that keeps it.
 
-use glam::{DMat4, DVec2};
+use face_sort::tolerance::NEAR_W;
+use glam::{DMat4, DVec2, DVec4};
 
 use crate::{Brush, Compositor, MapKind, OpCounts, SpriteId, SpriteTransform};
 
@@ -286,4 +287,51 @@ impl Compositor for RecordingCompositor {
         self.record(|o| o.root += 1, || "root".to_owned());
         self.scene.set_root_transform(root);
     }
+}
+
+/// The unit-square polygon a sprite shows: its clip, or the square (corners `0, 1, 2, 3` of a
+/// quad).
+#[must_use]
+pub fn sprite_polygon(sprite: &SceneSprite) -> Vec<DVec2> {
+    match &sprite.clip {
+        Some(clip) => clip.clone(),
+        None => vec![DVec2::ZERO, DVec2::Y, DVec2::ONE, DVec2::X],
+    }
+}
+
+/// Projects a sprite's polygon to pixels through `root · transform`, clipping it against the
+/// near plane `w ≥ NEAR_W` (CONVENTIONS.md) in homogeneous coordinates. Empty when nothing is
+/// in front of the near plane.
+#[must_use]
+pub fn project_sprite(root: &DMat4, sprite: &SceneSprite) -> Vec<DVec2> {
+    let matrix = sprite.transform.matrix;
+    let full = *root * matrix;
+    // Homogeneous (unit-square) points; the near test W − NEAR_W · w_sprite ≥ 0 is linear.
+    let lifted: Vec<DVec4> = sprite_polygon(sprite)
+        .iter()
+        .map(|uv| DVec4::new(uv.x, uv.y, 0.0, 1.0))
+        .collect();
+    let near = |p: DVec4| (full * p).w - NEAR_W * (matrix * p).w;
+    let mut kept: Vec<DVec4> = Vec::with_capacity(lifted.len() + 2);
+    let n = lifted.len();
+    for k in 0..n {
+        let (a, b) = (lifted[k], lifted[(k + 1) % n]);
+        let (da, db) = (near(a), near(b));
+        if da >= 0.0 {
+            kept.push(a);
+        }
+        if (da >= 0.0) != (db >= 0.0) {
+            let t = da / (da - db);
+            kept.push(a + (b - a) * t);
+        }
+    }
+    if kept.len() < 3 {
+        return Vec::new();
+    }
+    kept.iter()
+        .map(|&p| {
+            let h = full * p;
+            DVec2::new(h.x / h.w, h.y / h.w)
+        })
+        .collect()
 }

@@ -42,10 +42,5 @@ pub use paths::{
 };
 pub use rng::Rng;
 
-/// The repository's root README: its example is compiled and run as a doctest of this crate.
-#[cfg(doctest)]
-#[doc = include_str!("../../README.md")]
-pub struct RootReadme;
-
 pub use face_sort;
 pub use obj_quads;

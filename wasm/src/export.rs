@@ -2,9 +2,8 @@
 //! `Export`) and the visible edges for pen plotters.
 
 use face_sort::Geometry;
-use sprite_compose::{
-    Export, HiddenParts, Materials, PlotOptions, SvgOptions, plot_edges, write_svg,
-};
+use sprite_compose::{Materials, PlotOptions, plot_edges};
+use vector_sink::{Export, HiddenParts, SvgOptions, write_svg};
 
 use crate::error::BindError;
 use crate::input::{self, Triangles};
@@ -120,5 +119,5 @@ pub fn plot_svg(
         &view,
         &PlotOptions::DEFAULT.with_crease_deg(crease_deg),
     );
-    Ok(plot.to_svg(stroke_px))
+    Ok(vector_sink::plot_svg(&plot, stroke_px))
 }

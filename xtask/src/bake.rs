@@ -333,11 +333,11 @@ pub fn run(args: &BakeArgs) -> Result<ExitCode> {
         write(path, &serde_json::to_string(&value)?)?;
     }
     if let Some(path) = &args.html {
-        let page = sprite_compose::write_spin_html(
+        let page = vector_sink::write_spin_html(
             &baked,
             spin,
             geometry,
-            &sprite_compose::SpinOptions::DEFAULT.with_period(args.period),
+            &vector_sink::SpinOptions::DEFAULT.with_period(args.period),
         );
         write(path, &page)?;
         let model_bytes = std::fs::metadata(&args.model).map_or(0, |m| m.len());
@@ -425,7 +425,7 @@ fn run_picture(args: &BakeArgs, prepared: &Prepared) -> Result<ExitCode> {
     if args.html.is_some() || args.canvas.is_some() {
         let lists = aspect_bake::drawn_lists(&baked, &prepared.spin)?;
         let colour = crate::raster::solid_colours(&geometry, &prepared.source)?;
-        let options = sprite_compose::SpinOptions::DEFAULT
+        let options = vector_sink::SpinOptions::DEFAULT
             .with_period(args.period)
             .with_ids(args.ids)
             .with_paused_at(args.paused);
@@ -435,13 +435,13 @@ fn run_picture(args: &BakeArgs, prepared: &Prepared) -> Result<ExitCode> {
             &aspect_bake::Spin,
             &Geometry,
             &dyn Fn(u32) -> [u8; 4],
-            &sprite_compose::SpinOptions,
+            &vector_sink::SpinOptions,
         ) -> String;
         let pages: [(&Option<PathBuf>, Writer, &str); 2] = [
-            (&args.html, sprite_compose::write_culled_spin_html, "page"),
+            (&args.html, vector_sink::write_culled_spin_html, "page"),
             (
                 &args.canvas,
-                sprite_compose::write_canvas_spin_html,
+                vector_sink::write_canvas_spin_html,
                 "canvas page",
             ),
         ];

@@ -704,9 +704,9 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
     });
     let (mut svg_summary, mut pdf_summary) = (None, None);
     let hidden = if args.keep_hidden {
-        sprite_compose::HiddenParts::Keep
+        vector_sink::HiddenParts::Keep
     } else {
-        sprite_compose::HiddenParts::Remove
+        vector_sink::HiddenParts::Remove
     };
     if vector {
         // The sprite tree of the same geometry, sorter kind and view, in the materials'
@@ -755,20 +755,24 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
                         .file()
                         .filter(|_| args.link_textures)
                         .and_then(|file| relative_link(out, file))
-                        .unwrap_or_else(|| image.data_uri())
+                        .unwrap_or_else(|| vector_sink::image_data_uri(image))
                 })
                 .collect()
         };
         if let Some(path) = &args.svg {
             let start = Instant::now();
-            let svg = sprite_compose::write_svg(
+            let svg = vector_sink::write_svg(
                 scene,
-                &sprite_compose::SvgOptions::DEFAULT
+                &vector_sink::SvgOptions::DEFAULT
                     .with_size(width, height)
                     .with_ids(args.ids)
                     .with_hidden(hidden)
                     .with_textures(texture_uri(path))
-                    .with_overlay(overlay.as_ref().map_or_else(String::new, |o| o.to_svg())),
+                    .with_overlay(
+                        overlay
+                            .as_ref()
+                            .map_or_else(String::new, vector_sink::overlay_svg),
+                    ),
             );
             svg_summary = Some(VectorSummary {
                 shapes: Some(svg.matches("<polygon").count() + svg.matches("<path").count()),
@@ -780,7 +784,7 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
         }
         if let Some(path) = &args.pdf {
             let start = Instant::now();
-            let mut options = sprite_compose::PdfOptions::DEFAULT
+            let mut options = vector_sink::PdfOptions::DEFAULT
                 .with_size(width, height)
                 .with_ids(args.ids)
                 .with_background(args.ids.then_some([0, 0, 0, 255]))
@@ -793,7 +797,7 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
             if let Some(overlay) = &overlay {
                 options = options.with_overlay(overlay.clone());
             }
-            let pdf = sprite_compose::write_pdf(scene, &options);
+            let pdf = vector_sink::write_pdf(scene, &options);
             pdf_summary = Some(VectorSummary {
                 shapes: None,
                 bytes: pdf.len(),
@@ -803,13 +807,17 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
             std::fs::write(path, pdf).with_context(|| format!("writing {}", path.display()))?;
         }
         if let Some(path) = &args.html {
-            let html = sprite_compose::write_html(
+            let html = vector_sink::write_html(
                 scene,
-                &sprite_compose::HtmlOptions::DEFAULT
+                &vector_sink::HtmlOptions::DEFAULT
                     .with_size(width, height)
                     .with_ids(args.ids)
                     .with_textures(texture_uri(path))
-                    .with_overlay(overlay.as_ref().map_or_else(String::new, |o| o.to_svg())),
+                    .with_overlay(
+                        overlay
+                            .as_ref()
+                            .map_or_else(String::new, vector_sink::overlay_svg),
+                    ),
             );
             std::fs::write(path, html).with_context(|| format!("writing {}", path.display()))?;
         }
@@ -829,12 +837,12 @@ pub fn run(args: &RenderArgs) -> Result<ExitCode> {
         let plot_ms = ms(start);
         let mut bytes = 0;
         if let Some(path) = &args.plot {
-            let svg = plot.to_svg(1.0);
+            let svg = vector_sink::plot_svg(&plot, 1.0);
             bytes = svg.len();
             std::fs::write(path, svg).with_context(|| format!("writing {}", path.display()))?;
         }
         if let Some(path) = &args.hpgl {
-            std::fs::write(path, plot.to_hpgl(40.0))
+            std::fs::write(path, vector_sink::plot_hpgl(&plot, 40.0))
                 .with_context(|| format!("writing {}", path.display()))?;
         }
         Some(PlotSummary {

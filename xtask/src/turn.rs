@@ -76,7 +76,7 @@ pub fn run(args: &TurnArgs) -> Result<ExitCode> {
         crate::presort_cache::load_or_build(&geometry, args.presort_cache.as_deref())??;
     let certificate = had.words(args.presort_cache.as_deref());
     let colour = crate::raster::solid_colours(&geometry, &source)?;
-    let options = sprite_compose::TurnPageOptions::DEFAULT
+    let options = vector_sink::TurnPageOptions::DEFAULT
         .with_ids(args.ids)
         .with_start(args.yaw, args.pitch);
     type Writer = fn(
@@ -84,13 +84,13 @@ pub fn run(args: &TurnArgs) -> Result<ExitCode> {
         &face_sort::Geometry,
         &View,
         &dyn Fn(u32) -> [u8; 4],
-        &sprite_compose::TurnPageOptions,
-    ) -> Result<sprite_compose::TurnPage, face_sort::CertifiedOrdersError>;
+        &vector_sink::TurnPageOptions,
+    ) -> Result<vector_sink::TurnPage, face_sort::CertifiedOrdersError>;
     let pages: [(&Option<PathBuf>, Writer, &str); 2] = [
-        (&args.html, sprite_compose::write_turn_html, "page"),
+        (&args.html, vector_sink::write_turn_html, "page"),
         (
             &args.canvas,
-            sprite_compose::write_canvas_turn_html,
+            vector_sink::write_canvas_turn_html,
             "canvas page",
         ),
     ];

@@ -706,7 +706,10 @@ fn render_plot_is_the_librarys_plot() {
             .iter()
             .any(|e| e.kind == sprite_compose::EdgeKind::Silhouette)
     );
-    assert_eq!(std::fs::read_to_string(&svg).unwrap(), plot.to_svg(1.0));
+    assert_eq!(
+        std::fs::read_to_string(&svg).unwrap(),
+        vector_sink::plot_svg(&plot, 1.0)
+    );
 }
 
 /// The file's camera, projected independently: glam's own matrices from the glTF values

@@ -6,12 +6,13 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
-const CRATES: [&str; 5] = [
+const CRATES: [&str; 6] = [
     "obj-quads",
     "face-sort",
     "aspect-bake",
     "raster-sink",
     "sprite-compose",
+    "vector-sink",
 ];
 
 /// `pub const NAME` of a tolerance module.
@@ -146,7 +147,10 @@ fn quotes_timing_or_commit(text: &str) -> Option<String> {
 fn rustdoc_quotes_no_timing_or_commit() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
     let mut files = Vec::new();
-    for krate in CRATES.iter().chain(&["xtask", "test-support"]) {
+    for krate in CRATES
+        .iter()
+        .chain(&["xtask", "test-support", "sink-checks"])
+    {
         for dir in ["src", "examples", "benches", "tests"] {
             rust_files(&root.join(krate).join(dir), &mut files);
         }

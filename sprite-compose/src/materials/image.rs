@@ -1,25 +1,19 @@
 //! Decoded textures: straight-alpha RGBA with the bytes they came from, for embedding.
 
-use std::borrow::Cow;
-use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
-
-use base64::Engine as _;
-
-use super::TextureError;
 
 /// A decoded texture: straight-alpha sRGB RGBA8, row by row from the top-left, with the
 /// encoded bytes (PNG or JPEG) it was decoded from when it is unchanged, so that a writer
 /// embeds the original file rather than a re-encoding.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Image {
-    width: u32,
-    height: u32,
-    rgba: Vec<u8>,
-    name: String,
-    file: Option<PathBuf>,
-    encoded: Option<Arc<[u8]>>,
+    pub(super) width: u32,
+    pub(super) height: u32,
+    pub(super) rgba: Vec<u8>,
+    pub(super) name: String,
+    pub(super) file: Option<PathBuf>,
+    pub(super) encoded: Option<Arc<[u8]>>,
 }
 
 impl Image {
@@ -70,43 +64,19 @@ impl Image {
         self.file.as_deref()
     }
 
-    /// The image as an encoded file: the original PNG or JPEG bytes when it is unchanged,
-    /// else a PNG encoding of its pixels. With its MIME type.
+    /// The encoded file it was decoded from (PNG or JPEG) with its MIME type, when it is
+    /// unchanged (not tinted or tiled): a writer embeds these bytes rather than a
+    /// re-encoding.
     #[must_use]
-    pub fn encoded(&self) -> (Cow<'_, [u8]>, &'static str) {
-        if let Some(bytes) = &self.encoded {
+    pub fn original(&self) -> Option<(&[u8], &'static str)> {
+        self.encoded.as_deref().map(|bytes| {
             let mime = if bytes.starts_with(&[0xff, 0xd8]) {
                 "image/jpeg"
             } else {
                 "image/png"
             };
-            return (Cow::Borrowed(&bytes[..]), mime);
-        }
-        (Cow::Owned(self.png()), "image/png")
-    }
-
-    /// The image as a `data:` URI ([`encoded`](Self::encoded), base64), as SVG and HTML
-    /// embed it.
-    #[must_use]
-    pub fn data_uri(&self) -> String {
-        let (bytes, mime) = self.encoded();
-        format!(
-            "data:{mime};base64,{}",
-            base64::engine::general_purpose::STANDARD.encode(&bytes)
-        )
-    }
-
-    fn png(&self) -> Vec<u8> {
-        let mut out = Vec::new();
-        let mut encoder = png::Encoder::new(&mut out, self.width, self.height);
-        encoder.set_color(png::ColorType::Rgba);
-        encoder.set_depth(png::BitDepth::Eight);
-        // Writing to a Vec of the right size fails only on a mismatched length, which
-        // `from_rgba` and the decoders rule out.
-        if let Ok(mut writer) = encoder.write_header() {
-            let _ = writer.write_image_data(&self.rgba);
-        }
-        out
+            (bytes, mime)
+        })
     }
 
     /// The mean straight-alpha colour, opaque.
@@ -125,165 +95,5 @@ impl Image {
             (sum[2] / n) as u8,
             255,
         ]
-    }
-
-    /// This image with every texel multiplied by `factor` (linear RGBA, as glTF's
-    /// `baseColorFactor`: sRGB texels to linear, times the factor, back to sRGB) and its
-    /// alpha then taken as `alpha` says.
-    #[must_use]
-    pub fn tinted(&self, factor: [f32; 4], alpha: obj_quads::AlphaMode) -> Image {
-        let to_linear = |c: u8| {
-            let c = f32::from(c) / 255.0;
-            if c <= 0.04045 {
-                c / 12.92
-            } else {
-                ((c + 0.055) / 1.055).powf(2.4)
-            }
-        };
-        let to_srgb = |l: f32| {
-            let l = l.clamp(0.0, 1.0);
-            let c = if l <= 0.003_130_8 {
-                l * 12.92
-            } else {
-                1.055 * l.powf(1.0 / 2.4) - 0.055
-            };
-            (c * 255.0).round() as u8
-        };
-        let scale = |v: u8, f: f32| {
-            if f == 1.0 {
-                v // no round trip through linear light
-            } else {
-                to_srgb(to_linear(v) * f)
-            }
-        };
-        let mut rgba = self.rgba.clone();
-        for p in rgba.chunks_exact_mut(4) {
-            let a = alpha_byte(
-                (f32::from(p[3]) * factor[3].clamp(0.0, 1.0)).round() as u8,
-                alpha,
-            );
-            p[0] = scale(p[0], factor[0]);
-            p[1] = scale(p[1], factor[1]);
-            p[2] = scale(p[2], factor[2]);
-            p[3] = a;
-        }
-        Image {
-            width: self.width,
-            height: self.height,
-            rgba,
-            name: format!("{} (tinted)", self.name),
-            file: None,
-            encoded: None,
-        }
-    }
-}
-
-/// Loads a PNG or JPEG texture within the texture limits of `limits`: file size before
-/// reading, width, height and pixel count from the image header before decoding
-/// (`obj_quads::load_texture`), so a small file declaring a huge image fails fast instead
-/// of allocating it.
-pub fn load_image(path: &Path, limits: &obj_quads::LoadOptions) -> Result<Image, TextureError> {
-    let error = |source| TextureError {
-        path: path.to_path_buf(),
-        source: Box::new(source),
-    };
-    let texture = obj_quads::load_texture(path, limits).map_err(error)?;
-    // The bytes for embedding, read under the same cap (the file passed it just now).
-    let mut bytes = Vec::new();
-    let read = std::fs::File::open(path).and_then(|f| {
-        f.take(limits.max_texture_file_bytes)
-            .read_to_end(&mut bytes)
-    });
-    Ok(Image {
-        width: texture.width,
-        height: texture.height,
-        rgba: texture.rgba,
-        name: path.display().to_string(),
-        file: Some(path.to_path_buf()),
-        encoded: read.is_ok().then(|| Arc::from(bytes)),
-    })
-}
-
-/// Decodes a texture held in a model file within `limits`.
-pub fn decode_image(
-    name: &str,
-    bytes: &[u8],
-    limits: &obj_quads::LoadOptions,
-) -> Result<Image, TextureError> {
-    let texture =
-        obj_quads::decode_texture(bytes, name, limits).map_err(|source| TextureError {
-            path: PathBuf::from(name),
-            source: Box::new(source),
-        })?;
-    Ok(Image {
-        width: texture.width,
-        height: texture.height,
-        rgba: texture.rgba,
-        name: name.to_owned(),
-        file: None,
-        encoded: Some(Arc::from(bytes)),
-    })
-}
-
-/// Where a face's texture comes from.
-#[derive(Clone, Copy)]
-pub(super) enum TextureSource<'a> {
-    File(&'a Path),
-    /// Name for messages, encoded bytes.
-    Embedded(&'a str, &'a [u8]),
-}
-
-/// A decoded texture's cache key: its file, or its bytes' address and length.
-#[derive(Clone, PartialEq, Eq, Hash)]
-pub(super) enum TextureKey {
-    File(PathBuf),
-    Embedded(usize, usize),
-}
-
-impl TextureSource<'_> {
-    pub(super) fn key(&self) -> TextureKey {
-        match *self {
-            TextureSource::File(path) => TextureKey::File(path.to_path_buf()),
-            TextureSource::Embedded(_, bytes) => {
-                TextureKey::Embedded(bytes.as_ptr() as usize, bytes.len())
-            }
-        }
-    }
-
-    /// Decodes it within the default texture limits.
-    pub(super) fn decode(&self) -> Result<Image, TextureError> {
-        match *self {
-            TextureSource::File(path) => load_image(path, &obj_quads::LoadOptions::DEFAULT),
-            TextureSource::Embedded(name, bytes) => {
-                decode_image(name, bytes, &obj_quads::LoadOptions::DEFAULT)
-            }
-        }
-    }
-}
-
-/// An alpha mode as a hashable cache key.
-pub(super) type AlphaKey = (u8, u32);
-
-pub(super) fn alpha_key(mode: obj_quads::AlphaMode) -> AlphaKey {
-    match mode {
-        obj_quads::AlphaMode::Opaque => (0, 0),
-        obj_quads::AlphaMode::Mask { cutoff } => (2, cutoff.to_bits()),
-        _ => (1, 0),
-    }
-}
-
-/// An alpha byte under an alpha mode: as is (blend), 255 (opaque), or 255 / 0 at the
-/// cutoff (mask).
-pub(super) fn alpha_byte(alpha: u8, mode: obj_quads::AlphaMode) -> u8 {
-    match mode {
-        obj_quads::AlphaMode::Opaque => 255,
-        obj_quads::AlphaMode::Mask { cutoff } => {
-            if f32::from(alpha) / 255.0 >= cutoff {
-                255
-            } else {
-                0
-            }
-        }
-        _ => alpha,
     }
 }

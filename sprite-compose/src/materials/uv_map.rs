@@ -69,6 +69,7 @@ impl UvMap {
 
     /// This map followed by `uv ↦ uv · scale + offset` (per axis).
     #[must_use]
+    #[cfg(feature = "obj-quads")]
     pub(crate) fn remapped(&self, scale: DVec2, offset: DVec2) -> Self {
         UvMap {
             k: [

@@ -5,14 +5,4 @@ mod support;
 
 mod bake;
 mod bake_player;
-mod browser;
-mod hidden;
-mod overlay;
 mod painter;
-mod pdf;
-mod plot;
-mod spin;
-mod spin_culled;
-mod textures;
-mod turn_page;
-mod writers;

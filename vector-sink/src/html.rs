@@ -6,13 +6,15 @@ use std::collections::HashMap;
 
 use glam::{DAffine2, DMat3, DMat4, DVec2, DVec3, DVec4};
 
+use crate::numbers::hex;
 use crate::seams::{ScreenPolygons, SharedEdges, outset_polygon};
-use crate::svg::{hex, project_sprite, sprite_polygon};
 use crate::tolerance::{
     HTML_QUAD_WEIGHT_RATIO, HTML_SEAM_OUTSET_PX, HTML_SEAM_PX, HTML_SHARED_EDGE_PX,
-    HTML_TEXTURE_MARGIN_PX, SINGULAR_DET, UNDERFLOW_ABS,
+    HTML_TEXTURE_MARGIN_PX,
 };
 use crate::{Brush, Scene, SceneSprite, id_colour, perspective_matrix};
+use crate::{project_sprite, sprite_polygon};
+use sprite_compose::tolerance::{SINGULAR_DET, UNDERFLOW_ABS};
 
 /// How the page orders faces.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
@@ -66,12 +68,12 @@ pub struct HtmlOptions {
     pub orthographic_distance: f64,
     /// How clipped sprites are drawn. Default: [`HtmlPieces::Quads`].
     pub pieces: HtmlPieces,
-    /// `src` of each texture, indexed by [`TextureId`](crate::TextureId) (a data URI or a
+    /// `src` of each texture, indexed by [`TextureId`](sprite_compose::TextureId) (a data URI or a
     /// path relative to the page). Textured sprites whose texture has no entry, and every
     /// sprite in ID mode, use their fallback colour. Default: none.
     pub textures: Vec<String>,
     /// Lines and points drawn over the faces, in their own colours: the same SVG markup the
-    /// SVG writer draws ([`DrawnOverlay::to_svg`](crate::DrawnOverlay::to_svg)), as an inline
+    /// SVG writer draws ([`overlay_svg`](crate::overlay_svg)), as an inline
     /// `<svg>` over the scene. Default: none.
     pub overlay: String,
 }
@@ -890,7 +892,7 @@ mod tests {
                 .with_view_offset(DVec3::new(0.3, -0.2, -0.7))
                 .with_principal_point(170.0, 80.0),
         ] {
-            let root = crate::root_transform(&view);
+            let root = sprite_compose::root_transform(&view);
             let flat = FlatRoot::of(&root);
             assert!((flat.affine.row(3) - DVec4::W).abs().max_element() < 1e-12);
             let mut perspective = DMat4::IDENTITY;

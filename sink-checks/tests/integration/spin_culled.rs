@@ -10,7 +10,7 @@
 use raster_sink::{PixelError, pixel_error, truth};
 use sprite_compose::aspect_bake::{Axis, Bake, PictureOptions, Spin, bake_picture, drawn_lists};
 use sprite_compose::face_sort::{Geometry, View};
-use sprite_compose::{SpinOptions, write_canvas_spin_html, write_culled_spin_html};
+use vector_sink::{SpinOptions, write_canvas_spin_html, write_culled_spin_html};
 
 use test_support::consumers::Compositor;
 

@@ -5,7 +5,7 @@
 use raster_sink::{pixel_error, truth};
 use sprite_compose::aspect_bake::{Axis, BakeOptions, BspSource, Spin, bake};
 use sprite_compose::face_sort::{Geometry, View};
-use sprite_compose::{SpinOptions, write_spin_html};
+use vector_sink::{SpinOptions, write_spin_html};
 
 use crate::browser::{chromium, screenshot};
 use crate::support;

@@ -16,7 +16,8 @@
 
 use raster_sink::{pixel_error, truth};
 use sprite_compose::face_sort::{CullMode, Geometry, SorterKind, View};
-use sprite_compose::{HiddenParts, PdfOptions, RecordingCompositor, SpritePainter, write_pdf};
+use sprite_compose::{RecordingCompositor, SpritePainter};
+use vector_sink::{HiddenParts, PdfOptions, write_pdf};
 
 use crate::support;
 use crate::writers::ids_of_rgba;

@@ -12,9 +12,8 @@ use raster_sink::{IdImage, Truth, pixel_error, render_ids, truth};
 use sprite_compose::face_sort::SorterKind;
 use sprite_compose::face_sort::View;
 use sprite_compose::face_sort::colours::golden_angle_colour;
-use sprite_compose::{
-    HtmlMode, HtmlOptions, HtmlPieces, RecordingCompositor, SpritePainter, write_html,
-};
+use sprite_compose::{RecordingCompositor, SpritePainter};
+use vector_sink::{HtmlMode, HtmlOptions, HtmlPieces, write_html};
 
 use crate::textures::{SPOT_SIZE, colour_error, textured_box, textured_html, textured_spot};
 use crate::writers::{SIZE, differing, ids_of_rgba, spot_painter};

@@ -7,8 +7,8 @@ use aspect_bake::{EventFn, Roots};
 use face_sort::{Geometry, PolygonSet};
 use glam::{DMat3, DMat4, DVec2, DVec3};
 
-use crate::bake::PolygonMap;
 use crate::tolerance::HTML_SEAM_PX;
+use sprite_compose::PieceMap;
 
 /// Where the pieces go on the page: `place` maps a sprite transform's pixels to the page's
 /// (origin at the container), `place_point` a centred model point times `scale` likewise;
@@ -38,7 +38,7 @@ pub(crate) fn face_fill<'a>(
     colour: &'a dyn Fn(u32) -> [u8; 4],
 ) -> impl Fn(u32) -> String + 'a {
     move |face| {
-        crate::svg::hex(if ids {
+        crate::numbers::hex(if ids {
             crate::id_colour(face)
         } else {
             colour(face)
@@ -54,7 +54,7 @@ pub(crate) fn face_fill<'a>(
 pub(crate) fn piece_classes(
     page: &mut String,
     set: &PolygonSet,
-    maps: &[PolygonMap],
+    maps: &[Option<PieceMap>],
     geometry: &Geometry,
     placement: &Placement,
     fill: &dyn Fn(u32) -> String,
@@ -142,7 +142,7 @@ pub(crate) fn piece_classes(
             }
             continue;
         }
-        let Some((transform, clip)) = &maps[p] else {
+        let Some(PieceMap { transform, clip }) = &maps[p] else {
             continue;
         };
         let size = crate::spin::layout_size(transform, oversize);

@@ -10,9 +10,9 @@ use sprite_compose::face_sort::colours::id_colour;
 use sprite_compose::face_sort::glam::{DVec2, DVec3};
 use sprite_compose::face_sort::{CullMode, DrawList, Geometry, PolygonMesh, SorterKind, View};
 use sprite_compose::{
-    DrawnOverlay, HtmlOptions, Line, Overlay, PdfOptions, RecordingCompositor, SpritePainter,
-    SvgOptions, visible_overlay, write_html, write_pdf, write_svg,
+    DrawnOverlay, Line, Overlay, RecordingCompositor, SpritePainter, visible_overlay,
 };
+use vector_sink::{HtmlOptions, PdfOptions, SvgOptions, write_html, write_pdf, write_svg};
 
 const SIZE: u32 = 200;
 const RED: [u8; 4] = [255, 0, 0, 255];
@@ -303,8 +303,7 @@ fn lines_and_points_are_exact_in_svg() {
     check_all("svg", |geometry, view, drawn| {
         let (_, scene) = painted(geometry, view);
         let overlay = drawn.map_or_else(String::new, |d| {
-            d.to_svg()
-                .replacen("<g ", "<g shape-rendering=\"crispEdges\" ", 1)
+            vector_sink::overlay_svg(d).replacen("<g ", "<g shape-rendering=\"crispEdges\" ", 1)
         });
         let svg = write_svg(
             &scene,
@@ -334,8 +333,7 @@ fn lines_and_points_are_exact_in_html() {
         let (_, scene) = painted(geometry, view);
         // The SVG writer's overlay markup, with the same crisp edges as its test.
         let overlay = drawn.map_or_else(String::new, |d| {
-            d.to_svg()
-                .replacen("<g ", "<g shape-rendering=\"crispEdges\" ", 1)
+            vector_sink::overlay_svg(d).replacen("<g ", "<g shape-rendering=\"crispEdges\" ", 1)
         });
         let html = write_html(
             &scene,

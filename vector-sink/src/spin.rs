@@ -8,7 +8,7 @@ use aspect_bake::{Bake, Spin};
 use face_sort::Geometry;
 use glam::{DMat3, DMat4, DVec2, DVec3};
 
-use crate::svg::hex;
+use crate::numbers::hex;
 use crate::{BakedSpriteTree, css_matrix3d, id_colour, perspective_matrix};
 
 /// Options of [`write_spin_html`].
@@ -100,7 +100,7 @@ fn percent(degrees: f64) -> f64 {
 ///
 /// Each polygon's elements get one CSS class holding its transform
 /// `matrix3d(T(O)·P·F A F) rotate3d(−F k, var(--a)) matrix3d(F B F·T(−O)·sprite)` — the
-/// root transform of [`root_transform`](crate::root_transform) at `R(θ) = A·Rot(k, θ)·B`
+/// root transform of [`root_transform`](sprite_compose::root_transform) at `R(θ) = A·Rot(k, θ)·B`
 /// with `F = diag(1, −1, 1)` (`F·Rot(k, θ)·F = Rot(−F k, θ)`) — where `--a` is a registered
 /// custom property animated linearly from 0 to 360 degrees. Each cell is a container of its
 /// draw list in paint order, visible (keyframes with `step-end` timing) only while the angle

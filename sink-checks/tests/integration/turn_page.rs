@@ -7,7 +7,7 @@
 use raster_sink::{pixel_error, truth};
 use sprite_compose::face_sort::glam::DVec3;
 use sprite_compose::face_sort::{CertifiedOrdersError, Geometry, Presorted, View};
-use sprite_compose::{TurnPage, TurnPageOptions, write_canvas_turn_html, write_turn_html};
+use vector_sink::{TurnPage, TurnPageOptions, write_canvas_turn_html, write_turn_html};
 
 use crate::browser::{chromium, print_wrong_pixels, screenshot_at};
 use crate::support;

@@ -18,7 +18,7 @@
 
 use glam::DVec2;
 
-use crate::svg::project_sprite;
+use crate::project_sprite;
 use crate::tolerance::{HIDDEN_GRID_BITS, MIN_PART_AREA_PX2};
 use crate::{Scene, SceneSprite};
 use i_overlay::core::fill_rule::FillRule;

@@ -11,8 +11,8 @@ use face_sort::{
 };
 use glam::{DMat3, DMat4, DVec3};
 
+use crate::numbers::hex;
 use crate::page_pieces::{Placement, num, piece_classes};
-use crate::svg::hex;
 
 /// Options of [`write_turn_html`].
 #[derive(Clone, Debug, PartialEq)]
@@ -137,7 +137,7 @@ pub fn write_turn_html(
         cy = num(origin.y),
         d = num(distance),
     );
-    let maps = crate::bake::polygon_maps(set, geometry, &rest);
+    let maps = sprite_compose::polygon_maps(set, geometry, &rest);
     let elements_of = piece_classes(
         &mut page,
         set,

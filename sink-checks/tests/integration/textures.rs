@@ -18,9 +18,9 @@ use raster_sink::{
 use sprite_compose::face_sort::{SorterKind, View};
 use sprite_compose::glam::{DAffine2, DVec2, DVec3};
 use sprite_compose::{
-    Brush, HtmlOptions, RecordingCompositor, Scene, SpritePainter, SpriteSpace, SvgOptions,
-    TextureId, set_plane_textures, write_html, write_svg,
+    Brush, RecordingCompositor, Scene, SpritePainter, SpriteSpace, TextureId, set_plane_textures,
 };
+use vector_sink::{HtmlOptions, SvgOptions, write_html, write_svg};
 
 use crate::support;
 use crate::writers::SIZE;
@@ -315,7 +315,7 @@ pub fn textured_spot() -> TexturedSpot {
 }
 
 /// Slow in a debug build (resvg composites each of ~4,300 clipped images over the whole
-/// 512 × 512 canvas): `cargo test --release -p sprite-compose --test integration
+/// 512 × 512 canvas): `cargo test --release -p sink-checks --test integration
 /// textured_spot -- --ignored --nocapture`.
 #[test]
 #[ignore = "minutes in a debug build; run with --release --ignored"]

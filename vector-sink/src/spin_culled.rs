@@ -7,125 +7,9 @@ use aspect_bake::{Bake, Spin};
 use face_sort::Geometry;
 use glam::{DMat3, DMat4, DVec3};
 
+use crate::numbers::hex;
 use crate::page_pieces::num;
 use crate::spin::SpinOptions;
-use crate::svg::hex;
-
-/// The elements of a culled realisation: a sequence of copies of pieces such that every
-/// cell's list of drawn pieces is a subsequence of it (one copy per piece per cell).
-pub(crate) struct Copies {
-    /// Piece of each element, in paint order.
-    pub(crate) pieces: Vec<u32>,
-    /// Per cell, the element each drawn piece uses.
-    used: Vec<Vec<usize>>,
-}
-
-impl Copies {
-    /// Per element, per cell: whether it is shown. An element is shown in the cells that use
-    /// it and hidden in the cells where another copy of its piece is used; where its piece is
-    /// never drawn (culled throughout the cell) it is shown, so that a piece with one copy
-    /// never switches.
-    pub(crate) fn visibility(&self, lists: &[Vec<u32>]) -> Vec<Vec<bool>> {
-        let cells = self.used.len();
-        let mut shown: Vec<Vec<bool>> = vec![vec![true; cells]; self.pieces.len()];
-        let size = self.pieces.iter().max().map_or(0, |&m| m as usize + 1);
-        let mut copies_of: Vec<Vec<usize>> = vec![Vec::new(); size];
-        for (e, &p) in self.pieces.iter().enumerate() {
-            copies_of[p as usize].push(e);
-        }
-        for (c, used) in self.used.iter().enumerate() {
-            for (i, &e) in used.iter().enumerate() {
-                for &other in &copies_of[lists[c][i] as usize] {
-                    shown[other][c] = other == e;
-                }
-            }
-        }
-        shown
-    }
-}
-
-/// Elements built cell by cell: a cell reuses the longest run of existing elements that is
-/// in its order (a longest common subsequence, Hunt and Szymanski's way: patience sorting
-/// over each piece's existing copies), and inserts a new copy for each other piece just
-/// before the next element it reuses.
-pub(crate) fn copies(lists: &[Vec<u32>], pieces: usize) -> Copies {
-    // `order` holds element ids in paint order; ids are stable as elements are inserted.
-    let mut element_piece: Vec<u32> = Vec::new();
-    let mut order: Vec<usize> = Vec::new();
-    let mut used = Vec::with_capacity(lists.len());
-    for list in lists {
-        let mut position = vec![0usize; element_piece.len()];
-        for (k, &e) in order.iter().enumerate() {
-            position[e] = k;
-        }
-        let mut copies_of: Vec<Vec<usize>> = vec![Vec::new(); pieces];
-        for &e in &order {
-            copies_of[element_piece[e] as usize].push(e);
-        }
-        // Patience sorting over (position, item) entries, each item's copies from the latest
-        // position down, so that no chain uses one item twice.
-        let mut entries: Vec<(usize, usize, Option<usize>)> = Vec::new();
-        let mut tails: Vec<usize> = Vec::new();
-        for (i, &p) in list.iter().enumerate() {
-            for &e in copies_of[p as usize].iter().rev() {
-                let x = position[e];
-                let at = tails.partition_point(|&t| entries[t].0 < x);
-                let previous = at.checked_sub(1).map(|k| tails[k]);
-                entries.push((x, i, previous));
-                let entry = entries.len() - 1;
-                if at == tails.len() {
-                    tails.push(entry);
-                } else {
-                    tails[at] = entry;
-                }
-            }
-        }
-        // The chain's items keep their copies.
-        let mut keep = vec![usize::MAX; list.len()];
-        let mut cursor = tails.last().copied();
-        while let Some(entry) = cursor {
-            let (x, i, previous) = entries[entry];
-            keep[i] = order[x];
-            cursor = previous;
-        }
-        // Insert a copy for every other item before the next kept one.
-        let mut insert_before: Vec<Vec<usize>> = vec![Vec::new(); order.len() + 1];
-        let mut cell_used = vec![0usize; list.len()];
-        let mut pending: Vec<usize> = Vec::new();
-        for (i, &p) in list.iter().enumerate() {
-            if keep[i] == usize::MAX {
-                let e = element_piece.len();
-                element_piece.push(p);
-                cell_used[i] = e;
-                pending.push(e);
-            } else {
-                cell_used[i] = keep[i];
-                insert_before[position[keep[i]]].append(&mut pending);
-            }
-        }
-        insert_before[order.len()].append(&mut pending);
-        let mut next = Vec::with_capacity(element_piece.len());
-        for (k, &e) in order.iter().enumerate() {
-            next.extend_from_slice(&insert_before[k]);
-            next.push(e);
-        }
-        next.extend_from_slice(&insert_before[order.len()]);
-        order = next;
-        used.push(cell_used);
-    }
-    // Renumber elements by paint order.
-    let mut rank = vec![0usize; element_piece.len()];
-    for (k, &e) in order.iter().enumerate() {
-        rank[e] = k;
-    }
-    Copies {
-        pieces: order.iter().map(|&e| element_piece[e]).collect(),
-        used: used
-            .into_iter()
-            .map(|u| u.into_iter().map(|e| rank[e]).collect())
-            .collect(),
-    }
-}
 
 /// A picture bake ([`aspect_bake::bake_picture`]) as a self-contained page that turns once
 /// per `period_s`, with no script.
@@ -156,7 +40,7 @@ pub fn write_culled_spin_html(
     options: &SpinOptions,
 ) -> String {
     let view = spin.view_at(0.0);
-    let graph_maps = crate::bake::polygon_maps(bake.polygons(), geometry, &view);
+    let graph_maps = sprite_compose::polygon_maps(bake.polygons(), geometry, &view);
     let (w, h) = (view.width(), view.height());
     let (a, k, b) = spin.factors();
     let flip = DMat3::from_diagonal(DVec3::new(1.0, -1.0, 1.0));
@@ -178,7 +62,7 @@ pub fn write_culled_spin_html(
     };
     let timing = format!("{period}s linear {delay} infinite {state}");
     let steps = format!("{period}s step-end {delay} infinite {state}");
-    let copies = copies(lists, bake.polygons().len());
+    let copies = sprite_compose::culled_copies(lists, bake.polygons().len());
     let mut page = String::new();
     let _ = write!(
         page,
@@ -220,7 +104,7 @@ pub fn write_culled_spin_html(
     // another copy of its piece is used, either way where its piece is never drawn.
     let shown = copies.visibility(lists);
     let mut patterns: Vec<Vec<bool>> = Vec::new();
-    let mut pattern_of: Vec<Option<usize>> = vec![None; copies.pieces.len()];
+    let mut pattern_of: Vec<Option<usize>> = vec![None; copies.pieces().len()];
     for (e, visible) in shown.into_iter().enumerate() {
         if visible.iter().all(|&v| v) {
             continue;
@@ -251,7 +135,7 @@ pub fn write_culled_spin_html(
         let _ = writeln!(page, "}}\n#s>.v{k}{{animation:t {timing},v{k} {steps}}}");
     }
     page.push_str("</style></head><body><div id=\"s\">\n");
-    for (e, &p) in copies.pieces.iter().enumerate() {
+    for (e, &p) in copies.pieces().iter().enumerate() {
         let extra = pattern_of[e].map_or(String::new(), |k| format!(" v{k}"));
         for (name, tag) in &elements_of[p as usize] {
             let _ = write!(page, "<{tag} class=\"{name}{extra}\"></{tag}>");
@@ -269,21 +153,7 @@ mod tests {
     use super::*;
 
     #[test]
-    fn every_list_is_a_subsequence_of_the_copies() {
-        let lists = vec![
-            vec![0, 1, 2, 3],
-            vec![1, 0, 2, 3],
-            vec![3, 2, 1],
-            vec![0, 1, 2, 3],
-        ];
-        let c = copies(&lists, 4);
-        for (list, used) in lists.iter().zip(&c.used) {
-            assert!(used.windows(2).all(|w| w[0] < w[1]));
-            for (&p, &e) in list.iter().zip(used) {
-                assert_eq!(c.pieces[e], p);
-            }
-        }
-        assert!(c.pieces.len() <= 4 + 3);
+    fn numbers_are_short() {
         assert_eq!(num(0.5), "0.5");
         assert_eq!(num(-256.0), "-256");
         assert_eq!(num(1.23456789e-7), "1.23457e-7"); // shorter with an exponent, as CSS allows

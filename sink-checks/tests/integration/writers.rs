@@ -4,9 +4,8 @@ use raster_sink::{IdImage, Truth, pixel_error, render_ids, truth};
 use sprite_compose::face_sort::colours::{golden_angle_colour, id_colour};
 use sprite_compose::face_sort::{Geometry, SorterKind, View};
 use sprite_compose::glam::DVec2;
-use sprite_compose::{
-    Brush, RecordingCompositor, SpritePainter, SvgOptions, outline_svg_path, write_svg,
-};
+use sprite_compose::{Brush, RecordingCompositor, SpritePainter};
+use vector_sink::{SvgOptions, outline_svg_path, write_svg};
 
 use crate::support::{self, Rng};
 
@@ -305,9 +304,9 @@ fn hostile_texture_names_are_escaped() {
     assert!(svg.contains("a&amp;b&quot;c&lt;d&gt;&apos;e"));
     resvg::usvg::Tree::from_str(&svg, &resvg::usvg::Options::default())
         .expect("the SVG parses with a hostile texture name");
-    let html = sprite_compose::write_html(
+    let html = vector_sink::write_html(
         p.compositor().scene(),
-        &sprite_compose::HtmlOptions::DEFAULT.with_textures(vec![hostile.clone()]),
+        &vector_sink::HtmlOptions::DEFAULT.with_textures(vec![hostile.clone()]),
     );
     assert!(!html.contains(&hostile));
     assert!(

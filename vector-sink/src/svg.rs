@@ -3,13 +3,12 @@
 use std::collections::HashMap;
 use std::fmt::Write as _;
 
-use face_sort::tolerance::NEAR_W;
 use glam::{DAffine2, DMat4, DVec2, DVec4};
 
 use crate::hidden::{VectorShape, vector_shapes};
-use crate::numbers::{matrix_entry, pixel};
+use crate::numbers::{hex, matrix_entry, pixel};
 use crate::tolerance::{SVG_CELL_OVERLAP_PX, SVG_TEXTURE_MAX_CELLS, SVG_TEXTURE_PX};
-use crate::{Brush, HiddenParts, Scene, SceneSprite, Visibility, id_colour};
+use crate::{Brush, HiddenParts, Scene, SceneSprite, Visibility, id_colour, sprite_polygon};
 
 /// Options of [`write_svg`].
 #[derive(Clone, Debug, PartialEq)]
@@ -24,7 +23,7 @@ pub struct SvgOptions {
     pub ids: bool,
     /// Background colour (`None`: transparent). Default: `None`.
     pub background: Option<[u8; 4]>,
-    /// `href` of each texture, indexed by [`TextureId`](crate::TextureId) (a data URI or a
+    /// `href` of each texture, indexed by [`TextureId`](sprite_compose::TextureId) (a data URI or a
     /// path). Textured sprites whose texture has no entry use their fallback colour.
     /// Default: none.
     pub textures: Vec<String>,
@@ -125,57 +124,6 @@ impl Default for SvgOptions {
     fn default() -> Self {
         Self::DEFAULT
     }
-}
-
-/// `#rrggbb` of a colour.
-pub(crate) fn hex(c: [u8; 4]) -> String {
-    format!("#{:02x}{:02x}{:02x}", c[0], c[1], c[2])
-}
-
-/// The unit-square polygon a sprite shows: its clip, or the square (corners `0, 1, 2, 3` of a
-/// quad).
-pub(crate) fn sprite_polygon(sprite: &SceneSprite) -> Vec<DVec2> {
-    match &sprite.clip {
-        Some(clip) => clip.clone(),
-        None => vec![DVec2::ZERO, DVec2::Y, DVec2::ONE, DVec2::X],
-    }
-}
-
-/// Projects a sprite's polygon to pixels through `root · transform`, clipping it against the
-/// near plane `w ≥ NEAR_W` (CONVENTIONS.md) in homogeneous coordinates. Empty when nothing is
-/// in front of the near plane.
-#[must_use]
-pub fn project_sprite(root: &DMat4, sprite: &SceneSprite) -> Vec<DVec2> {
-    let matrix = sprite.transform.matrix;
-    let full = *root * matrix;
-    // Homogeneous (unit-square) points; the near test W − NEAR_W · w_sprite ≥ 0 is linear.
-    let lifted: Vec<DVec4> = sprite_polygon(sprite)
-        .iter()
-        .map(|uv| DVec4::new(uv.x, uv.y, 0.0, 1.0))
-        .collect();
-    let near = |p: DVec4| (full * p).w - NEAR_W * (matrix * p).w;
-    let mut kept: Vec<DVec4> = Vec::with_capacity(lifted.len() + 2);
-    let n = lifted.len();
-    for k in 0..n {
-        let (a, b) = (lifted[k], lifted[(k + 1) % n]);
-        let (da, db) = (near(a), near(b));
-        if da >= 0.0 {
-            kept.push(a);
-        }
-        if (da >= 0.0) != (db >= 0.0) {
-            let t = da / (da - db);
-            kept.push(a + (b - a) * t);
-        }
-    }
-    if kept.len() < 3 {
-        return Vec::new();
-    }
-    kept.iter()
-        .map(|&p| {
-            let h = full * p;
-            DVec2::new(h.x / h.w, h.y / h.w)
-        })
-        .collect()
 }
 
 /// The scene's visible sprites as an SVG document: one `<polygon>` per sprite in paint order

@@ -47,7 +47,7 @@ fn rows(m: DMat3) -> String {
 /// The page up to its script: a `<canvas>` of the view's size on the background.
 fn page_head(title: &str, view: &View, background: [u8; 4]) -> String {
     let (w, h) = (view.width(), view.height());
-    let background = crate::svg::hex(background);
+    let background = crate::numbers::hex(background);
     format!(
         "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>{title}</title>\n\
          <style>html,body{{margin:0;background:{background}}}canvas{{display:block}}</style></head>\n\
@@ -124,7 +124,7 @@ fn pieces_js(
         num(offset.z),
         view.width(),
         view.height(),
-        crate::svg::hex(background),
+        crate::numbers::hex(background),
         background[0],
         background[1],
         background[2],

@@ -292,10 +292,10 @@ fn svg_and_hpgl_hold_the_polylines() {
     let geometry = Geometry::new(&mesh).unwrap();
     let view = views(&geometry)[0];
     let plot = plot_edges(&mesh, &geometry, &view, &PlotOptions::DEFAULT);
-    let svg = plot.to_svg(1.0);
+    let svg = vector_sink::plot_svg(&plot, 1.0);
     assert_eq!(svg.matches("<path").count(), plot.polylines.len());
     assert!(!svg.contains("fill=\"black\"") && svg.contains("fill=\"none\""));
-    let hpgl = plot.to_hpgl(40.0);
+    let hpgl = vector_sink::plot_hpgl(&plot, 40.0);
     assert!(hpgl.starts_with("IN;SP1;") && hpgl.trim_end().ends_with("PU;SP0;"));
     assert_eq!(hpgl.matches("PD").count(), plot.polylines.len());
     // Every polyline vertex lies on the image (ends are on visible edges of a fitted view).

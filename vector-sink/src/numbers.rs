@@ -53,6 +53,11 @@ pub(crate) fn matrix_entry(v: f64) -> String {
     significant(v, 7)
 }
 
+/// `#rrggbb` of a colour.
+pub(crate) fn hex(c: [u8; 4]) -> String {
+    format!("#{:02x}{:02x}{:02x}", c[0], c[1], c[2])
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

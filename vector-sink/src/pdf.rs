@@ -37,9 +37,9 @@ pub struct PdfOptions {
     /// Default: keep.
     pub hidden: HiddenParts,
     /// Lines and points drawn after the faces, in their own colours (their visible parts,
-    /// [`visible_overlay`](crate::visible_overlay)), in ID mode too. Default: none.
+    /// [`visible_overlay`](sprite_compose::visible_overlay)), in ID mode too. Default: none.
     pub overlay: Option<DrawnOverlay>,
-    /// The images of [`Brush::Texture`] sprites, indexed by [`TextureId`](crate::TextureId)
+    /// The images of [`Brush::Texture`] sprites, indexed by [`TextureId`](sprite_compose::TextureId)
     /// (e.g. [`Materials::images`](crate::Materials::images)): each written once as an image
     /// XObject (deflated RGB, with a soft mask when it has alpha) and drawn per sprite under
     /// its clip by the exact affine map, cut into cells under perspective as the SVG writer

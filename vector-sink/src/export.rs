@@ -2,10 +2,9 @@
 
 use face_sort::{Geometry, SorterKind, View};
 
-use crate::{
-    HiddenParts, HtmlOptions, Materials, PdfOptions, RecordingCompositor, Scene, SpritePainter,
-    SpriteSpace, SvgOptions, write_html, write_pdf, write_svg,
-};
+use sprite_compose::{Materials, RecordingCompositor, Scene, SpritePainter, SpriteSpace};
+
+use crate::{HiddenParts, HtmlOptions, PdfOptions, SvgOptions, write_html, write_pdf, write_svg};
 
 /// A picture ready to be written as a vector file: the model's sprites in an exact paint
 /// order, in its own materials, at the view's size.
@@ -85,7 +84,11 @@ impl Export {
         let mut textured = self.painter.compositor().scene().clone();
         let space = SpriteSpace::of_view(self.painter.view());
         if materials.set_textures(&mut textured, &space) > 0 {
-            self.texture_uris = materials.images().iter().map(|i| i.data_uri()).collect();
+            self.texture_uris = materials
+                .images()
+                .iter()
+                .map(|i| crate::image_data_uri(i))
+                .collect();
             self.images = materials.images().to_vec();
             self.textured = Some(textured);
         }

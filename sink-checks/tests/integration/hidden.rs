@@ -4,7 +4,8 @@
 use raster_sink::{pixel_error, truth};
 use sprite_compose::face_sort::{CullMode, Geometry, SorterKind, View};
 use sprite_compose::glam::DVec3;
-use sprite_compose::{HiddenParts, RecordingCompositor, SpritePainter, SvgOptions, write_svg};
+use sprite_compose::{RecordingCompositor, SpritePainter};
+use vector_sink::{HiddenParts, SvgOptions, write_svg};
 
 use crate::support;
 use crate::writers::{SIZE, ids_of_rgba};
