@@ -1,7 +1,7 @@
 //! The animation: a rotation by `θ` about a fixed axis, composed with a fixed base view.
 
 use crate::BakeError;
-use face_sort::{Projection, View};
+use face_sort::{Plane, Projection, View};
 use glam::{DMat3, DVec3, EulerRot};
 
 use crate::event::EventFn;
@@ -213,24 +213,23 @@ impl Spin {
         }
     }
 
-    /// The facing of polygon `i` of `set`: [`facing_fn`](Self::facing_fn) of the row
-    /// `[n, n·v₀]`, its plane's normal and first corner (what the sorters cull by).
+    /// The facing of polygon `i` of `set`: [`facing_fn`](Self::facing_fn) of its plane
+    /// through its first corner (what the sorters cull by).
     pub(crate) fn polygon_facing(&self, set: &face_sort::PolygonSet, i: usize) -> EventFn {
-        let n = set.plane(i).normal();
-        self.facing_fn(&[n.x, n.y, n.z, n.dot(set.corners(i)[0])])
+        self.facing_fn(&set.plane(i).through(set.corners(i)[0]))
     }
 
-    /// The facing value `n·point − w·offset` of a plane row `[nx, ny, nz, offset]` along the
-    /// spin: the quantity whose sign is a BSP node's eye side and a piece's facing.
+    /// The facing value `n·point − w·offset` of `plane` along the spin: the quantity whose
+    /// sign is a BSP node's eye side and a piece's facing.
     #[must_use]
-    pub fn facing_fn(&self, row: &[f64; 4]) -> EventFn {
+    pub fn facing_fn(&self, plane: &Plane) -> EventFn {
         let (p, w) = self.viewer_track();
-        let n = DVec3::new(row[0], row[1], row[2]);
+        let (n, offset) = (plane.normal(), plane.offset());
         EventFn {
             a: n.dot(p[1]),
             b: n.dot(p[2]),
-            c: n.dot(p[0]) - w * row[3],
-            scale: n.length() * (p[0].length() + p[1].length() + p[2].length()) + w * row[3].abs(),
+            c: n.dot(p[0]) - w * offset,
+            scale: n.length() * (p[0].length() + p[1].length() + p[2].length()) + w * offset.abs(),
         }
     }
 

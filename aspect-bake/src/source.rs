@@ -5,7 +5,7 @@ use std::collections::BinaryHeap;
 use std::f64::consts::TAU;
 use std::sync::Arc;
 
-use face_sort::{Bsp, BspTree, Centroid, FaceSorter, Geometry, PolygonSet};
+use face_sort::{Bsp, BspTree, Centroid, FaceSorter, Geometry, Plane, PolygonSet};
 use glam::DVec3;
 
 use crate::BakeError;
@@ -140,16 +140,25 @@ impl EventSource for BspSource {
         max_events: usize,
         out: &mut Vec<Event>,
     ) -> Result<(), BakeError> {
-        for row in self.tree.node_rows().iter().chain(self.tree.piece_rows()) {
-            push_roots(spin.facing_fn(row), start, end, out);
+        for plane in self
+            .tree
+            .node_planes()
+            .iter()
+            .chain(self.tree.piece_planes())
+        {
+            push_roots(spin.facing_fn(plane), start, end, out);
             budget(out.len(), max_events)?;
         }
         Ok(())
     }
 
     fn rows(&self, max_events: usize, out: &mut Vec<Row>) -> Result<(), BakeError> {
-        let rows = self.tree.node_rows().iter().chain(self.tree.piece_rows());
-        out.extend(rows.map(|&r| Row::Facing(r)));
+        let planes = self
+            .tree
+            .node_planes()
+            .iter()
+            .chain(self.tree.piece_planes());
+        out.extend(planes.map(|&plane| Row::Facing(plane)));
         budget(out.len(), max_events)
     }
 }
@@ -202,13 +211,11 @@ impl CentroidSource {
         }
     }
 
-    /// Each piece's facing row: [`Centroid`] culls with `n·(e − v₀)` (perspective) or `n·d`,
-    /// the row `[n, n·v₀]`.
-    fn facing_rows(&self) -> impl Iterator<Item = [f64; 4]> + '_ {
-        self.pieces.planes().iter().enumerate().map(|(i, plane)| {
-            let n = plane.normal();
-            [n.x, n.y, n.z, n.dot(self.pieces.corners(i)[0])]
-        })
+    /// Each piece's facing plane: [`Centroid`] culls with `n·(e − v₀)` (perspective) or
+    /// `n·d`, its plane through its first corner `v₀`.
+    fn facing_planes(&self) -> impl Iterator<Item = Plane> + '_ {
+        (self.pieces.planes().iter().enumerate())
+            .map(|(i, plane)| plane.through(self.pieces.corners(i)[0]))
     }
 }
 
@@ -248,7 +255,7 @@ impl EventSource for CentroidSource {
     fn rows(&self, max_events: usize, out: &mut Vec<Row>) -> Result<(), BakeError> {
         let n = self.centroids.len();
         budget(n + n * n.saturating_sub(1) / 2, max_events)?;
-        out.extend(self.facing_rows().map(Row::Facing));
+        out.extend(self.facing_planes().map(Row::Facing));
         for (i, &gi) in self.centroids.iter().enumerate() {
             for &gj in &self.centroids[i + 1..] {
                 out.push(Row::Depth(gi - gj));
@@ -273,8 +280,8 @@ impl EventSource for CentroidSource {
         max_events: usize,
         out: &mut Vec<Event>,
     ) -> Result<(), BakeError> {
-        for row in self.facing_rows() {
-            push_roots(spin.facing_fn(&row), start, end, out);
+        for plane in self.facing_planes() {
+            push_roots(spin.facing_fn(&plane), start, end, out);
         }
         budget(out.len(), max_events)?;
         let keys: Vec<EventFn> = self.centroids.iter().map(|&c| spin.depth_fn(c)).collect();

@@ -38,7 +38,7 @@ use std::f64::consts::TAU;
 use std::sync::Arc;
 use web_time::Instant;
 
-use face_sort::{DrawList, PolygonSet, Projection, View};
+use face_sort::{DrawList, Plane, PolygonSet, Projection, View};
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -68,9 +68,9 @@ pub struct EventCircle {
 /// What a sorter's sign conditions are made of, for [`EventSource::rows`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Row {
-    /// A plane row `[n, offset]` whose sign against the viewer decides a facing or a BSP side:
-    /// `n·d` orthographic, `n·eye − offset` perspective.
-    Facing([f64; 4]),
+    /// A plane whose sign against the viewer decides a facing or a BSP side: `n·d`
+    /// orthographic, `n·eye − offset` perspective.
+    Facing(Plane),
     /// A depth difference `n·d` (both projections).
     Depth(DVec3),
 }
@@ -84,11 +84,13 @@ impl Row {
                 normal: n,
                 offset: 0.0,
             },
-            Row::Facing(r) => EventCircle {
-                normal: DVec3::new(r[0], r[1], r[2]),
+            Row::Facing(plane) => EventCircle {
+                normal: plane.normal(),
                 offset: match template.projection() {
                     Projection::Orthographic => 0.0,
-                    Projection::Perspective { distance } => r[3] * template.scale() / distance,
+                    Projection::Perspective { distance } => {
+                        plane.offset() * template.scale() / distance
+                    }
                 },
             },
         }

@@ -7,13 +7,11 @@ use glam::DVec3;
 
 use crate::bsp_builder;
 use crate::fragment_merge::{FragmentMerge, MergeInput};
+use crate::ids::NodeId;
 use crate::plane::Plane;
 use crate::t_junctions;
 use crate::tolerance::PLANE_SIDE;
 use crate::{BspError, DrawList, FaceSorter, Geometry, Newell, PolygonSet, SorterStats, View};
-
-/// "No node" (a child slot), "no polygon".
-pub(crate) const NONE: u32 = u32::MAX;
 
 /// How the splitter of each node is chosen.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -93,8 +91,8 @@ pub(crate) struct Node {
     pub first: u32,
     pub same: u32,
     pub opposite: u32,
-    pub front_child: u32,
-    pub back_child: u32,
+    pub front_child: NodeId,
+    pub back_child: NodeId,
     /// Fragments in the front and back subtrees.
     pub front_size: u32,
     pub back_size: u32,
@@ -130,8 +128,8 @@ struct LeafRun {
 /// The immutable tree, shareable between views and threads (`Arc`).
 #[derive(Debug)]
 pub struct BspTree {
-    /// The node planes as `[nx, ny, nz, offset]`, for the per-view side pass.
-    plane_rows: Vec<[f64; 4]>,
+    /// The node planes (a leaf's is its first fragment's, unused).
+    node_planes: Vec<Plane>,
     /// The pieces' planes, likewise, for the per-view cull pass.
     piece_rows: Vec<[f64; 4]>,
     /// Source face and piece of each fragment.
@@ -151,9 +149,9 @@ pub struct BspTree {
     /// Fragments proper: `fragments` holds them first, then a whole copy of every split
     /// piece, which [`FragmentMerge`] may draw instead of its fragments.
     fragment_count: usize,
-    /// Per piece, the index of its whole copy in `fragments` (`NONE` when it is not split),
+    /// Per piece, the index of its whole copy in `fragments` (`None` when it is not split),
     /// and its number of fragments.
-    whole: Vec<u32>,
+    whole: Vec<Option<u32>>,
     fragments_of: Vec<u32>,
     /// The model's diagonal `L`, for the merge's overlap tolerance.
     diagonal: f64,
@@ -172,8 +170,11 @@ fn subtree_spheres(nodes: &[Node], fragments: &PolygonSet) -> Vec<[f64; 4]> {
                 hi = hi.max(c);
             }
         }
-        for child in [node.front_child, node.back_child] {
-            if child != NONE {
+        for child in [node.front_child, node.back_child]
+            .into_iter()
+            .filter_map(NodeId::get)
+        {
+            {
                 let (clo, chi) = boxes[child as usize];
                 lo = lo.min(clo);
                 hi = hi.max(chi);
@@ -268,27 +269,28 @@ impl BspTree {
         builder.fragments =
             t_junctions::conform(&builder.fragments, &builder.fragment_piece, tolerance);
         let row = |p: &Plane| [p.normal().x, p.normal().y, p.normal().z, p.offset()];
-        let plane_rows = builder.planes.iter().map(row).collect();
         let piece_rows = pieces.planes().iter().map(row).collect();
         let fragment_face = (0..builder.fragments.len())
             .map(|i| [builder.fragments.face(i), builder.fragment_piece[i]])
             .collect();
         let spheres = subtree_spheres(&builder.nodes, &builder.fragments);
         let fragment_count = builder.fragments.len();
-        let mut whole = vec![NONE; pieces.len()];
+        let mut whole = vec![None; pieces.len()];
         let mut fragments_of = vec![0u32; pieces.len()];
         for &p in &builder.fragment_piece {
             fragments_of[p as usize] += 1;
         }
         for (p, &count) in fragments_of.iter().enumerate() {
             if count > 1 {
-                whole[p] =
-                    builder
-                        .fragments
-                        .push(pieces.corners(p), pieces.face(p), *pieces.plane(p));
+                whole[p] = Some(builder.fragments.push(
+                    pieces.corners(p),
+                    pieces.face(p),
+                    *pieces.plane(p),
+                ));
             }
         }
         let (inners, leaf_runs) = pass_layout(&builder.nodes, &builder.planes);
+        let node_planes = builder.planes;
         Ok(BspTree {
             inners,
             leaf_runs,
@@ -298,8 +300,8 @@ impl BspTree {
             // Every build's tolerance is `PLANE_SIDE · L`.
             diagonal: tolerance / PLANE_SIDE,
             piece_rows,
+            node_planes,
             fragment_face,
-            plane_rows,
             spheres,
             nodes: builder.nodes,
             fragments: Arc::new(builder.fragments),
@@ -309,19 +311,20 @@ impl BspTree {
         })
     }
 
-    /// The node planes as `[nx, ny, nz, offset]`, exactly the rows whose viewer side
-    /// ([`Viewer::facing`](crate::Viewer::facing) `>= 0`) orders each node's children in
-    /// [`Bsp`]'s sort. For event computations along an animation (`aspect-bake`).
+    /// The node planes, exactly those whose viewer side
+    /// ([`Viewer::facing`](crate::Viewer::facing) of `[n, offset]`, `>= 0`) orders each
+    /// node's children in [`Bsp`]'s sort (a leaf's plane orders nothing). For event
+    /// computations along an animation (`aspect-bake`).
     #[must_use]
-    pub fn node_rows(&self) -> &[[f64; 4]] {
-        &self.plane_rows
+    pub fn node_planes(&self) -> &[Plane] {
+        &self.node_planes
     }
 
-    /// The pieces' planes as `[nx, ny, nz, offset]`, exactly the rows whose facing value
-    /// decides culling and, within convex leaves, facing-away-first order in [`Bsp`]'s sort.
+    /// The pieces' planes, exactly those whose facing value decides culling and, within
+    /// convex leaves, facing-away-first order in [`Bsp`]'s sort.
     #[must_use]
-    pub fn piece_rows(&self) -> &[[f64; 4]] {
-        &self.piece_rows
+    pub fn piece_planes(&self) -> &[Plane] {
+        self.pieces.planes()
     }
 
     /// Number of fragments (pieces, some cut in parts).
@@ -359,11 +362,13 @@ impl BspTree {
     /// Heap bytes of the tree.
     #[must_use]
     pub fn heap_bytes(&self) -> usize {
-        (self.plane_rows.capacity() + self.piece_rows.capacity()) * size_of::<[f64; 4]>()
+        self.node_planes.capacity() * size_of::<Plane>()
+            + self.piece_rows.capacity() * size_of::<[f64; 4]>()
             + self.fragment_face.capacity() * 8
             + self.nodes.capacity() * size_of::<Node>()
             + self.fragments.heap_bytes()
-            + (self.whole.capacity() + self.fragments_of.capacity()) * 4
+            + self.whole.capacity() * 8
+            + self.fragments_of.capacity() * 4
             + self.inners.capacity() * size_of::<Inner>()
             + self.leaf_runs.capacity() * size_of::<LeafRun>()
             + self.spheres.capacity() * size_of::<[f64; 4]>()
@@ -371,8 +376,10 @@ impl BspTree {
 
     /// The inner nodes' plane rows `[nx, ny, nz, offset]`, in the numbering that
     /// [`order_for_sides`](Self::order_for_sides) reads (convex leaves need no side).
-    pub(crate) fn inner_rows(&self) -> Vec<[f64; 4]> {
-        self.inners.iter().map(|inner| inner.row).collect()
+    pub(crate) fn inner_planes(&self) -> Vec<Plane> {
+        (self.inners.iter())
+            .map(|inner| self.node_planes[inner.node as usize])
+            .collect()
     }
 
     /// Every fragment (indices into [`fragments`](Self::fragments)), back faces included, in
@@ -384,7 +391,7 @@ impl BspTree {
         if self.nodes.is_empty() {
             return;
         }
-        let mut inner_of = vec![NONE; self.nodes.len()];
+        let mut inner_of = vec![0u32; self.nodes.len()];
         for (k, inner) in self.inners.iter().enumerate() {
             inner_of[inner.node as usize] = k as u32;
         }
@@ -411,11 +418,11 @@ impl BspTree {
                         (node.front_child, node.back_child)
                     };
                     // Pushed in reverse: `first` subtree, own fragments, `second` subtree.
-                    if second != NONE {
+                    if let Some(second) = second.get() {
                         stack.push(Task::Node(second));
                     }
                     stack.push(own);
-                    if first != NONE {
+                    if let Some(first) = first.get() {
                         stack.push(Task::Node(first));
                     }
                 }
@@ -428,7 +435,7 @@ impl BspTree {
 /// leaves.
 fn pass_layout(nodes: &[Node], planes: &[Plane]) -> (Vec<Inner>, Vec<LeafRun>) {
     let absent = nodes.len() as u32;
-    let child = |c: u32| if c == NONE { absent } else { c };
+    let child = |c: NodeId| c.get().unwrap_or(absent);
     let (mut inners, mut leaves) = (Vec::new(), Vec::new());
     for (k, (node, plane)) in nodes.iter().zip(planes).enumerate() {
         if node.leaf {
@@ -729,11 +736,12 @@ impl Bsp {
                     (culled, inside) = (side == Some(false), side == Some(true));
                 }
                 self.node_culled[k] = culled;
-                for child in [node.front_child, node.back_child] {
-                    if child != NONE {
-                        self.node_culled[child as usize] = culled;
-                        self.node_inside[child as usize] = inside;
-                    }
+                for child in [node.front_child, node.back_child]
+                    .into_iter()
+                    .filter_map(NodeId::get)
+                {
+                    self.node_culled[child as usize] = culled;
+                    self.node_inside[child as usize] = inside;
                 }
             }
         }

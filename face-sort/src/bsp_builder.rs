@@ -5,7 +5,8 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 use glam::DVec3;
 
-use crate::bsp::{NONE, Node};
+use crate::bsp::Node;
+use crate::ids::NodeId;
 use crate::plane::{Plane, Side};
 use crate::polygon::split_polygon;
 use crate::{BspOptions, PolygonSet};
@@ -154,22 +155,21 @@ fn assemble(top: Built, subtrees: &[Built], depth: usize) -> Built {
         fragment_piece: Vec::new(),
         depth,
     };
-    let item_of = |child: u32| match child {
-        NONE => None,
+    let item_of = |child: NodeId| match child.get()? {
         c if c & DEFERRED != 0 => Some(Item::Subtree((c & !DEFERRED) as usize)),
         c => Some(Item::Top(c)),
     };
-    // Each item with the slot of its parent's child pointer (`NONE`: the root).
-    let mut stack = vec![(Item::Top(0), NONE, false)];
+    // Each item with the slot of its parent's child pointer (`None`: the root).
+    let mut stack = vec![(Item::Top(0), None, false)];
     while let Some((item, parent, is_front)) = stack.pop() {
         let index = out.nodes.len() as u32;
-        if parent != NONE {
-            let parent = &mut out.nodes[parent as usize];
+        if let Some(parent) = parent {
+            let parent: &mut Node = &mut out.nodes[parent as usize];
             *(if is_front {
                 &mut parent.front_child
             } else {
                 &mut parent.back_child
-            }) = index;
+            }) = NodeId::new(index);
         }
         match item {
             Item::Top(k) => {
@@ -181,18 +181,18 @@ fn assemble(top: Built, subtrees: &[Built], depth: usize) -> Built {
                 out.planes.push(top.planes[k as usize]);
                 out.nodes.push(Node {
                     first,
-                    front_child: NONE,
-                    back_child: NONE,
+                    front_child: NodeId::NONE,
+                    back_child: NodeId::NONE,
                     ..node
                 });
                 // Back pushed first: the front subtree comes first in pre-order.
-                stack.extend(item_of(node.back_child).map(|c| (c, index, false)));
-                stack.extend(item_of(node.front_child).map(|c| (c, index, true)));
+                stack.extend(item_of(node.back_child).map(|c| (c, Some(index), false)));
+                stack.extend(item_of(node.front_child).map(|c| (c, Some(index), true)));
             }
             Item::Subtree(d) => {
                 let sub = &subtrees[d];
                 let first = out.fragments.len() as u32;
-                let moved = |c: u32| if c == NONE { NONE } else { c + index };
+                let moved = |c: NodeId| c.get().map_or(NodeId::NONE, |c| NodeId::new(c + index));
                 out.nodes.extend(sub.nodes.iter().map(|node| Node {
                     first: node.first + first,
                     front_child: moved(node.front_child),
@@ -225,7 +225,7 @@ fn fill_sizes(nodes: &mut [Node]) {
     let mut size = vec![0u32; nodes.len()];
     for k in (0..nodes.len()).rev() {
         let node = nodes[k];
-        let child_size = |c: u32| if c == NONE { 0 } else { size[c as usize] };
+        let child_size = |c: NodeId| c.get().map_or(0, |c| size[c as usize]);
         nodes[k].front_size = child_size(node.front_child);
         nodes[k].back_size = child_size(node.back_child);
         size[k] = node.same + node.opposite + nodes[k].front_size + nodes[k].back_size;
@@ -262,7 +262,8 @@ struct Builder<'a> {
 
 struct Task {
     polygons: Vec<u32>,
-    parent: u32,
+    /// The node whose child slot this task fills (`None`: the root).
+    parent: Option<u32>,
     is_front: bool,
     depth: usize,
     /// Peels of `polygons` found while scoring an ancestor: each splits this set without
@@ -287,7 +288,7 @@ impl Task {
     fn root(polygons: Vec<u32>) -> Vec<Task> {
         vec![Task {
             polygons,
-            parent: NONE,
+            parent: None,
             is_front: false,
             depth: 1,
             peels: Vec::new(),
@@ -360,7 +361,7 @@ impl<'a> Builder<'a> {
         let local = |p: u32| ids.binary_search(&p).ok().map(|i| i as u32);
         let root = Task {
             polygons: task.polygons.iter().filter_map(|&p| local(p)).collect(),
-            parent: NONE,
+            parent: None,
             is_front: false,
             depth: task.depth,
             // Every peel is one of the task's polygons (`build_tasks` hands down only those
@@ -406,12 +407,12 @@ impl<'a> Builder<'a> {
                 Some(deferred) => DEFERRED | deferred.len() as u32,
                 None => self.out.nodes.len() as u32,
             };
-            if task.parent != NONE {
-                let parent = &mut self.out.nodes[task.parent as usize];
+            if let Some(parent) = task.parent {
+                let parent = &mut self.out.nodes[parent as usize];
                 if task.is_front {
-                    parent.front_child = index;
+                    parent.front_child = NodeId::new(index);
                 } else {
-                    parent.back_child = index;
+                    parent.back_child = NodeId::new(index);
                 }
             }
             if let Some(deferred) = deferred {
@@ -433,8 +434,8 @@ impl<'a> Builder<'a> {
                     first,
                     same: task.polygons.len() as u32,
                     opposite: 0,
-                    front_child: NONE,
-                    back_child: NONE,
+                    front_child: NodeId::NONE,
+                    back_child: NodeId::NONE,
                     front_size: 0,
                     back_size: 0,
                     leaf: true,
@@ -446,7 +447,7 @@ impl<'a> Builder<'a> {
             let (plane, same, opposite, front, back) = loop {
                 let (splitter, plane, peel) = match peels.pop() {
                     Some(peel) => (
-                        peel.polygon,
+                        Some(peel.polygon),
                         *self.work.plane(peel.polygon as usize),
                         Some(peel),
                     ),
@@ -463,21 +464,21 @@ impl<'a> Builder<'a> {
                         rest_in_front,
                         ..
                     }) => {
-                        let rest = task.polygons.iter().copied().filter(|&p| p != splitter);
-                        let rest: Vec<u32> = rest.collect();
+                        let rest = task.polygons.iter().copied();
+                        let rest: Vec<u32> = rest.filter(|&p| Some(p) != splitter).collect();
                         let (front, back) = if rest_in_front {
                             (rest, Vec::new())
                         } else {
                             (Vec::new(), rest)
                         };
-                        (vec![splitter], Vec::new(), front, back)
+                        (splitter.into_iter().collect(), Vec::new(), front, back)
                     }
                     _ => self.partition(&task.polygons, splitter, &plane)?,
                 };
                 // A median plane (scored on a sample) that leaves every polygon on one side
                 // would be chosen again for the same set: take a face plane instead, which
                 // always keeps at least its own polygon.
-                let stuck = splitter == NONE
+                let stuck = splitter.is_none()
                     && same.is_empty()
                     && opposite.is_empty()
                     && (front.is_empty() || back.is_empty());
@@ -496,8 +497,8 @@ impl<'a> Builder<'a> {
                 first,
                 same: same.len() as u32,
                 opposite: opposite.len() as u32,
-                front_child: NONE,
-                back_child: NONE,
+                front_child: NodeId::NONE,
+                back_child: NodeId::NONE,
                 front_size: 0,
                 back_size: 0,
                 leaf: false,
@@ -519,14 +520,14 @@ impl<'a> Builder<'a> {
             };
             stack.push(Task {
                 polygons: back,
-                parent: index,
+                parent: Some(index),
                 is_front: false,
                 depth: task.depth + 1,
                 peels: back_peels,
             });
             stack.push(Task {
                 polygons: front,
-                parent: index,
+                parent: Some(index),
                 is_front: true,
                 depth: task.depth + 1,
                 peels: front_peels,
@@ -536,19 +537,19 @@ impl<'a> Builder<'a> {
     }
 
     /// The polygons on `plane` (facing its way, and the other way), in front of it and
-    /// behind it, those spanning it split; `splitter` (or `NONE`) is on it by definition.
+    /// behind it, those spanning it split; `splitter` (if any) is on it by definition.
     /// `Err` when the splits exceed the fragment budget.
     #[allow(clippy::type_complexity)]
     fn partition(
         &mut self,
         polygons: &[u32],
-        splitter: u32,
+        splitter: Option<u32>,
         plane: &Plane,
     ) -> Result<(Vec<u32>, Vec<u32>, Vec<u32>, Vec<u32>), ()> {
         let (mut same, mut opposite, mut front, mut back) =
             (Vec::new(), Vec::new(), Vec::new(), Vec::new());
         for &p in polygons {
-            let side = if p == splitter {
+            let side = if Some(p) == splitter {
                 Side::On
             } else {
                 self.side(plane, p)
@@ -665,7 +666,7 @@ impl<'a> Builder<'a> {
     }
 
     /// The best candidate splitter by score: evenly spread polygons of the set and, for
-    /// large sets and with `median`, the median plane ([`MEDIAN_CANDIDATE_MIN`]); `NONE` for
+    /// large sets and with `median`, the median plane ([`MEDIAN_CANDIDATE_MIN`]); `None` for
     /// the median plane. The spheres are finite (a geometry's positions are), so each
     /// polygon scored lands in exactly one side's count, as in [`side`](Self::side).
     /// When the best is a peel (every other polygon scored strictly on one side of its plane),
@@ -676,10 +677,10 @@ impl<'a> Builder<'a> {
         polygons: &[u32],
         peels: &mut Vec<Peel>,
         median: bool,
-    ) -> (u32, Plane) {
+    ) -> (Option<u32>, Plane) {
         let n = polygons.len();
         if n <= 2 {
-            return (polygons[0], *self.work.plane(polygons[0] as usize));
+            return (Some(polygons[0]), *self.work.plane(polygons[0] as usize));
         }
         let candidates = self.options.candidates.max(1).min(n);
         let sample = self.options.score_sample.max(1).min(n);
@@ -701,7 +702,7 @@ impl<'a> Builder<'a> {
         // Per side (in `Side`'s order: front, back, on, spanning): first by the spheres alone
         // without a branch, then the polygons near the plane corner by corner.
         // On every `stride`-th polygon scored.
-        let mut count = |plane: &Plane, candidate: u32, stride: usize| {
+        let mut count = |plane: &Plane, candidate: Option<u32>, stride: usize| {
             let mut count = [0usize; 4];
             let mut nears = 0;
             let (normal, offset) = (plane.normal(), plane.offset());
@@ -714,7 +715,7 @@ impl<'a> Builder<'a> {
             }
             for &k in &near[..nears] {
                 let p = scored[k as usize].0;
-                if p != candidate {
+                if Some(p) != candidate {
                     let side = plane.side_of_polygon(self.work.corners(p as usize), self.tolerance);
                     count[side as usize] += 1;
                 }
@@ -726,7 +727,7 @@ impl<'a> Builder<'a> {
         };
         let mut best = (
             f64::INFINITY,
-            polygons[0],
+            Some(polygons[0]),
             *self.work.plane(polygons[0] as usize),
         );
         // The candidates: every polygon of a small set; otherwise the `candidates` best of
@@ -742,16 +743,16 @@ impl<'a> Builder<'a> {
             for c in 0..wide {
                 let candidate = polygons[(c * n) / wide + (n / wide) / 2];
                 let plane = *self.work.plane(candidate as usize);
-                chosen.push((score(count(&plane, candidate, stride)), candidate));
+                chosen.push((score(count(&plane, Some(candidate), stride)), candidate));
             }
             chosen.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
             chosen.truncate(candidates);
         }
         for &(_, candidate) in &chosen {
             let plane = *self.work.plane(candidate as usize);
-            let sides = count(&plane, candidate, 1);
+            let sides = count(&plane, Some(candidate), 1);
             if score(sides) < best.0 {
-                best = (score(sides), candidate, plane);
+                best = (score(sides), Some(candidate), plane);
             }
             let [front, back, on, splits] = sides;
             if on == 0 && splits == 0 && (front == 0 || back == 0) {
@@ -764,14 +765,14 @@ impl<'a> Builder<'a> {
         }
         if median && n >= MEDIAN_CANDIDATE_MIN {
             let plane = self.median_plane(polygons);
-            let sides = count(&plane, NONE, 1);
+            let sides = count(&plane, None, 1);
             if score(sides) < best.0 {
-                best = (score(sides), NONE, plane);
+                best = (score(sides), None, plane);
             }
         }
         // Only when the best is a peel; it is drawn from the list, the others stay.
-        if peels.iter().any(|peel| peel.polygon == best.1) {
-            peels.retain(|peel| peel.polygon != best.1);
+        if peels.iter().any(|peel| Some(peel.polygon) == best.1) {
+            peels.retain(|peel| Some(peel.polygon) != best.1);
         } else {
             peels.clear();
         }

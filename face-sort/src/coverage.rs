@@ -23,12 +23,10 @@
 
 use glam::DVec2;
 
+use crate::ids::PieceId;
 use crate::polygon::{Box2, edges, signed_area_2d};
 use crate::polygon_set::PolygonSet;
 use crate::screen_grid::GridFrame;
-
-/// "No neighbour" in [`EdgeNeighbours`].
-pub(crate) const NONE: u32 = u32::MAX;
 
 /// A cell's winding number where it is not constant or not known (above every `m ≤ 1`).
 const UNKNOWN_WINDING: i32 = i32::MAX;
@@ -43,8 +41,8 @@ pub(crate) struct EdgeNeighbours {
     /// Per piece, the index of its first edge in `across` (one more entry at the end).
     start: Vec<u32>,
     /// The consistently oriented neighbour across each edge (the same corners in the opposite
-    /// direction, bit for bit, on no third piece), or `NONE`.
-    across: Vec<u32>,
+    /// direction, bit for bit, on no third piece), or `PieceId::NONE`.
+    across: Vec<PieceId>,
 }
 
 impl EdgeNeighbours {
@@ -103,17 +101,17 @@ impl EdgeNeighbours {
                 let (a, b) = (vertex[c], vertex[next(c)]);
                 match (with(key(a, b)), with(key(b, a))) {
                     ([_], [(_, reverse)]) if piece_of[*reverse as usize] != piece_of[c] => {
-                        piece_of[*reverse as usize]
+                        PieceId::new(piece_of[*reverse as usize])
                     }
-                    _ => NONE,
+                    _ => PieceId::NONE,
                 }
             })
             .collect();
         EdgeNeighbours { start, across }
     }
 
-    /// The neighbours of piece `p`, one per edge (`NONE` where there is none).
-    pub(crate) fn of(&self, p: usize) -> &[u32] {
+    /// The neighbours of piece `p`, one per edge (`PieceId::NONE` where there is none).
+    pub(crate) fn of(&self, p: usize) -> &[PieceId] {
         &self.across[self.start[p] as usize..self.start[p + 1] as usize]
     }
 
@@ -197,7 +195,7 @@ impl Coverage {
     pub(crate) fn beside(&self, p: usize, q: usize) -> bool {
         self.turn[p] != 0
             && self.turn[p] == self.turn[q]
-            && self.neighbours.of(p).contains(&(q as u32))
+            && self.neighbours.of(p).contains(&PieceId::new(q as u32))
     }
 
     /// Files the boundary edges of this frame's drawn pieces, `drawn[j]` projecting to
@@ -236,8 +234,9 @@ impl Coverage {
                 // No area: its outline winds around no point, and no neighbour cancels it.
                 continue;
             }
-            let on_boundary = |q: u32| {
-                q == NONE || self.seen[q as usize] != frame || self.turn[q as usize] != turn
+            let on_boundary = |q: PieceId| {
+                q.get()
+                    .is_none_or(|q| self.seen[q as usize] != frame || self.turn[q as usize] != turn)
             };
             let across = self.neighbours.of(p);
             if !across.iter().any(|&q| on_boundary(q)) {
@@ -518,23 +517,24 @@ mod tests {
             }
             set
         };
+        let none = PieceId::NONE;
         let (a, b, c, d) = (v(0.0, 0.0), v(1.0, 0.0), v(1.0, 1.0), v(0.0, 1.0));
         let square = EdgeNeighbours::new(&set(&[&[a, b, c], &[a, c, d]]));
-        assert_eq!(square.of(0), &[NONE, NONE, 1]);
-        assert_eq!(square.of(1), &[0, NONE, NONE]);
+        assert_eq!(square.of(0), &[none, none, PieceId::new(1)]);
+        assert_eq!(square.of(1), &[PieceId::new(0), none, none]);
         // A third piece with the diagonal in the neighbour's direction: two candidates.
         let three = EdgeNeighbours::new(&set(&[&[a, b, c], &[a, c, d], &[a, c, v(2.0, 3.0)]]));
-        assert_eq!(three.of(0)[2], NONE);
+        assert_eq!(three.of(0)[2], none);
         // A copy of the diagonal in the piece's own direction.
         let same_way = EdgeNeighbours::new(&set(&[&[a, b, c], &[a, c, d], &[c, a, v(0.5, 2.0)]]));
-        assert_eq!(same_way.of(0)[2], NONE);
-        assert_eq!(same_way.of(1)[0], NONE);
+        assert_eq!(same_way.of(0)[2], none);
+        assert_eq!(same_way.of(1)[0], none);
         let nudged = v(0.0, f64::from_bits(1.0_f64.to_bits() + 1));
         let apart = EdgeNeighbours::new(&set(&[&[a, b, c], &[a, v(1.0, 1.0 + f64::EPSILON), d]]));
-        assert_eq!(apart.of(0), &[NONE, NONE, NONE]);
+        assert_eq!(apart.of(0), &[none, none, none]);
         let repeated = EdgeNeighbours::new(&set(&[&[a, b, b, c], &[a, c, nudged]]));
-        assert_eq!(repeated.of(0), &[NONE, NONE, NONE, 1]);
-        assert_eq!(repeated.of(1), &[0, NONE, NONE]);
+        assert_eq!(repeated.of(0), &[none, none, none, PieceId::new(1)]);
+        assert_eq!(repeated.of(1), &[PieceId::new(0), none, none]);
     }
 
     /// A repeated corner (a zero-length edge) separates nothing, in either winding; a

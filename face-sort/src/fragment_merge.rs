@@ -26,7 +26,6 @@ use std::ops::ControlFlow;
 
 use glam::DVec2;
 
-use crate::bsp::NONE;
 use crate::coverage::Coverage;
 use crate::polygon::{Box2, overlap_exceeds, separated_2d};
 use crate::polygon_set::PolygonSet;
@@ -46,9 +45,9 @@ const TEST_1_MAX_EDGES_PER_PIECE: f64 = 0.5;
 pub(crate) struct MergeInput<'a> {
     /// The pieces (centred model space).
     pub pieces: &'a PolygonSet,
-    /// Per piece, the index of its whole polygon in the draw list's set (the tree's `NONE`:
+    /// Per piece, the index of its whole polygon in the draw list's set (`None`:
     /// not split), and its number of fragments.
-    pub whole: &'a [u32],
+    pub whole: &'a [Option<u32>],
     pub fragments_of: &'a [u32],
     /// Per fragment, its face and piece.
     pub fragment_face: &'a [[u32; 2]],
@@ -133,7 +132,7 @@ impl FragmentMerge {
             self.count[p] += 1;
             // Only pieces with every fragment drawn: one culled off the image leaves part of
             // the piece unordered against what it would overlap there.
-            if self.count[p] == input.fragments_of[p] && input.whole[p] != NONE {
+            if self.count[p] == input.fragments_of[p] && input.whole[p].is_some() {
                 self.split.push(p as u32);
             }
             self.last[p] = i as u32;
@@ -148,9 +147,9 @@ impl FragmentMerge {
             let p = input.fragment_face[item.polygon as usize][1] as usize;
             if self.merged[p] != frame {
                 out.push(*item);
-            } else if self.last[p] == i as u32 {
+            } else if let Some(whole) = input.whole[p].filter(|_| self.last[p] == i as u32) {
                 out.push(DrawItem {
-                    polygon: input.whole[p],
+                    polygon: whole,
                     face: item.face,
                 });
             }

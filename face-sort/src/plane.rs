@@ -65,6 +65,17 @@ impl Plane {
         self.normal.dot(p) - self.offset
     }
 
+    /// The parallel plane through `point`: the same normal, bit for bit, and offset
+    /// `normal · point` (e.g. a polygon's plane through its first corner, as the sorters
+    /// cull).
+    #[must_use]
+    pub fn through(&self, point: DVec3) -> Self {
+        Plane {
+            normal: self.normal,
+            offset: self.normal.dot(point),
+        }
+    }
+
     /// The same plane facing the other way.
     #[must_use]
     pub fn flipped(&self) -> Self {

@@ -9,6 +9,9 @@ use crate::SpriteTransform;
 pub struct SpriteId(pub u32);
 
 impl SpriteId {
+    /// The one invalid value: "no sprite" in a table of ids.
+    pub const NONE: SpriteId = SpriteId(u32::MAX);
+
     /// The id as an index.
     #[must_use]
     pub fn index(self) -> usize {

@@ -7,35 +7,34 @@ use crate::{Compositor, SpriteId};
 pub(crate) struct StackMirror {
     /// Sprites bottom first (every sprite, shown or hidden).
     stack: Vec<SpriteId>,
-    /// Position of each sprite in `stack` (`u32::MAX`: not in the stack).
-    position: Vec<u32>,
+    /// Position of each sprite in `stack` (`None`: not in the stack).
+    position: Vec<Option<u32>>,
     // Reused buffers.
     ranks: Vec<u32>,
     tails: Vec<u32>,
-    previous: Vec<u32>,
+    previous: Vec<Option<u32>>,
     keep: Vec<bool>,
     moved: Vec<bool>,
-    in_sequence: Vec<u32>,
+    in_sequence: Vec<Option<u32>>,
     next_stack: Vec<SpriteId>,
 }
-
-const NONE: u32 = u32::MAX;
 
 impl StackMirror {
     /// Adds a sprite on top (what `create_sprite` does).
     pub fn push(&mut self, id: SpriteId) {
         if self.position.len() <= id.index() {
-            self.position.resize(id.index() + 1, NONE);
+            self.position.resize(id.index() + 1, None);
         }
-        self.position[id.index()] = self.stack.len() as u32;
+        self.position[id.index()] = Some(self.stack.len() as u32);
         self.stack.push(id);
     }
 
     /// Reserves room for `n` sprites in every buffer (so that later frames do not allocate).
     pub fn reserve(&mut self, n: usize) {
-        for v in [&mut self.ranks, &mut self.tails, &mut self.previous] {
+        for v in [&mut self.ranks, &mut self.tails] {
             v.reserve(n.saturating_sub(v.len()));
         }
+        self.previous.reserve(n.saturating_sub(self.previous.len()));
         self.keep.reserve(n.saturating_sub(self.keep.len()));
         self.moved.reserve(n.saturating_sub(self.moved.len()));
         self.in_sequence
@@ -46,18 +45,16 @@ impl StackMirror {
 
     /// Removes a sprite (what `destroy_sprite` does).
     pub fn remove(&mut self, id: SpriteId) {
-        if let Some(&p) = self.position.get(id.index())
-            && p != NONE
-        {
+        if let Some(&Some(p)) = self.position.get(id.index()) {
             self.stack.remove(p as usize);
-            self.position[id.index()] = NONE;
+            self.position[id.index()] = None;
             self.reindex();
         }
     }
 
     fn reindex(&mut self) {
         for (i, id) in self.stack.iter().enumerate() {
-            self.position[id.index()] = i as u32;
+            self.position[id.index()] = Some(i as u32);
         }
     }
 
@@ -74,8 +71,9 @@ impl StackMirror {
     pub fn reorder(&mut self, sequence: &[SpriteId], compositor: &mut dyn Compositor) -> usize {
         let n = sequence.len();
         self.ranks.clear();
-        self.ranks
-            .extend(sequence.iter().map(|id| self.position[id.index()]));
+        // Every shown sprite is in the stack; one that were not would rank last.
+        let rank = |id: &SpriteId| self.position[id.index()].unwrap_or(u32::MAX);
+        self.ranks.extend(sequence.iter().map(rank));
         longest_increasing(
             &self.ranks,
             &mut self.tails,
@@ -100,9 +98,9 @@ impl StackMirror {
         self.moved.clear();
         self.moved.resize(len, false);
         self.in_sequence.clear();
-        self.in_sequence.resize(len, NONE);
+        self.in_sequence.resize(len, None);
         for (i, id) in sequence.iter().enumerate() {
-            self.in_sequence[id.index()] = i as u32;
+            self.in_sequence[id.index()] = Some(i as u32);
             self.moved[id.index()] = !self.keep[i];
         }
         self.next_stack.clear();
@@ -110,8 +108,7 @@ impl StackMirror {
             if self.moved[id.index()] {
                 continue;
             }
-            let k = self.in_sequence[id.index()];
-            if k != NONE {
+            if let Some(k) = self.in_sequence[id.index()] {
                 let k = k as usize;
                 let mut j = k;
                 while j > 0 && !self.keep[j - 1] {
@@ -136,19 +133,19 @@ impl StackMirror {
 fn longest_increasing(
     values: &[u32],
     tails: &mut Vec<u32>,
-    previous: &mut Vec<u32>,
+    previous: &mut Vec<Option<u32>>,
     keep: &mut Vec<bool>,
 ) {
     tails.clear();
     previous.clear();
-    previous.resize(values.len(), NONE);
+    previous.resize(values.len(), None);
     keep.clear();
     keep.resize(values.len(), false);
     for (i, &v) in values.iter().enumerate() {
         // First tail whose value is ≥ v.
         let at = tails.partition_point(|&t| values[t as usize] < v);
         if at > 0 {
-            previous[i] = tails[at - 1];
+            previous[i] = Some(tails[at - 1]);
         }
         if at == tails.len() {
             tails.push(i as u32);
@@ -156,10 +153,10 @@ fn longest_increasing(
             tails[at] = i as u32;
         }
     }
-    let mut i = tails.last().copied().unwrap_or(NONE);
-    while i != NONE {
-        keep[i as usize] = true;
-        i = previous[i as usize];
+    let mut i = tails.last().copied();
+    while let Some(k) = i {
+        keep[k as usize] = true;
+        i = previous[k as usize];
     }
 }
 

@@ -301,7 +301,10 @@ pub(crate) fn write_data(
         let _ = write!(
             page,
             "[\"{}\",\"{}\"],",
-            base64_f64(core.planes.iter().flatten().copied()),
+            base64_f64(core.planes.iter().flat_map(|p| {
+                let n = p.normal();
+                [n.x, n.y, n.z, p.offset()]
+            })),
             base64_ids(core.orders.iter().flatten().copied(), wide)
         );
     }

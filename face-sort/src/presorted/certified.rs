@@ -7,7 +7,7 @@ use glam::DVec3;
 
 use super::region::Region;
 use super::{CORE, NodeKind, Presorted};
-use crate::{DrawList, PolygonSet, View};
+use crate::{DrawList, Plane, PolygonSet, View};
 
 /// Most planes of a cycle's BSP tree whose side varies over a region's viewers, which
 /// [`CertifiedOrders`] enumerates (a cycle's orders number `2^planes`).
@@ -41,10 +41,10 @@ pub struct CertifiedRegion {
 /// A cycle's orders: a BSP tree of its own pieces, flattened for every side of its planes.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CoreOrders {
-    /// Plane rows `[nx, ny, nz, offset]` in centred model space. Bit `k` of a viewer's key is
-    /// set when it is on or in front of plane `k`: `n · e − offset ≥ 0` for an eye `e`,
-    /// `n · u ≥ 0` for an orthographic direction `u`.
-    pub planes: Vec<[f64; 4]>,
+    /// Planes in centred model space. Bit `k` of a viewer's key is set when it is on or in
+    /// front of plane `k`: `n · e − offset ≥ 0` for an eye `e`, `n · u ≥ 0` for an
+    /// orthographic direction `u`.
+    pub planes: Vec<Plane>,
     /// Per key (`2^planes.len()` of them), the cycle's pieces (indices into
     /// [`CertifiedOrders::pieces`]) in paint order, back faces included: exact for every
     /// viewer with that key once the sink culls back faces.
@@ -138,12 +138,12 @@ impl CertifiedOrders {
         else {
             return;
         };
-        let side =
-            |row: &[f64; 4]| row[0] * point.x + row[1] * point.y + row[2] * point.z - w * row[3];
-        let mut draw = |p: u32| {
-            let plane = self.pieces.plane(p as usize);
+        let side = |plane: &Plane| {
             let n = plane.normal();
-            if side(&[n.x, n.y, n.z, plane.offset()]) > 0.0 {
+            n.x * point.x + n.y * point.y + n.z * point.z - w * plane.offset()
+        };
+        let mut draw = |p: u32| {
+            if side(self.pieces.plane(p as usize)) > 0.0 {
                 out.push(p, self.pieces.face(p as usize));
             }
         };
@@ -152,11 +152,9 @@ impl CertifiedOrders {
                 OrderStep::Piece(p) => draw(p),
                 OrderStep::Core(c) => {
                     let core = &self.cores[c as usize];
-                    let key = core
-                        .planes
-                        .iter()
-                        .enumerate()
-                        .fold(0, |key, (k, row)| key | usize::from(side(row) >= 0.0) << k);
+                    let key = core.planes.iter().enumerate().fold(0, |key, (k, plane)| {
+                        key | usize::from(side(plane) >= 0.0) << k
+                    });
                     for &p in &core.orders[key] {
                         draw(p);
                     }
@@ -339,8 +337,10 @@ impl Presorted {
         t: f64,
     ) -> Result<CoreOrders, CertifiedOrdersError> {
         let core = &self.cores[c];
-        let rows = core.tree.inner_rows();
-        let fixed: Vec<Option<bool>> = rows.iter().map(|row| side_over(row, region, t)).collect();
+        let rows = core.tree.inner_planes();
+        let fixed: Vec<Option<bool>> = (rows.iter())
+            .map(|plane| side_over(plane, region, t))
+            .collect();
         let free: Vec<usize> = (0..rows.len()).filter(|&k| fixed[k].is_none()).collect();
         if free.len() > MAX_CORE_PLANES {
             return Err(CertifiedOrdersError::CorePlanes { planes: free.len() });
@@ -370,9 +370,9 @@ impl Presorted {
 /// share one. Orthographic: `n · u` is linear over the triangle's cone, so its corners
 /// decide. An eye `t · u`: `n · u` lies within `|n|·cos(α ± ρ)` for the angle `α` between `n`
 /// and the triangle's centre and the triangle's angular radius `ρ`.
-fn side_over(row: &[f64; 4], region: &Region, t: f64) -> Option<bool> {
+fn side_over(plane: &Plane, region: &Region, t: f64) -> Option<bool> {
     let grown = region.grown();
-    let n = DVec3::new(row[0], row[1], row[2]);
+    let n = plane.normal();
     let (lo, hi) = if t.is_infinite() {
         let values = grown.corners.map(|c| n.dot(c));
         (
@@ -384,7 +384,7 @@ fn side_over(row: &[f64; 4], region: &Region, t: f64) -> Option<bool> {
         let alpha = (n.dot(m) / length).clamp(-1.0, 1.0).acos();
         let near = length * (alpha - rho).max(0.0).cos();
         let far = length * (alpha + rho).min(std::f64::consts::PI).cos();
-        (t * far - row[3], t * near - row[3])
+        (t * far - plane.offset(), t * near - plane.offset())
     };
     if lo > 0.0 {
         Some(true)

@@ -8,7 +8,8 @@ use face_sort::{Geometry, Plane, PolygonSet};
 use glam::DVec2;
 
 use super::State;
-use super::pool::NONE;
+use face_sort::PieceId;
+
 use crate::{Brush, Compositor, PieceMaps, SpriteId};
 
 /// The polygon → sprite mapping of the sorter's shared set and the per-frame slots.
@@ -16,8 +17,8 @@ use crate::{Brush, Compositor, PieceMaps, SpriteId};
 pub(super) struct FragmentSlots {
     /// The shared polygon set the mapping was built for.
     pub shared: Option<Arc<PolygonSet>>,
-    /// Sprite id of each polygon of the shared set (`NONE`: not drawn).
-    pub shared_to_sprite: Vec<u32>,
+    /// Sprite id of each polygon of the shared set (`SpriteId::NONE`: not drawn).
+    pub shared_to_sprite: Vec<SpriteId>,
     /// Sprites made for fragments of the shared set.
     pub shared_fragments: Vec<SpriteId>,
     /// Per-frame fragment slots, in use order.
@@ -102,10 +103,10 @@ impl State {
             self.fragments
                 .shared_to_sprite
                 .extend((0..pieces.len() as u32).map(|i| {
-                    if self.pool.sprites[i as usize].piece != NONE {
-                        i
+                    if self.pool.sprites[i as usize].piece.is_none() {
+                        SpriteId::NONE
                     } else {
-                        NONE
+                        SpriteId(i)
                     }
                 }));
         } else {
@@ -118,8 +119,8 @@ impl State {
                     _ => None,
                 };
                 let id = match whole {
-                    Some(p) if self.pool.sprites[p as usize].piece != NONE => p,
-                    Some(_) => NONE,
+                    Some(p) if !self.pool.sprites[p as usize].piece.is_none() => SpriteId(p),
+                    Some(_) => SpriteId::NONE,
                     None => match self.source_piece(face, shared.plane(i)) {
                         Some(piece)
                             if fragment_clip(
@@ -131,7 +132,7 @@ impl State {
                         {
                             let id = self.new_sprite_id(face, piece);
                             let sprite = &mut self.pool.sprites[id.index()];
-                            sprite.polygon = i as u32;
+                            sprite.polygon = Some(i as u32);
                             sprite.clip.clear();
                             sprite.clip.extend_from_slice(&self.fragments.clip_scratch);
                             sprite.has_clip = true;
@@ -139,9 +140,9 @@ impl State {
                             if self.started {
                                 self.create(id, out);
                             }
-                            id.0
+                            id
                         }
-                        _ => NONE,
+                        _ => SpriteId::NONE,
                     },
                 };
                 self.fragments.shared_to_sprite.push(id);
@@ -171,10 +172,10 @@ impl State {
         let id = self.fragments.transient[k];
         let maps = &self.maps;
         let sprite = &mut self.pool.sprites[id.index()];
-        if sprite.piece != piece
+        if sprite.piece != PieceId::new(piece)
             && let Some(map) = maps.get(piece as usize)
         {
-            sprite.piece = piece;
+            sprite.piece = PieceId::new(piece);
             out.set_transform(id, &map.transform);
         }
         if !sprite.has_clip || sprite.clip != self.fragments.clip_scratch {

@@ -13,14 +13,14 @@ mod stack;
 use std::sync::Arc;
 use std::time::Duration;
 
-use face_sort::{CullMode, DrawList, FaceSorter, Geometry, View};
+use face_sort::{CullMode, DrawList, FaceSorter, Geometry, PieceId, View};
 use glam::{DMat3, DMat4, DVec2};
 
 use crate::compositor::Counting;
 use crate::{Brush, Compositor, OpCounts, PieceMaps, SpriteId, SpriteTransform, root_transform};
 use dirty::Dirty;
 use fragments::{FragmentSlots, face_pieces, fragment_clip};
-use pool::{NONE, SpritePool, SpriteState};
+use pool::{SpritePool, SpriteState};
 use rotation::RotationInputs;
 pub use rotation::{RotationHandle, RotationSource};
 use stack::StackDiff;
@@ -293,7 +293,11 @@ impl State {
         self.pool.sprites.clear();
         for i in 0..pieces.len() {
             let has_map = self.maps.get(i).is_some();
-            let piece = if has_map { i as u32 } else { NONE };
+            let piece = if has_map {
+                PieceId::new(i as u32)
+            } else {
+                PieceId::NONE
+            };
             self.pool
                 .sprites
                 .push(SpriteState::new(pieces.face(i), piece));
@@ -304,13 +308,13 @@ impl State {
         for k in 0..self.list.len() {
             let item = self.list.items()[k];
             if let Some(&id) = self.fragments.shared_to_sprite.get(item.polygon as usize)
-                && id != NONE
+                && id != SpriteId::NONE
             {
-                self.create(SpriteId(id), out);
+                self.create(id, out);
             }
         }
         for i in 0..self.pool.sprites.len() {
-            if self.pool.sprites[i].piece != NONE && !self.pool.sprites[i].alive {
+            if !self.pool.sprites[i].piece.is_none() && !self.pool.sprites[i].alive {
                 self.create(SpriteId(i as u32), out);
             }
         }
@@ -342,16 +346,15 @@ impl State {
                         if ok {
                             transient_used += 1;
                             self.transient_slot(transient_used - 1, item.face, piece, out)
-                                .0
                         } else {
-                            NONE
+                            SpriteId::NONE
                         }
                     }
-                    None => NONE,
+                    None => SpriteId::NONE,
                 }
             };
-            if id != NONE {
-                self.stack.push(id, self.pool.sprites.len());
+            if id != SpriteId::NONE {
+                self.stack.push(id.0, self.pool.sprites.len());
             }
         }
         self.stack.finish(&mut self.pool.sprites, out);
@@ -368,16 +371,16 @@ impl State {
                 continue;
             }
             let is_piece = i < piece_count;
-            let shared_fragment = shared
-                .as_ref()
-                .filter(|_| !is_piece && sprite.polygon != NONE)
-                .map(|set| set.corners(sprite.polygon as usize));
+            let shared_fragment = (shared.as_ref())
+                .filter(|_| !is_piece)
+                .zip(sprite.polygon)
+                .map(|(set, polygon)| set.corners(polygon as usize));
             if !is_piece && shared_fragment.is_none() {
                 // A per-frame fragment slot: force a resend when it is next used.
-                self.pool.sprites[i].piece = NONE - 1;
+                self.pool.sprites[i].piece = PieceId::NONE;
                 continue;
             }
-            let Some(map) = self.maps.get(sprite.piece as usize) else {
+            let Some(map) = sprite.piece.get().and_then(|p| self.maps.get(p as usize)) else {
                 continue;
             };
             let id = SpriteId(i as u32);
@@ -431,10 +434,8 @@ impl<C: Compositor> SpritePainter<C> {
             .sprites
             .get(id.index())
             .filter(|s| s.alive)?;
-        self.state
-            .maps
-            .get(sprite.piece as usize)
-            .map(|m| &m.transform)
+        let piece = sprite.piece.get()?;
+        self.state.maps.get(piece as usize).map(|m| &m.transform)
     }
 }
 

@@ -1,25 +1,24 @@
 //! The sprite id pool: one sprite per piece, shared fragment and per-frame fragment slot,
 //! ids reused after a destroy, and the operations that create and destroy sprites.
 
+use face_sort::PieceId;
 use glam::DVec2;
 
 use super::State;
 use crate::{Brush, Compositor, SpriteId};
-
-/// An unused index (no piece, no polygon).
-pub(super) const NONE: u32 = u32::MAX;
 
 /// What the painter last sent for one sprite.
 #[derive(Clone, Debug)]
 pub(super) struct SpriteState {
     pub alive: bool,
     pub face: u32,
-    /// Source piece (its transform), `NONE` for a free id.
-    pub piece: u32,
+    /// Source piece (its transform); `PieceId::NONE` for a free id, and for a per-frame
+    /// fragment slot whose transform must be sent again.
+    pub piece: PieceId,
     pub visible: bool,
     pub brush: Brush,
-    /// Index in the shared polygon set for a shared fragment, else `NONE`.
-    pub polygon: u32,
+    /// Index in the shared polygon set for a shared fragment.
+    pub polygon: Option<u32>,
     /// Clip polygon in unit-square coordinates; `has_clip == false`: the whole square.
     pub clip: Vec<DVec2>,
     pub has_clip: bool,
@@ -27,14 +26,14 @@ pub(super) struct SpriteState {
 
 impl SpriteState {
     /// A sprite of `face` drawn with `piece`'s transform, not yet created.
-    pub fn new(face: u32, piece: u32) -> Self {
+    pub fn new(face: u32, piece: PieceId) -> Self {
         SpriteState {
             alive: false,
             face,
             piece,
             visible: false,
             brush: Brush::Palette,
-            polygon: NONE,
+            polygon: None,
             clip: Vec::new(),
             has_clip: false,
         }
@@ -64,7 +63,7 @@ impl State {
         if sprite.alive {
             return;
         }
-        let Some(map) = self.maps.get(sprite.piece as usize) else {
+        let Some(map) = sprite.piece.get().and_then(|p| self.maps.get(p as usize)) else {
             return;
         };
         sprite.alive = true;
@@ -93,7 +92,7 @@ impl State {
     }
 
     pub(super) fn new_sprite_id(&mut self, face: u32, piece: u32) -> SpriteId {
-        let state = SpriteState::new(face, piece);
+        let state = SpriteState::new(face, PieceId::new(piece));
         if let Some(id) = self.pool.free_ids.pop() {
             self.pool.sprites[id as usize] = state;
             SpriteId(id)
@@ -111,7 +110,7 @@ impl State {
         }
         sprite.alive = false;
         sprite.visible = false;
-        sprite.piece = NONE;
+        sprite.piece = PieceId::NONE;
         self.pool.free_ids.push(id.0);
     }
 }
