@@ -2,7 +2,8 @@
 
 use std::sync::Arc;
 
-use face_sort::PolygonSet;
+use face_sort::sorter_api::DrawListWriter;
+use face_sort::{DrawList, PolygonSet};
 
 use crate::axis::Axis;
 use crate::event::EventFn;
@@ -325,6 +326,28 @@ impl Bake {
             .map(|b| b.degrees)
             .filter(|&e| !mine.iter().any(|&m| distance(m, e) <= tolerance_deg))
             .collect()
+    }
+}
+
+/// Cell `cell`'s whole order as a draw list whose sink culls
+/// ([`DrawList::set_sink_culls`]): what every consumer paints or judges at any angle of
+/// the cell, skipping the pieces the view does not draw.
+pub fn cell_list(bake: &Bake, cell: usize, list: &mut DrawList) {
+    cell_list_where(bake, cell, list, |_| true);
+}
+
+/// Cell `cell`'s order, the pieces `keep` accepts, as a draw list whose sink culls.
+pub(crate) fn cell_list_where(
+    bake: &Bake,
+    cell: usize,
+    list: &mut DrawList,
+    keep: impl Fn(u32) -> bool,
+) {
+    let set = &bake.polygons;
+    list.begin(set);
+    list.set_sink_culls(true);
+    for &p in bake.cells[cell].order.iter().filter(|&&p| keep(p)) {
+        list.push(p, set.face(p as usize));
     }
 }
 

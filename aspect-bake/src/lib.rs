@@ -88,6 +88,7 @@ mod build;
 mod cells;
 mod event;
 mod picture;
+mod rows;
 #[cfg(feature = "serde")]
 mod serde_impl;
 mod source;
@@ -97,15 +98,15 @@ mod verify;
 
 pub use axis::{Axis, Spin};
 pub use build::{BakeOptions, Progress, bake, bake_sampled};
-pub use cells::{AngleRange, Bake, BakeCell, Breakpoint, Delta, Method, Sizes, cell_bytes};
-pub use event::{EventFn, Roots, reduce};
-pub use picture::{
-    PictureOptions, PictureStats, bake_picture, cell_list, drawn_lists, verify_picture,
+pub use cells::{
+    AngleRange, Bake, BakeCell, Breakpoint, Delta, Method, Sizes, cell_bytes, cell_list,
 };
+pub use event::{EventFn, Roots, reduce};
+pub use picture::{PictureOptions, PictureStats, bake_picture, drawn_lists, verify_picture};
+pub use rows::{EventCircle, Row};
 pub use source::{BspSource, CentroidSource, Event, EventSource};
 pub use two_axes::{
-    Curve, EventCircle, Row, Slab, TwoAxisBake, TwoAxisOptions, Verify2Error, Verify2Report,
-    YawPitch, bake_two_axes, verify_two_axes,
+    Curve, Slab, TwoAxisBake, TwoAxisOptions, YawPitch, bake_two_axes, verify_two_axes,
 };
 pub use verify::{VerifyError, VerifyReport, verify};
 

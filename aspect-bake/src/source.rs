@@ -11,8 +11,8 @@ use glam::DVec3;
 use crate::BakeError;
 use crate::axis::Spin;
 use crate::event::{EventFn, Roots};
+use crate::rows::Row;
 use crate::tolerance::SAME_ROOT_RAD;
-use crate::two_axes::Row;
 
 /// A sign change of an event function at `theta` (radians).
 #[derive(Clone, Copy, Debug, PartialEq)]

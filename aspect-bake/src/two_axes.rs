@@ -38,7 +38,7 @@ use std::f64::consts::TAU;
 use std::sync::Arc;
 use web_time::Instant;
 
-use face_sort::{DrawList, Plane, PolygonSet, Projection, View};
+use face_sort::{DrawList, PolygonSet, View};
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -46,56 +46,16 @@ use crate::BakeError;
 use crate::build::{BLOCK, check_range, lists_at, refuse_cull_margin};
 use crate::cells::cell_bytes;
 use crate::event::{EventFn, Roots, reduce};
+use crate::rows::EventCircle;
 use crate::source::EventSource;
 use crate::tolerance::{
     CHART_POLE, CONTINUE_GAP_RAD, IDENTICALLY_ZERO, PARALLEL_SIN, ROOT_NOISE, SAME_ROOT_RAD,
     VERIFY_MIN_GAP_RAD, VERIFY_MIN_SIDE_RAD,
 };
 use crate::verify::{
-    INTERIOR_MARGIN, SLAB_PITCH_MARGIN, cell_state, changes_sign, inside, same_order, side_of, unit,
+    INTERIOR_MARGIN, SLAB_PITCH_MARGIN, VerifyError, VerifyReport, cell_state, changes_sign,
+    inside, same_order, side_of, unit,
 };
-
-/// The event set `{d : normal·d = offset}` of one sign condition, `d` the unit vector toward
-/// the viewer in centred model space.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct EventCircle {
-    /// The condition's normal (any length).
-    pub normal: DVec3,
-    /// The constant.
-    pub offset: f64,
-}
-
-/// What a sorter's sign conditions are made of, for [`EventSource::rows`].
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Row {
-    /// A plane whose sign against the viewer decides a facing or a BSP side: `n·d`
-    /// orthographic, `n·eye − offset` perspective.
-    Facing(Plane),
-    /// A depth difference `n·d` (both projections).
-    Depth(DVec3),
-}
-
-impl Row {
-    /// The row's event circle under `template`'s projection and scale.
-    #[must_use]
-    pub fn circle(&self, template: &View) -> EventCircle {
-        match *self {
-            Row::Depth(n) => EventCircle {
-                normal: n,
-                offset: 0.0,
-            },
-            Row::Facing(plane) => EventCircle {
-                normal: plane.normal(),
-                offset: match template.projection() {
-                    Projection::Orthographic => 0.0,
-                    Projection::Perspective { distance } => {
-                        plane.offset() * template.scale() / distance
-                    }
-                },
-            },
-        }
-    }
-}
 
 /// The domain of a two-axis bake: yaw and pitch in degrees, roll fixed.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -725,45 +685,6 @@ pub fn bake_two_axes(
     })
 }
 
-/// What [`verify_two_axes`] checked.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Verify2Report {
-    /// Points inside cells compared with the live sorter (and located by `cell_at`).
-    pub interior_checks: usize,
-    /// Cell-bounding curves checked for a real sign change with the neighbouring lists.
-    pub curve_checks: usize,
-}
-
-/// Where a two-axis bake disagrees with the live sorter.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-pub enum Verify2Error {
-    /// Inside a cell the live list differs, or `cell_at` names another cell.
-    #[error("cell {cell} at yaw {yaw}°, pitch {pitch}°: {what}")]
-    Interior {
-        /// Cell index.
-        cell: usize,
-        /// Where, degrees.
-        yaw: f64,
-        /// Where, degrees.
-        pitch: f64,
-        /// What failed.
-        what: String,
-    },
-    /// A curve between two cells is not a sign change of its circle, or the lists on its two
-    /// sides are not the cells'.
-    #[error("curve {index} of slab {slab} at pitch {pitch}°: {what}")]
-    Curve {
-        /// Slab index.
-        slab: usize,
-        /// Curve index in the slab.
-        index: usize,
-        /// Where, degrees.
-        pitch: f64,
-        /// What failed.
-        what: String,
-    },
-}
-
 /// Checks a two-axis bake against the live sorter, cell by cell: at `per_cell` random points
 /// strictly inside each cell (a random gap of the cell, a random pitch of its slab, then a
 /// random yaw between the gap's curves at that pitch) the live list is the cell's and
@@ -778,7 +699,7 @@ pub fn verify_two_axes(
     source: &dyn EventSource,
     per_cell: usize,
     seed: u64,
-) -> Result<Verify2Report, Verify2Error> {
+) -> Result<VerifyReport, VerifyError> {
     let domain = bake.domain;
     let roll = domain.roll.to_radians();
     let mut gaps: Vec<Vec<(u32, u32)>> = vec![Vec::new(); bake.cells.len()];
@@ -787,7 +708,7 @@ pub fn verify_two_axes(
             gaps[cell as usize].push((s as u32, k as u32));
         }
     }
-    let results: Vec<Result<Verify2Report, Verify2Error>> = (0..bake.cells.len())
+    let results: Vec<Result<VerifyReport, VerifyError>> = (0..bake.cells.len())
         .into_par_iter()
         .map_init(
             || (source.sorter(), DrawList::new()),
@@ -797,7 +718,7 @@ pub fn verify_two_axes(
                     same_order(list, order)
                 };
                 let mut state = cell_state(seed, cell);
-                let mut report = Verify2Report::default();
+                let mut report = VerifyReport::default();
                 let mine = &gaps[cell];
                 let pick = |state: &mut u64| {
                     let (s, k) =
@@ -814,7 +735,7 @@ pub fn verify_two_axes(
                         continue;
                     }
                     let y = lo + (hi - lo) * inside(&mut state, INTERIOR_MARGIN);
-                    let fail = |what: &str| Verify2Error::Interior {
+                    let fail = |what: &str| VerifyError::InteriorPoint {
                         cell,
                         yaw: y.to_degrees(),
                         pitch: p.to_degrees(),
@@ -842,7 +763,7 @@ pub fn verify_two_axes(
                 }
                 let chart = Chart::of(&bake.circles[curve.circle as usize], roll);
                 let f = chart.at_pitch(p);
-                let fail = |what: String| Verify2Error::Curve {
+                let fail = |what: String| VerifyError::Curve {
                     slab: s,
                     index: k,
                     pitch: p.to_degrees(),
@@ -865,7 +786,7 @@ pub fn verify_two_axes(
             },
         )
         .collect();
-    let mut total = Verify2Report::default();
+    let mut total = VerifyReport::default();
     for r in results {
         let r = r?;
         total.interior_checks += r.interior_checks;

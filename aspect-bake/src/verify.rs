@@ -6,9 +6,9 @@ use rayon::prelude::*;
 use crate::axis::Spin;
 use crate::cells::Bake;
 use crate::event::EventFn;
+use crate::rows::Row;
 use crate::source::EventSource;
 use crate::tolerance::VERIFY_SIDE_RAD;
-use crate::two_axes::Row;
 
 /// What [`verify`] checked.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -17,6 +17,9 @@ pub struct VerifyReport {
     pub interior_checks: usize,
     /// Breakpoints checked (sign change of their event and the lists on both sides).
     pub breakpoint_checks: usize,
+    /// A two-axis bake's cell-bounding curves checked for a real sign change with the
+    /// neighbouring lists ([`verify_two_axes`](crate::verify_two_axes)).
+    pub curve_checks: usize,
 }
 
 /// A place where a bake disagrees with the live sorter.
@@ -52,6 +55,32 @@ pub enum VerifyError {
         index: usize,
         /// Where, degrees.
         degrees: f64,
+        /// What failed.
+        what: String,
+    },
+    /// Inside a two-axis bake's cell the live list differs, or `cell_at` names another
+    /// cell.
+    #[error("cell {cell} at yaw {yaw}°, pitch {pitch}°: {what}")]
+    InteriorPoint {
+        /// Cell index.
+        cell: usize,
+        /// Where, degrees.
+        yaw: f64,
+        /// Where, degrees.
+        pitch: f64,
+        /// What failed.
+        what: String,
+    },
+    /// A curve between two cells of a two-axis bake is not a sign change of its circle, or
+    /// the lists on its two sides are not the cells'.
+    #[error("curve {index} of slab {slab} at pitch {pitch}°: {what}")]
+    Curve {
+        /// Slab index.
+        slab: usize,
+        /// Curve index in the slab.
+        index: usize,
+        /// Where, degrees.
+        pitch: f64,
         /// What failed.
         what: String,
     },
@@ -214,7 +243,7 @@ pub fn verify(
                 return false;
             }
             let live_violations = face_sort::oracle::count_violations(view, live);
-            crate::picture::cell_list(bake, k, list);
+            crate::cells::cell_list(bake, k, list);
             face_sort::oracle::count_violations(view, list) <= live_violations
         };
     let results: Vec<Result<usize, VerifyError>> = (0..n)

@@ -28,7 +28,6 @@ mod presort_cache;
 mod progress;
 mod raster;
 mod render;
-mod scene_demo;
 mod scenes;
 mod stress;
 mod truth;

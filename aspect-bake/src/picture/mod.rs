@@ -54,7 +54,6 @@ mod pairs;
 mod pieces;
 mod sweep;
 
-use face_sort::sorter_api::DrawListWriter;
 use std::sync::Arc;
 use web_time::Instant;
 
@@ -65,7 +64,7 @@ use rayon::prelude::*;
 use crate::BakeError;
 use crate::axis::Spin;
 use crate::build::refuse_cull_margin;
-use crate::cells::{AngleRange, Bake, BakeCell, Breakpoint, Method, cell_bytes};
+use crate::cells::{AngleRange, Bake, BakeCell, Breakpoint, Method, cell_bytes, cell_list_where};
 use crate::event::EventFn;
 use crate::tolerance::{EVENT_GAP_RAD, NEAR_EYE, PICTURE_BOUNDARY_DEG};
 use crate::verify::{INTERIOR_MARGIN, VerifyError, VerifyReport, cell_state, inside};
@@ -614,24 +613,7 @@ pub fn drawn_lists(bake: &Bake, spin: &Spin) -> Result<Vec<Vec<u32>>, BakeError>
         .collect())
 }
 
-/// Cell `cell`'s whole order as a draw list whose sink culls
-/// ([`DrawList::set_sink_culls`]): what every consumer paints or judges at any angle of
-/// the cell, skipping the pieces the view does not draw.
-pub fn cell_list(bake: &Bake, cell: usize, list: &mut DrawList) {
-    cell_list_where(bake, cell, list, |_| true);
-}
-
-/// Cell `cell`'s order, the pieces `keep` accepts, as a draw list whose sink culls.
-fn cell_list_where(bake: &Bake, cell: usize, list: &mut DrawList, keep: impl Fn(u32) -> bool) {
-    let set = &bake.polygons;
-    list.begin(set);
-    list.set_sink_culls(true);
-    for &p in bake.cells[cell].order.iter().filter(|&&p| keep(p)) {
-        list.push(p, set.face(p as usize));
-    }
-}
-
-/// Cell `cell`'s whole order as [`cell_list`] gives it, less the pieces edge-on within
+/// Cell `cell`'s whole order as [`cell_list`](crate::cell_list) gives it, less the pieces edge-on within
 /// rounding at `theta` (their facing `facings[p]` zero there): a sink culls or draws such a
 /// piece as rounding falls, and it covers no pixel either way, so no order can be judged on
 /// it. The bake gives a piece edge-on all turn (facing zero at every angle) no drawn arcs.
@@ -640,7 +622,7 @@ fn judged_list(bake: &Bake, cell: usize, facings: &[EventFn], theta: f64, list: 
 }
 
 /// Checks a picture bake with the order-violation oracle: at `per_cell` random angles inside
-/// every cell and at `1e-6°` inside both of its ends, the cell's list ([`cell_list`], the
+/// every cell and at `1e-6°` inside both of its ends, the cell's list ([`cell_list`](crate::cell_list), the
 /// oracle skipping what the sink culls and the pieces edge-on within rounding there) has no
 /// violation.
 ///

@@ -6,7 +6,17 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use super::image::Image;
-use super::resolve::TextureError;
+
+/// A texture that could not be loaded.
+#[derive(Debug, thiserror::Error)]
+#[error("{source}")]
+pub struct TextureError {
+    /// The file (or, for a texture held in the model file, its name).
+    pub path: PathBuf,
+    /// What the texture loader said (boxed: it is large).
+    #[source]
+    pub source: Box<obj_quads::LoadError>,
+}
 
 impl Image {
     /// This image with every texel multiplied by `factor` (linear RGBA, as glTF's

@@ -24,10 +24,10 @@ mod wrapping;
 use std::sync::Arc;
 
 #[cfg(feature = "obj-quads")]
-pub use decode::{decode_image, load_image};
+pub use decode::{TextureError, decode_image, load_image};
 pub use image::Image;
 #[cfg(feature = "obj-quads")]
-pub use resolve::{FaceMaterials, MaterialOptions, TextureError};
+pub use resolve::{FaceMaterials, MaterialOptions};
 pub use uv_map::UvMap;
 
 use crate::{Brush, Scene, SpriteSpace, TextureId};

@@ -8,7 +8,7 @@ use std::sync::Arc;
 
 use glam::{DVec2, DVec3, Vec2};
 
-use super::decode::{self, TextureSource, alpha_byte};
+use super::decode::{self, TextureError, TextureSource, alpha_byte};
 use super::image::Image;
 use super::wrapping;
 use super::{FacePaint, Materials, UvMap};
@@ -90,17 +90,6 @@ impl MaterialOptions {
         self.texture = Some(texture.into());
         self
     }
-}
-
-/// A texture that could not be loaded.
-#[derive(Debug, thiserror::Error)]
-#[error("{source}")]
-pub struct TextureError {
-    /// The file (or, for a texture held in the model file, its name).
-    pub path: PathBuf,
-    /// What the texture loader said (boxed: it is large).
-    #[source]
-    pub source: Box<obj_quads::LoadError>,
 }
 
 /// A face whose texture coordinates span several tiles: the face, its plain map, its tiles.

@@ -12,7 +12,7 @@ use face_sort::glam::{DAffine3, DQuat, DVec3};
 use face_sort::{DrawList, FaceSorter, Geometry, Instance, Layer, SceneSorter, oracle};
 use serde::Serialize;
 
-use crate::render::{BaseView, RenderArgs, base_view};
+use super::args::{BaseView, RenderArgs, base_view};
 
 /// Instances of the generated scene (before the backdrop and the marker).
 const INSTANCES: usize = 30;
