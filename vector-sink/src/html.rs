@@ -187,54 +187,14 @@ pub fn css_matrix3d(m: &DMat4) -> String {
 #[must_use]
 pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
     let (w, h) = (options.width, options.height);
-    let origin = DVec3::new(f64::from(w) * 0.5, f64::from(h) * 0.5, 0.0);
-    let mut root = *scene.root();
-    if root.row(3) == DVec4::W {
-        // Orthographic: a huge perspective about the frame centre (changes nothing visible).
-        root = DMat4::from_translation(origin)
-            * perspective_matrix(face_sort::Projection::Perspective {
-                distance: options.orthographic_distance,
-            })
-            * DMat4::from_translation(-origin)
-            * root;
-    }
+    let root = page_root(scene, options);
     // Flat pages: the root's perspective on the container (CSS `perspective` about the
     // principal point is CONVENTIONS.md's `w = 1 − z/d`), so each element carries only an
     // affine matrix.
     let flat = FlatRoot::of(&root);
-    let mut page = String::new();
-    let _ = write!(
-        page,
-        "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>sprite-compose</title><style>\n\
-         html,body{{margin:0;padding:0;overflow:hidden;width:{w}px;height:{h}px;background:{bg}}}\n\
-         #scene{{position:absolute;left:0;top:0;width:{w}px;height:{h}px;{scene_style}}}\n\
-         #scene>div{{position:absolute;left:0;top:0;transform-origin:0 0}}\n\
-         .x{{overflow:hidden}}\n\
-         .x>div{{position:absolute;left:0;top:0;width:100%;height:100%;overflow:hidden}}\n\
-         .x i{{position:absolute;left:0;top:0;width:100%;height:100%;transform-origin:0 0;background-size:100% 100%}}\n\
-         {texture_rules}",
-        texture_rules = texture_rules(options),
-        bg = hex(options.background.unwrap_or(if options.ids {
-            [0, 0, 0, 255]
-        } else {
-            [255, 255, 255, 255]
-        })),
-        scene_style = match options.mode {
-            HtmlMode::Flat => format!(
-                "perspective:{}px;perspective-origin:{}px {}px",
-                crate::numbers::matrix_entry(flat.distance),
-                crate::numbers::pixel(flat.origin.x),
-                crate::numbers::pixel(flat.origin.y)
-            ),
-            HtmlMode::Preserve3d => format!(
-                "transform-style:preserve-3d;transform-origin:0 0;transform:{}",
-                css_matrix3d(&root)
-            ),
-        },
-    );
+    let head = page_head(options, &root, &flat);
     // The elements go to `body`; what repeats (colours, box sizes) becomes one class each,
     // written into the style sheet once the body is known.
-    let head = page;
     let mut page = String::new();
     let mut classes = Classes::default();
     let sprites: Vec<&SceneSprite> = scene.visible().map(|(_, s)| s).collect();
@@ -278,63 +238,26 @@ pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
         };
         // A textured element is the sprite's whole unit square: its size follows the square's
         // projection (a fragment's can be far smaller), so the texture is rastered finely.
-        let square_size = texture.and_then(|_| {
-            let full = *scene.root() * sprite.transform.matrix;
-            let corners: Option<Vec<DVec2>> = [DVec2::ZERO, DVec2::X, DVec2::ONE, DVec2::Y]
-                .iter()
-                .map(|c| {
-                    let h = full * DVec4::new(c.x, c.y, 0.0, 1.0);
-                    (h.w > 0.0).then(|| DVec2::new(h.x / h.w, h.y / h.w))
-                })
-                .collect();
-            let corners = corners?;
-            let (lo, hi) = corners
-                .iter()
-                .fold((corners[0], corners[0]), |(lo, hi), p| {
-                    (lo.min(*p), hi.max(*p))
-                });
-            let extent = (hi - lo).max_element();
-            extent
-                .is_finite()
-                .then(|| (extent.max(1.0) * options.oversize).ceil().max(size))
-        });
+        let square_size = texture.and_then(|_| square_size(scene, sprite, options.oversize, size));
         // The element is the unit square grown by a margin of `e` (HTML_TEXTURE_MARGIN_PX in
         // pixels of the square), clipped to the sprite's polygon grown across its shared
         // edges: no edge of the element's box is an edge of the picture, so Chromium's
         // composited anti-aliasing of layer edges leaves no hairline between neighbouring
         // textured sprites.
-        let grown = square_size.map(|size| HTML_TEXTURE_MARGIN_PX / size);
         if let Some((id, uv)) = texture
             && let Some(size) = square_size
-            && let Some(e) = grown
-            && let Some(place) = image_placement(
-                uv * DAffine2::from_scale_angle_translation(
-                    DVec2::splat(1.0 + 2.0 * e),
-                    0.0,
-                    DVec2::splat(-e),
-                ),
+            && let Some(element) = textured_element(&TexturedSprite {
+                sprite,
+                outer,
+                grown: seams
+                    .as_ref()
+                    .and_then(|seams| seams.grown(scene.root(), sprite, index)),
+                texture: id,
+                uv,
                 size,
-            )
+            })
         {
-            let unscale = DMat4::from_scale(DVec3::new(1.0 / size, 1.0 / size, 1.0));
-            let box_to_square = DMat4::from_translation(DVec3::new(-e, -e, 0.0))
-                * DMat4::from_scale(DVec3::new(1.0 + 2.0 * e, 1.0 + 2.0 * e, 1.0));
-            let m = outer * sprite.transform.matrix * box_to_square * unscale;
-            let polygon = sprite_polygon(sprite);
-            let dilated = seams
-                .as_ref()
-                .and_then(|seams| seams.grown(scene.root(), sprite, index))
-                .unwrap_or(polygon);
-            let clip = clip_path(
-                dilated
-                    .iter()
-                    .map(|p| (*p + DVec2::splat(e)) / (1.0 + 2.0 * e)),
-            );
-            let _ = writeln!(
-                page,
-                "<div class=\"x\" style=\"width:{size}px;height:{size}px;transform:{}\"><div style=\"{clip}\"><i class=\"t{id}\" style=\"transform:{place}\"></i></div></div>",
-                css_matrix3d(&m)
-            );
+            page.push_str(&element);
             continue;
         }
         let opaque = options.ids || sprite.brush.solid_colour(sprite.face)[3] == 255;
@@ -366,33 +289,16 @@ pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
                 );
             }
             Some(clip) if options.pieces == HtmlPieces::BorderTriangles => {
-                for k in 1..clip.len().saturating_sub(1) {
-                    let (a, mut b, mut c) = (clip[0], clip[k], clip[k + 1]);
-                    if (b - a).perp_dot(c - a) < 0.0 {
-                        std::mem::swap(&mut b, &mut c);
-                    }
-                    let corner = triangle_matrix(a, b, c);
-                    let m = outer * sprite.transform.matrix * corner * unscale;
-                    let _ = writeln!(
-                        page,
-                        "<div class=\"{} {}\" style=\"transform:{}\"></div>",
-                        classes.of(format!(
-                            "width:0;height:0;border-style:solid;border-width:{size}px {size}px 0 0"
-                        )),
-                        classes.of(format!(
-                            "border-color:{colour} transparent transparent transparent"
-                        )),
-                        css_matrix3d(&m)
-                    );
-                }
+                let place = outer * sprite.transform.matrix;
+                border_triangles(&mut page, &mut classes, clip, place, size, &colour);
             }
             Some(clip) => {
-                let later = by_face
+                let later = (by_face
                     .get(&sprite.face)
                     .map_or(&[][..], Vec::as_slice)
-                    .iter()
-                    .filter(|&&k| k > index)
-                    .map(|&k| projections[k].as_slice());
+                    .iter())
+                .filter(|&&k| k > index)
+                .map(|&k| projections[k].as_slice());
                 // (Opaque sprites with shared edges grew across them above; these strips
                 // fill ID pages' cracks.)
                 let strips = if options.ids {
@@ -432,6 +338,159 @@ pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
     }
     out.push_str("</body></html>\n");
     out
+}
+
+/// The root the page draws with: the scene's, and for an orthographic one a huge
+/// perspective about the frame centre (`options.orthographic_distance`; it changes nothing
+/// visible).
+fn page_root(scene: &Scene, options: &HtmlOptions) -> DMat4 {
+    let root = *scene.root();
+    if root.row(3) != DVec4::W {
+        return root;
+    }
+    let origin = DVec3::new(
+        f64::from(options.width) * 0.5,
+        f64::from(options.height) * 0.5,
+        0.0,
+    );
+    DMat4::from_translation(origin)
+        * perspective_matrix(face_sort::Projection::Perspective {
+            distance: options.orthographic_distance,
+        })
+        * DMat4::from_translation(-origin)
+        * root
+}
+
+/// A clipped sprite as CSS border triangles ([`HtmlPieces::BorderTriangles`]): one
+/// zero-size element per fan triangle of `clip`, under `place` (the element's matrix before
+/// its unit square is scaled to `size` pixels).
+fn border_triangles(
+    page: &mut String,
+    classes: &mut Classes,
+    clip: &[DVec2],
+    place: DMat4,
+    size: f64,
+    colour: &str,
+) {
+    let unscale = DMat4::from_scale(DVec3::new(1.0 / size, 1.0 / size, 1.0));
+    for k in 1..clip.len().saturating_sub(1) {
+        let (a, mut b, mut c) = (clip[0], clip[k], clip[k + 1]);
+        if (b - a).perp_dot(c - a) < 0.0 {
+            std::mem::swap(&mut b, &mut c);
+        }
+        let m = place * triangle_matrix(a, b, c) * unscale;
+        let _ = writeln!(
+            page,
+            "<div class=\"{} {}\" style=\"transform:{}\"></div>",
+            classes.of(format!(
+                "width:0;height:0;border-style:solid;border-width:{size}px {size}px 0 0"
+            )),
+            classes.of(format!(
+                "border-color:{colour} transparent transparent transparent"
+            )),
+            css_matrix3d(&m)
+        );
+    }
+}
+
+/// The page up to the element style rules: the document head, the body's size and
+/// background (black in ID mode, else white, unless `options.background`), and the scene
+/// container's perspective (flat pages) or root transform (`preserve-3d`).
+fn page_head(options: &HtmlOptions, root: &DMat4, flat: &FlatRoot) -> String {
+    let (w, h) = (options.width, options.height);
+    let mut page = String::new();
+    let _ = write!(
+        page,
+        "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>sprite-compose</title><style>\n\
+     html,body{{margin:0;padding:0;overflow:hidden;width:{w}px;height:{h}px;background:{bg}}}\n\
+     #scene{{position:absolute;left:0;top:0;width:{w}px;height:{h}px;{scene_style}}}\n\
+     #scene>div{{position:absolute;left:0;top:0;transform-origin:0 0}}\n\
+     .x{{overflow:hidden}}\n\
+     .x>div{{position:absolute;left:0;top:0;width:100%;height:100%;overflow:hidden}}\n\
+     .x i{{position:absolute;left:0;top:0;width:100%;height:100%;transform-origin:0 0;background-size:100% 100%}}\n\
+     {texture_rules}",
+        texture_rules = texture_rules(options),
+        bg = hex(options.background.unwrap_or(if options.ids {
+            [0, 0, 0, 255]
+        } else {
+            [255, 255, 255, 255]
+        })),
+        scene_style = match options.mode {
+            HtmlMode::Flat => format!(
+                "perspective:{}px;perspective-origin:{}px {}px",
+                crate::numbers::matrix_entry(flat.distance),
+                crate::numbers::pixel(flat.origin.x),
+                crate::numbers::pixel(flat.origin.y)
+            ),
+            HtmlMode::Preserve3d => format!(
+                "transform-style:preserve-3d;transform-origin:0 0;transform:{}",
+                css_matrix3d(&root)
+            ),
+        },
+    );
+    page
+}
+
+/// The size of a textured sprite's element: its whole unit square's projection (a
+/// fragment's can be far smaller) times `oversize`, at least `size`; `None` when a corner is
+/// behind the viewer or the extent is not finite.
+fn square_size(scene: &Scene, sprite: &SceneSprite, oversize: f64, size: f64) -> Option<f64> {
+    let full = *scene.root() * sprite.transform.matrix;
+    let corners: Option<Vec<DVec2>> = [DVec2::ZERO, DVec2::X, DVec2::ONE, DVec2::Y]
+        .iter()
+        .map(|c| {
+            let h = full * DVec4::new(c.x, c.y, 0.0, 1.0);
+            (h.w > 0.0).then(|| DVec2::new(h.x / h.w, h.y / h.w))
+        })
+        .collect();
+    let corners = corners?;
+    let (lo, hi) = (corners.iter()).fold((corners[0], corners[0]), |(lo, hi), p| {
+        (lo.min(*p), hi.max(*p))
+    });
+    let extent = (hi - lo).max_element();
+    (extent.is_finite()).then(|| (extent.max(1.0) * oversize).ceil().max(size))
+}
+
+/// A textured sprite as [`textured_element`] writes it.
+struct TexturedSprite<'a> {
+    sprite: &'a SceneSprite,
+    /// The flat page's affine part of the root (identity in `preserve-3d`).
+    outer: DMat4,
+    /// The sprite's polygon grown across its shared edges, if it has any.
+    grown: Option<Vec<DVec2>>,
+    texture: u32,
+    uv: DAffine2,
+    /// The element's size in pixels ([`square_size`]).
+    size: f64,
+}
+
+/// One textured element: the unit square grown by a margin of `e`
+/// ([`HTML_TEXTURE_MARGIN_PX`] in pixels of the square), clipped to the sprite's polygon
+/// grown across its shared edges, holding the texture under its uv map. No edge of the
+/// element's box is an edge of the picture, so Chromium's composited anti-aliasing of layer
+/// edges leaves no hairline between neighbouring textured sprites. `None` when the uv map
+/// has no placement.
+fn textured_element(t: &TexturedSprite<'_>) -> Option<String> {
+    let (size, sprite) = (t.size, t.sprite);
+    let e = HTML_TEXTURE_MARGIN_PX / size;
+    let grow =
+        DAffine2::from_scale_angle_translation(DVec2::splat(1.0 + 2.0 * e), 0.0, DVec2::splat(-e));
+    let place = image_placement(t.uv * grow, size)?;
+    let unscale = DMat4::from_scale(DVec3::new(1.0 / size, 1.0 / size, 1.0));
+    let box_to_square = DMat4::from_translation(DVec3::new(-e, -e, 0.0))
+        * DMat4::from_scale(DVec3::new(1.0 + 2.0 * e, 1.0 + 2.0 * e, 1.0));
+    let m = t.outer * sprite.transform.matrix * box_to_square * unscale;
+    let dilated = t.grown.clone().unwrap_or_else(|| sprite_polygon(sprite));
+    let clip = clip_path(
+        dilated
+            .iter()
+            .map(|p| (*p + DVec2::splat(e)) / (1.0 + 2.0 * e)),
+    );
+    Some(format!(
+        "<div class=\"x\" style=\"width:{size}px;height:{size}px;transform:{}\"><div style=\"{clip}\"><i class=\"t{}\" style=\"transform:{place}\"></i></div></div>\n",
+        css_matrix3d(&m),
+        t.texture
+    ))
 }
 
 /// A perspective root `T(P₀) · P · A` split into the container's perspective (distance `d`

@@ -160,56 +160,12 @@ pub fn write_svg(scene: &Scene, options: &SvgOptions) -> String {
     }
     // Each texture once, in <defs>; textured cells <use> it.
     let shapes = vector_shapes(scene, options.ids, options.hidden);
-    let used: std::collections::BTreeSet<u32> = if options.ids {
-        Default::default()
-    } else {
-        shapes
-            .iter()
-            .filter_map(|s| match s.sprite.brush {
-                Brush::Texture { texture, .. } => Some(texture.0),
-                _ => None,
-            })
-            .filter(|&id| (id as usize) < options.textures.len())
-            .collect()
-    };
-    if !used.is_empty() {
-        svg.push_str("<defs>");
-        for &k in &used {
-            let href = escape_attribute(&options.textures[k as usize]);
-            let _ = write!(
-                svg,
-                "<image id=\"t{k}\" xlink:href=\"{href}\" width=\"1\" height=\"1\" preserveAspectRatio=\"none\"/>"
-            );
-        }
-        svg.push_str("</defs>\n");
-    }
-    // Colour mode: one class per brush colour (fill, and the seam stroke of opaque ones);
-    // the attributes every shape shares sit on one group.
-    let mut classes: HashMap<[u8; 4], usize> = HashMap::new();
-    if !options.ids {
-        let mut rules = String::new();
-        for shape in &shapes {
-            let colour = shape.sprite.brush.solid_colour(shape.sprite.face);
-            let next = classes.len();
-            classes.entry(colour).or_insert_with(|| {
-                let stroke = if options.seam_stroke > 0.0 && colour[3] == 255 {
-                    format!(";stroke:{}", hex(colour))
-                } else {
-                    String::new()
-                };
-                let _ = write!(
-                    rules,
-                    ".{}{{fill:{}{}{stroke}}}",
-                    class_name(next),
-                    hex(colour),
-                    opacity_css(colour)
-                );
-                next
-            });
-        }
-        if !rules.is_empty() {
-            let _ = writeln!(svg, "<style>{rules}</style>");
-        }
+    svg.push_str(&texture_defs(&shapes, options));
+    // Colour mode: one class per brush colour; the attributes every shape shares sit on one
+    // group.
+    let (classes, rules) = colour_classes(&shapes, options);
+    if !rules.is_empty() {
+        let _ = writeln!(svg, "<style>{rules}</style>");
     }
     svg.push_str("<g fill-rule=\"evenodd\" clip-rule=\"evenodd\"");
     if !options.ids && options.seam_stroke > 0.0 {
@@ -293,6 +249,67 @@ pub fn write_svg(scene: &Scene, options: &SvgOptions) -> String {
     svg.push_str(&options.overlay);
     svg.push_str("</svg>\n");
     svg
+}
+
+/// `<defs>` holding each texture the shapes use, once (empty when none is used).
+fn texture_defs(shapes: &[VectorShape<'_>], options: &SvgOptions) -> String {
+    if options.ids {
+        return String::new();
+    }
+    let used: std::collections::BTreeSet<u32> = shapes
+        .iter()
+        .filter_map(|s| match s.sprite.brush {
+            Brush::Texture { texture, .. } => Some(texture.0),
+            _ => None,
+        })
+        .filter(|&id| (id as usize) < options.textures.len())
+        .collect();
+    if used.is_empty() {
+        return String::new();
+    }
+    let mut defs = String::from("<defs>");
+    for &k in &used {
+        let href = escape_attribute(&options.textures[k as usize]);
+        let _ = write!(
+            defs,
+            "<image id=\"t{k}\" xlink:href=\"{href}\" width=\"1\" height=\"1\" preserveAspectRatio=\"none\"/>"
+        );
+    }
+    defs.push_str("</defs>\n");
+    defs
+}
+
+/// Colour mode: one CSS class per brush colour (fill, and the seam stroke of opaque ones),
+/// with the rules that define them; nothing in ID mode.
+fn colour_classes(
+    shapes: &[VectorShape<'_>],
+    options: &SvgOptions,
+) -> (HashMap<[u8; 4], usize>, String) {
+    let mut classes: HashMap<[u8; 4], usize> = HashMap::new();
+    let mut rules = String::new();
+    if options.ids {
+        return (classes, rules);
+    }
+    for shape in shapes {
+        let colour = shape.sprite.brush.solid_colour(shape.sprite.face);
+        let next = classes.len();
+        classes.entry(colour).or_insert_with(|| {
+            let stroke = if options.seam_stroke > 0.0 && colour[3] == 255 {
+                format!(";stroke:{}", hex(colour))
+            } else {
+                String::new()
+            };
+            let _ = write!(
+                rules,
+                ".{}{{fill:{}{}{stroke}}}",
+                class_name(next),
+                hex(colour),
+                opacity_css(colour)
+            );
+            next
+        });
+    }
+    (classes, rules)
 }
 
 /// The geometry of one written element.

@@ -213,15 +213,32 @@ pub(super) fn build(geometry: &Geometry, options: &PresortOptions) -> Result<Bui
     }
     let candidate_pairs = targets.len();
     drop(targets);
-    // Merge: the eight roots first (so that the octant of a direction is its root's index),
-    // then each octant's other regions, leaves and cores, renumbered.
-    let mut nodes: Vec<Node> = Vec::new();
-    let (mut leaves, mut cores) = (Vec::new(), Vec::new());
-    let mut pair_tests = 0;
     let parts: Vec<Builder<'_>> = by_octant
         .into_iter()
         .map(|b| b.expect("every octant was built"))
         .collect();
+    let (nodes, leaves, mut cores, pair_tests) = merge_octants(parts);
+    let shared = share_cores(pieces, &mut cores);
+    Ok(Built {
+        nodes,
+        leaves,
+        shared: Arc::new(shared),
+        cores,
+        near,
+        pair_tests,
+        candidate_pairs,
+        cuts,
+        threads,
+    })
+}
+
+/// The octants' builders as one tree: the eight roots first (so that the octant of a
+/// direction is its root's index), then each octant's other regions, leaves and cores,
+/// renumbered; with the pair tests they made.
+fn merge_octants(parts: Vec<Builder<'_>>) -> (Vec<Node>, Vec<Leaf>, Vec<Core>, usize) {
+    let mut nodes: Vec<Node> = Vec::new();
+    let (mut leaves, mut cores) = (Vec::new(), Vec::new());
+    let mut pair_tests = 0;
     let mut node_offsets = Vec::with_capacity(parts.len());
     let mut offset = parts.len();
     for part in &parts {
@@ -269,18 +286,7 @@ pub(super) fn build(geometry: &Geometry, options: &PresortOptions) -> Result<Bui
         cores.extend(part.cores);
         pair_tests += part.pair_tests;
     }
-    let shared = share_cores(pieces, &mut cores);
-    Ok(Built {
-        nodes,
-        leaves,
-        shared: Arc::new(shared),
-        cores,
-        near,
-        pair_tests,
-        candidate_pairs,
-        cuts,
-        threads,
-    })
+    (nodes, leaves, cores, pair_tests)
 }
 
 impl<'a> Builder<'a> {

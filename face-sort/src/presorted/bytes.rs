@@ -277,40 +277,7 @@ impl Presorted {
         let candidate_pairs = r.u64("the pairs")? as usize;
         let pair_tests = r.u64("the pair tests")? as usize;
         let threads = r.u32("the threads")? as usize;
-        // Regions: 88 bytes of region and at least 4 of kind each.
-        let node_count = r.count("the regions", 92)?;
-        if node_count != 0 && node_count < 8 {
-            return Err(r.invalid("the regions (fewer than the eight octants)"));
-        }
-        let mut nodes = Vec::with_capacity(node_count);
-        let mut leaf_refs = Vec::new();
-        for index in 0..node_count {
-            let region = r.region()?;
-            let kind = match r.u32("a region's kind")? {
-                0 => {
-                    let l = r.u32("a region's order")?;
-                    leaf_refs.push(l);
-                    NodeKind::Leaf(l)
-                }
-                1 => {
-                    let first = r.u32("a region's children")?;
-                    children_follow(&r, index, first, 4, node_count)?;
-                    NodeKind::Directions { first }
-                }
-                2 => {
-                    let mid = r.f64("a distance split")?;
-                    if !(mid.is_finite() && mid > 0.0) {
-                        return Err(r.invalid("a distance split"));
-                    }
-                    let first = r.u32("a region's children")?;
-                    children_follow(&r, index, first, 2, node_count)?;
-                    NodeKind::Distance { mid, first }
-                }
-                3 => NodeKind::Uncertified,
-                _ => return Err(r.invalid("a region's kind")),
-            };
-            nodes.push(Node { region, kind });
-        }
+        let (nodes, leaf_refs) = read_nodes(&mut r)?;
         // Orders: a region and a step count at least.
         let leaf_count = r.count("the orders", 92)?;
         if leaf_refs.iter().any(|&l| l as usize >= leaf_count) {
@@ -408,6 +375,46 @@ impl Presorted {
             pieces: piece_count,
         })
     }
+}
+
+/// The region tree: each node's region and kind, children after their parent; with the
+/// orders its leaves name (checked against the order count by the caller).
+fn read_nodes(r: &mut Reader<'_>) -> Result<(Vec<Node>, Vec<u32>), PresortLoadError> {
+    // Regions: 88 bytes of region and at least 4 of kind each.
+    let node_count = r.count("the regions", 92)?;
+    if node_count != 0 && node_count < 8 {
+        return Err(r.invalid("the regions (fewer than the eight octants)"));
+    }
+    let mut nodes = Vec::with_capacity(node_count);
+    let mut leaf_refs = Vec::new();
+    for index in 0..node_count {
+        let region = r.region()?;
+        let kind = match r.u32("a region's kind")? {
+            0 => {
+                let l = r.u32("a region's order")?;
+                leaf_refs.push(l);
+                NodeKind::Leaf(l)
+            }
+            1 => {
+                let first = r.u32("a region's children")?;
+                children_follow(r, index, first, 4, node_count)?;
+                NodeKind::Directions { first }
+            }
+            2 => {
+                let mid = r.f64("a distance split")?;
+                if !(mid.is_finite() && mid > 0.0) {
+                    return Err(r.invalid("a distance split"));
+                }
+                let first = r.u32("a region's children")?;
+                children_follow(r, index, first, 2, node_count)?;
+                NodeKind::Distance { mid, first }
+            }
+            3 => NodeKind::Uncertified,
+            _ => return Err(r.invalid("a region's kind")),
+        };
+        nodes.push(Node { region, kind });
+    }
+    Ok((nodes, leaf_refs))
 }
 
 /// Children at `first .. first + count` must come after their parent `index` and exist, so

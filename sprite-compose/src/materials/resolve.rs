@@ -226,30 +226,7 @@ impl Materials {
                 out.images.len() - 1
             })
         };
-        let mut groups: Vec<_> = spanning.into_iter().collect();
-        groups.sort_by_key(|(_, members)| members[0].0);
-        for ((slot, wrap), members) in groups {
-            let (mut lo, mut hi) = (DVec2::INFINITY, DVec2::NEG_INFINITY);
-            for (_, _, (first, n)) in &members {
-                lo = lo.min(*first);
-                hi = hi.max(*first + *n);
-            }
-            let union = (lo, hi - lo);
-            if wrapping::tiles_fit(&sources[slot], union) {
-                out.images
-                    .push(Arc::new(wrapping::tiled(&sources[slot], wrap, union)));
-                let image = out.images.len() - 1;
-                for (face, map, _) in members {
-                    let map = map.remapped(DVec2::ONE / union.1, -lo / union.1);
-                    out.faces[face] = FacePaint::Texture { image, map };
-                }
-            } else {
-                // Too many tiles: the plain map (the texture's own tile only).
-                for (face, map, _) in members {
-                    textured.push((face, slot, map));
-                }
-            }
-        }
+        tile_spanning_faces(&mut out, &sources, spanning, &mut textured);
         textured.sort_by_key(|t| t.0);
         for (face, slot, map) in textured {
             let image = keep(&mut out, slot);
@@ -270,5 +247,40 @@ impl Materials {
     #[must_use]
     pub fn warnings(&self) -> &[Arc<TextureError>] {
         &self.warnings
+    }
+}
+
+/// Faces whose coordinates span several tiles, grouped by (source, wrap): each group gets one
+/// image of the union of its tiles, its maps remapped into it; a group whose tiles would be
+/// too large keeps the plain maps (the texture's own tile only), pushed to `textured`.
+fn tile_spanning_faces(
+    out: &mut Materials,
+    sources: &[Arc<Image>],
+    spanning: HashMap<(usize, [obj_quads::WrapMode; 2]), Vec<Spanning>>,
+    textured: &mut Vec<(usize, usize, UvMap)>,
+) {
+    let mut groups: Vec<_> = spanning.into_iter().collect();
+    groups.sort_by_key(|(_, members)| members[0].0);
+    for ((slot, wrap), members) in groups {
+        let (mut lo, mut hi) = (DVec2::INFINITY, DVec2::NEG_INFINITY);
+        for (_, _, (first, n)) in &members {
+            lo = lo.min(*first);
+            hi = hi.max(*first + *n);
+        }
+        let union = (lo, hi - lo);
+        if wrapping::tiles_fit(&sources[slot], union) {
+            out.images
+                .push(Arc::new(wrapping::tiled(&sources[slot], wrap, union)));
+            let image = out.images.len() - 1;
+            for (face, map, _) in members {
+                let map = map.remapped(DVec2::ONE / union.1, -lo / union.1);
+                out.faces[face] = FacePaint::Texture { image, map };
+            }
+        } else {
+            // Too many tiles: the plain map (the texture's own tile only).
+            for (face, map, _) in members {
+                textured.push((face, slot, map));
+            }
+        }
     }
 }
