@@ -519,21 +519,7 @@ pub fn bake_two_axes(
     let critical = critical_pitches(&charts, &circles, domain, options.max_events)?;
     let (plo, phi) = (domain.pitch.0.to_radians(), domain.pitch.1.to_radians());
     let (ylo, yhi, _) = domain.yaw_window();
-    // Slab bounds: critical pitches apart by more than their rounding.
-    // (pitch, whether cells may continue across it)
-    let mut bounds = vec![(plo, false)];
-    for &(p, whole) in &critical {
-        let last = bounds.len() - 1;
-        if p - bounds[last].0 > SAME_ROOT_RAD.max(ROOT_NOISE * p.abs().max(1.0)) {
-            bounds.push((p, !whole));
-        } else if whole {
-            bounds[last].1 = false;
-        }
-    }
-    if bounds.len() > 1 && phi - bounds[bounds.len() - 1].0 <= SAME_ROOT_RAD {
-        bounds.pop();
-    }
-    bounds.push((phi, false));
+    let bounds = slab_bounds(&critical, plo, phi);
     // Curves of each slab at its middle pitch, and the cells' middle points.
     // (low pitch, high pitch, curves with their yaw at the middle, continues from below)
     type SlabCurves = (f64, f64, Vec<(f64, Curve)>, bool);
@@ -624,33 +610,7 @@ pub fn bake_two_axes(
             });
         }
     }
-    // Equal neighbours in a slab become one cell (ids renumbered densely).
-    let mut parent: Vec<u32> = (0..total_cells as u32).collect();
-    fn root(parent: &mut [u32], mut i: u32) -> u32 {
-        while parent[i as usize] != i {
-            parent[i as usize] = parent[parent[i as usize] as usize];
-            i = parent[i as usize];
-        }
-        i
-    }
-    for ids in &gap_cells {
-        for w in ids.windows(2) {
-            let (a, b) = (root(&mut parent, w[0]), root(&mut parent, w[1]));
-            if a != b && lists[a as usize] == lists[b as usize] {
-                parent[b.max(a) as usize] = a.min(b);
-            }
-        }
-    }
-    let mut dense = vec![u32::MAX; total_cells];
-    let mut cells: Vec<Vec<u32>> = Vec::new();
-    for i in 0..total_cells as u32 {
-        let r = root(&mut parent, i);
-        if dense[r as usize] == u32::MAX {
-            dense[r as usize] = cells.len() as u32;
-            cells.push(std::mem::take(&mut lists[r as usize]));
-        }
-        dense[i as usize] = dense[r as usize];
-    }
+    let (dense, cells) = merge_equal_neighbours(&gap_cells, lists);
     let mut out_slabs = Vec::with_capacity(slabs.len());
     for ((lo, hi, curves, _), ids) in slabs.into_iter().zip(gap_cells) {
         // Curves between two gaps of one cell bound nothing: dropped.
@@ -683,6 +643,61 @@ pub fn bake_two_axes(
         critical_pitches: critical.len(),
         bake_ms: started.elapsed().as_secs_f64() * 1e3,
     })
+}
+
+/// Slab bounds from `plo` to `phi`: critical pitches apart by more than their rounding, each
+/// with whether cells may continue across it.
+fn slab_bounds(critical: &[(f64, bool)], plo: f64, phi: f64) -> Vec<(f64, bool)> {
+    let mut bounds = vec![(plo, false)];
+    for &(p, whole) in critical {
+        let last = bounds.len() - 1;
+        if p - bounds[last].0 > SAME_ROOT_RAD.max(ROOT_NOISE * p.abs().max(1.0)) {
+            bounds.push((p, !whole));
+        } else if whole {
+            bounds[last].1 = false;
+        }
+    }
+    if bounds.len() > 1 && phi - bounds[bounds.len() - 1].0 <= SAME_ROOT_RAD {
+        bounds.pop();
+    }
+    bounds.push((phi, false));
+    bounds
+}
+
+/// Equal neighbours in a slab (gaps `gap_cells`, lists `lists` by gap cell) become one cell:
+/// per gap cell its dense cell id, and each dense cell's list.
+fn merge_equal_neighbours(
+    gap_cells: &[Vec<u32>],
+    mut lists: Vec<Vec<u32>>,
+) -> (Vec<u32>, Vec<Vec<u32>>) {
+    let total_cells = lists.len();
+    let mut parent: Vec<u32> = (0..total_cells as u32).collect();
+    fn root(parent: &mut [u32], mut i: u32) -> u32 {
+        while parent[i as usize] != i {
+            parent[i as usize] = parent[parent[i as usize] as usize];
+            i = parent[i as usize];
+        }
+        i
+    }
+    for ids in gap_cells {
+        for w in ids.windows(2) {
+            let (a, b) = (root(&mut parent, w[0]), root(&mut parent, w[1]));
+            if a != b && lists[a as usize] == lists[b as usize] {
+                parent[b.max(a) as usize] = a.min(b);
+            }
+        }
+    }
+    let mut dense = vec![u32::MAX; total_cells];
+    let mut cells: Vec<Vec<u32>> = Vec::new();
+    for i in 0..total_cells as u32 {
+        let r = root(&mut parent, i);
+        if dense[r as usize] == u32::MAX {
+            dense[r as usize] = cells.len() as u32;
+            cells.push(std::mem::take(&mut lists[r as usize]));
+        }
+        dense[i as usize] = dense[r as usize];
+    }
+    (dense, cells)
 }
 
 /// Checks a two-axis bake against the live sorter, cell by cell: at `per_cell` random points

@@ -391,12 +391,11 @@ pub fn bake_picture(
         options.max_pieces.min(pairs::MAX_PIECES),
     )?;
     check_eye(spin, &set)?;
-    let tolerance = crate::tolerance::PICTURE_SIDE * diagonal;
     let mut budget = CutBudget {
         cycle_cuts: options.max_cycle_cuts,
         boundary_cuts: options.max_boundary_cuts,
     };
-    let mut best = bake_set(
+    let best = bake_set(
         set,
         spin,
         (sigma, diagonal),
@@ -404,36 +403,14 @@ pub fn bake_picture(
         &mut budget,
         &mut cuts,
     )?;
-    // Many cells: cut a piece of a cycle that ended a cell (by another's plane), and keep the
-    // cut when the bake then has fewer cells.
-    'cut: while best.cells.len() > SECOND_SWEEP_FROM && budget.boundary_cuts > 0 {
-        for closing in best.cells.iter().map(|c| &c.closing) {
-            if budget.boundary_cuts == 0 {
-                break 'cut;
-            }
-            let Some(next) = cut_cycle(&best.set, closing, tolerance) else {
-                continue;
-            };
-            budget.boundary_cuts -= 1;
-            let mut tried_cuts = cuts + 1;
-            let Ok(tried) = bake_set(
-                next,
-                spin,
-                (sigma, diagonal),
-                options,
-                &mut budget,
-                &mut tried_cuts,
-            ) else {
-                continue;
-            };
-            if tried.cells.len() < best.cells.len() {
-                best = tried;
-                cuts = tried_cuts;
-                continue 'cut;
-            }
-        }
-        break;
-    }
+    let best = with_boundary_cuts(
+        best,
+        spin,
+        (sigma, diagonal),
+        options,
+        &mut budget,
+        &mut cuts,
+    );
     let Baked {
         set,
         cells,
@@ -443,7 +420,6 @@ pub fn bake_picture(
     } = best;
     let n = set.len();
     let needed = constraints.iter().filter(|c| !c.arcs.is_empty()).count();
-    let mut dag = Dag::new(n);
     let bytes = cells.len() * cell_bytes(n);
     if bytes > options.budget_bytes {
         return Err(BakeError::SizeBudget {
@@ -455,59 +431,7 @@ pub fn bake_picture(
             budget: options.budget_bytes,
         });
     }
-    // One key for the whole turn, so that neighbouring cells differ in few places: an order
-    // that breaks as few of all the cells' constraints together as it can (ties by depth at
-    // the first cell's middle).
-    let by_depth = depth_order(spin, &set, origin + 0.5 * (cells[0].lo + cells[0].hi));
-    let mut key = vec![0u32; n];
-    for (rank, &p) in by_depth.iter().enumerate() {
-        key[p as usize] = rank as u32;
-    }
-    let all_edges = cells.iter().flat_map(|c| c.edges.iter().copied());
-    let global = dag.order_breaking_cycles(all_edges, &key);
-    for (rank, &p) in global.iter().enumerate() {
-        key[p as usize] = rank as u32;
-    }
-    let cycle = |cell: &SweepCell| BakeError::Cycle {
-        degrees: (origin + cell.lo).to_degrees(),
-    };
-    let mut baked = Vec::with_capacity(cells.len());
-    let mut global: Vec<u32> = (0..n as u32).collect();
-    global.sort_unstable_by_key(|&p| key[p as usize]);
-    let mut reversed_key: Vec<u32> = key.iter().map(|&k| n as u32 - 1 - k).collect();
-    let mut back_dag = Dag::new(n);
-    for cell in &cells {
-        if let Some(previous) = baked.last().map(|c: &BakeCell| &c.order) {
-            for (rank, &p) in previous.iter().enumerate() {
-                key[p as usize] = rank as u32;
-                reversed_key[p as usize] = n as u32 - 1 - rank as u32;
-            }
-            global.clone_from(previous);
-        }
-        // Kahn's algorithm keeps the key order except where an edge forces a piece later;
-        // run backwards it forces pieces earlier instead. Keep whichever moves fewer.
-        let (forward, backward) = rayon::join(
-            || dag.order(cell.edges.iter().copied(), &key),
-            || back_dag.order(cell.edges.iter().map(|&(a, b)| (b, a)), &reversed_key),
-        );
-        let forward = forward.ok_or_else(|| cycle(cell))?;
-        let mut backward = backward.ok_or_else(|| cycle(cell))?;
-        backward.reverse();
-        let order = if moved(&global, &backward) < moved(&global, &forward) {
-            backward
-        } else {
-            forward
-        };
-
-        baked.push(BakeCell {
-            range: AngleRange {
-                lo: (origin + cell.lo).to_degrees(),
-                hi: (origin + cell.hi).to_degrees(),
-                period: Some(360.0),
-            },
-            order,
-        });
-    }
+    let mut baked = cell_orders(&cells, &set, spin, origin)?;
     let drawn = drawn_in_cells(spin, &set, sigma, baked.iter().map(|c| c.range));
     let moved_per_boundary = if baked.len() > 1 {
         (0..baked.len())
@@ -568,6 +492,113 @@ pub fn bake_picture(
         },
         stats,
     ))
+}
+
+/// Many cells: cuts a piece of a cycle that ended a cell (by another's plane) and keeps the
+/// cut when the bake then has fewer cells, while the boundary-cut budget lasts.
+fn with_boundary_cuts(
+    mut best: Baked,
+    spin: &Spin,
+    sign_and_diagonal: (f64, f64),
+    options: &PictureOptions,
+    budget: &mut CutBudget,
+    cuts: &mut usize,
+) -> Baked {
+    let tolerance = crate::tolerance::PICTURE_SIDE * sign_and_diagonal.1;
+    'cut: while best.cells.len() > SECOND_SWEEP_FROM && budget.boundary_cuts > 0 {
+        for closing in best.cells.iter().map(|c| &c.closing) {
+            if budget.boundary_cuts == 0 {
+                break 'cut;
+            }
+            let Some(next) = cut_cycle(&best.set, closing, tolerance) else {
+                continue;
+            };
+            budget.boundary_cuts -= 1;
+            let mut tried_cuts = *cuts + 1;
+            let Ok(tried) = bake_set(
+                next,
+                spin,
+                sign_and_diagonal,
+                options,
+                budget,
+                &mut tried_cuts,
+            ) else {
+                continue;
+            };
+            if tried.cells.len() < best.cells.len() {
+                best = tried;
+                *cuts = tried_cuts;
+                continue 'cut;
+            }
+        }
+        break;
+    }
+    best
+}
+
+/// Each cell's order: one key for the whole turn, so that neighbouring cells differ in few
+/// places (an order that breaks as few of all the cells' constraints together as it can,
+/// ties by depth at the first cell's middle), then per cell the topological order nearest
+/// the previous cell's, forward or backward, whichever moves fewer pieces.
+fn cell_orders(
+    cells: &[SweepCell],
+    set: &PolygonSet,
+    spin: &Spin,
+    origin: f64,
+) -> Result<Vec<BakeCell>, BakeError> {
+    let n = set.len();
+    let mut dag = Dag::new(n);
+    let by_depth = depth_order(spin, set, origin + 0.5 * (cells[0].lo + cells[0].hi));
+    let mut key = vec![0u32; n];
+    for (rank, &p) in by_depth.iter().enumerate() {
+        key[p as usize] = rank as u32;
+    }
+    let all_edges = cells.iter().flat_map(|c| c.edges.iter().copied());
+    let global = dag.order_breaking_cycles(all_edges, &key);
+    for (rank, &p) in global.iter().enumerate() {
+        key[p as usize] = rank as u32;
+    }
+    let cycle = |cell: &SweepCell| BakeError::Cycle {
+        degrees: (origin + cell.lo).to_degrees(),
+    };
+    let mut baked = Vec::with_capacity(cells.len());
+    let mut global: Vec<u32> = (0..n as u32).collect();
+    global.sort_unstable_by_key(|&p| key[p as usize]);
+    let mut reversed_key: Vec<u32> = key.iter().map(|&k| n as u32 - 1 - k).collect();
+    let mut back_dag = Dag::new(n);
+    for cell in cells {
+        if let Some(previous) = baked.last().map(|c: &BakeCell| &c.order) {
+            for (rank, &p) in previous.iter().enumerate() {
+                key[p as usize] = rank as u32;
+                reversed_key[p as usize] = n as u32 - 1 - rank as u32;
+            }
+            global.clone_from(previous);
+        }
+        // Kahn's algorithm keeps the key order except where an edge forces a piece later;
+        // run backwards it forces pieces earlier instead. Keep whichever moves fewer.
+        let (forward, backward) = rayon::join(
+            || dag.order(cell.edges.iter().copied(), &key),
+            || back_dag.order(cell.edges.iter().map(|&(a, b)| (b, a)), &reversed_key),
+        );
+        let forward = forward.ok_or_else(|| cycle(cell))?;
+        let mut backward = backward.ok_or_else(|| cycle(cell))?;
+        backward.reverse();
+        let order = if moved(&global, &backward) < moved(&global, &forward) {
+            backward
+        } else {
+            forward
+        };
+
+        baked.push(BakeCell {
+            range: AngleRange {
+                lo: (origin + cell.lo).to_degrees(),
+                hi: (origin + cell.hi).to_degrees(),
+                period: Some(360.0),
+            },
+            order,
+        });
+    }
+    Ok(baked)
 }
 
 /// Per range, per piece: whether the piece is drawn (front-facing, by the view's cull mode)

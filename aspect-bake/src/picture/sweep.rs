@@ -424,6 +424,47 @@ struct Sweep<'a> {
 }
 
 impl Sweep<'_> {
+    /// Opens the cell at `lo`: the spans of `window` active at `lo` stay, those that start
+    /// later go back to the queue, and the queue's spans that start by `lo` join.
+    fn reopen(&mut self, window: &mut Window, lo: f64) {
+        let mut later = Vec::new();
+        for s in window.take() {
+            if !self.valid(&s) || s.end <= lo {
+                continue;
+            }
+            if s.start > lo {
+                later.push(s);
+            } else {
+                window.push(s);
+            }
+        }
+        self.queue.put_back(later);
+        while let Some(s) = self.queue.peek() {
+            if s.start > lo {
+                break;
+            }
+            self.queue.pop();
+            if self.valid(&s) && s.end > lo {
+                window.push(s);
+            }
+        }
+    }
+
+    /// The length of the shortest prefix of `spans` (sorted by start, holding a cycle) that
+    /// holds a cycle: its last span closes the first cycle (bisection).
+    fn shortest_cyclic_prefix(&mut self, spans: &[Span]) -> usize {
+        let (mut good, mut bad) = (0, spans.len());
+        while bad - good > 1 {
+            let mid = good + (bad - good) / 2;
+            if self.cycle(&spans[..mid]).is_some() {
+                bad = mid;
+            } else {
+                good = mid;
+            }
+        }
+        bad
+    }
+
     /// The current version of constraint `k`.
     fn version(&self, k: u32) -> u32 {
         let k = k as usize;
@@ -565,28 +606,7 @@ pub(crate) fn sweep(
     // The spans of the cell being built.
     let mut window = Window::default();
     'cells: loop {
-        // The spans active at `lo` stay; those that start later go back to the queue.
-        let mut later = Vec::new();
-        for s in window.take() {
-            if !state.valid(&s) || s.end <= lo {
-                continue;
-            }
-            if s.start > lo {
-                later.push(s);
-            } else {
-                window.push(s);
-            }
-        }
-        state.queue.put_back(later);
-        while let Some(s) = state.queue.peek() {
-            if s.start > lo {
-                break;
-            }
-            state.queue.pop();
-            if state.valid(&s) && s.end > lo {
-                window.push(s);
-            }
-        }
+        state.reopen(&mut window, lo);
         // A cycle among the constraints active at `lo`.
         while let Settle::Cycle(Settled { cycle, .. }) =
             state.settle(&mut window, lo, lo, usize::MAX)
@@ -655,15 +675,7 @@ pub(crate) fn sweep(
                 .map(|&l| window[l as usize])
                 .collect();
             on_cycles.sort_unstable();
-            let (mut good, mut bad) = (0, on_cycles.len());
-            while bad - good > 1 {
-                let mid = good + (bad - good) / 2;
-                if state.cycle(&on_cycles[..mid]).is_some() {
-                    bad = mid;
-                } else {
-                    good = mid;
-                }
-            }
+            let bad = state.shortest_cyclic_prefix(&on_cycles);
             let hi = on_cycles[bad - 1].start;
             if hi <= lo {
                 // A refined constraint closed a cycle at `lo`: redo the cell.
