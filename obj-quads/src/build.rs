@@ -127,29 +127,8 @@ pub(crate) fn finish(raw: RawMesh, options: &LoadOptions) -> Result<(Mesh, LoadR
         };
         let material = raw.face_materials.get(face).copied().flatten();
         let n = idx.len();
-        if n < 3 {
-            return Err(LoadError::TooFewCorners {
-                file: raw.file.clone(),
-                at: raw.location(face),
-                corners: n,
-            });
-        }
-        if n > options.max_face_corners {
-            return Err(LoadError::TooManyCorners {
-                file: raw.file.clone(),
-                at: raw.location(face),
-                corners: n,
-                max: options.max_face_corners,
-            });
-        }
+        check_corners(&raw, face, n, options)?;
         let quads_only = options.face_policy == FacePolicy::QuadsOnly;
-        if quads_only && n != 4 {
-            return Err(LoadError::NotAQuad {
-                file: raw.file.clone(),
-                at: raw.location(face),
-                corners: n,
-            });
-        }
         // Drop consecutive duplicate corners (same index or same position).
         let pos = |k: usize| -> DVec3 {
             idx.get(k)
@@ -157,25 +136,7 @@ pub(crate) fn finish(raw: RawMesh, options: &LoadOptions) -> Result<(Mesh, LoadR
                 .copied()
                 .unwrap_or(DVec3::ZERO)
         };
-        keep.clear();
-        for k in 0..n {
-            let same_as_last = keep
-                .last()
-                .is_some_and(|&l| idx[l] == idx[k] || pos(l) == pos(k));
-            if !same_as_last {
-                keep.push(k);
-            }
-        }
-        while keep.len() > 1 {
-            let (Some(&first), Some(&last)) = (keep.first(), keep.last()) else {
-                break;
-            };
-            if idx[first] == idx[last] || pos(first) == pos(last) {
-                keep.pop();
-            } else {
-                break;
-            }
-        }
+        distinct_corners(idx, &pos, &mut keep);
         if keep.len() < 3 {
             report.degenerate_dropped += 1;
             continue;
@@ -276,6 +237,63 @@ pub(crate) fn finish(raw: RawMesh, options: &LoadOptions) -> Result<(Mesh, LoadR
         other => other,
     })?;
     Ok((mesh, report))
+}
+
+/// A face of `n` corners: at least 3, at most `options.max_face_corners`, and 4 under
+/// [`FacePolicy::QuadsOnly`].
+fn check_corners(
+    raw: &RawMesh,
+    face: usize,
+    n: usize,
+    options: &LoadOptions,
+) -> Result<(), LoadError> {
+    if n < 3 {
+        return Err(LoadError::TooFewCorners {
+            file: raw.file.clone(),
+            at: raw.location(face),
+            corners: n,
+        });
+    }
+    if n > options.max_face_corners {
+        return Err(LoadError::TooManyCorners {
+            file: raw.file.clone(),
+            at: raw.location(face),
+            corners: n,
+            max: options.max_face_corners,
+        });
+    }
+    if options.face_policy == FacePolicy::QuadsOnly && n != 4 {
+        return Err(LoadError::NotAQuad {
+            file: raw.file.clone(),
+            at: raw.location(face),
+            corners: n,
+        });
+    }
+    Ok(())
+}
+
+/// The corners of a face (indices `idx`, positions `pos(k)`) to keep, into `keep`:
+/// consecutive duplicates (same index or same position) dropped, around the end too.
+fn distinct_corners(idx: &[u32], pos: &impl Fn(usize) -> DVec3, keep: &mut Vec<usize>) {
+    keep.clear();
+    for k in 0..idx.len() {
+        let same_as_last = keep
+            .last()
+            .is_some_and(|&l| idx[l] == idx[k] || pos(l) == pos(k));
+        if !same_as_last {
+            keep.push(k);
+        }
+    }
+    while keep.len() > 1 {
+        let (Some(&first), Some(&last)) = (keep.first(), keep.last()) else {
+            break;
+        };
+        if idx[first] == idx[last] || pos(first) == pos(last) {
+            keep.pop();
+        } else {
+            break;
+        }
+    }
 }
 
 /// Emits one triangle of a split face, skipping zero-area pieces.

@@ -234,6 +234,92 @@ fn strip_comments(text: &str) -> Cow<'_, str> {
     Cow::Owned(out)
 }
 
+/// The material libraries an OBJ names, loaded for tobj: inside the model's folder unless
+/// the caller allows more, capped in size, checked before tobj parses them; what could not be
+/// loaded becomes a warning, a library outside the folder an error.
+struct MtlLibraries<'a> {
+    folder: Option<&'a Folder>,
+    /// The OBJ, for messages.
+    file: &'a str,
+    max_bytes: u64,
+    warnings: RefCell<Vec<String>>,
+    /// Directory of each loaded MTL, with the number of materials it holds.
+    dirs: RefCell<Vec<(usize, PathBuf)>>,
+    /// An `mtllib` that leaves the model's folder: the load fails with it.
+    refused: RefCell<Option<LoadError>>,
+}
+
+impl MtlLibraries<'_> {
+    /// Loads the library `name` (tobj's material loader).
+    fn load(&self, name: &Path) -> tobj::MTLLoadResult {
+        let Some(folder) = self.folder else {
+            self.warnings.borrow_mut().push(format!(
+                "material library `{}` not loaded: in-memory input has no directory",
+                name.display()
+            ));
+            return Err(tobj::LoadError::OpenFileFailed);
+        };
+        let path = match folder.resolve(folder.path(), name) {
+            Ok(path) => path,
+            Err(Refusal::Outside { resolved }) => {
+                self.refused
+                    .borrow_mut()
+                    .get_or_insert(LoadError::PathOutsideModel {
+                        file: self.file.to_owned(),
+                        what: "mtllib".into(),
+                        reference: name.display().to_string(),
+                        resolved,
+                        folder: folder.path().to_path_buf(),
+                    });
+                return Err(tobj::LoadError::OpenFileFailed);
+            }
+            Err(Refusal::Unresolvable { joined, source }) => {
+                self.warnings.borrow_mut().push(format!(
+                    "material library not loaded: {}: {source}",
+                    joined.display()
+                ));
+                return Err(tobj::LoadError::OpenFileFailed);
+            }
+        };
+        let shown = path.display().to_string();
+        let bytes = match crate::read_file_capped(&path, &shown, self.max_bytes) {
+            Ok(b) => b,
+            Err(e) => {
+                self.warnings
+                    .borrow_mut()
+                    .push(format!("material library not loaded: {e}"));
+                return Err(tobj::LoadError::OpenFileFailed);
+            }
+        };
+        let Ok(mtl) = std::str::from_utf8(&bytes) else {
+            self.warnings.borrow_mut().push(format!(
+                "material library not loaded: {shown}: not valid UTF-8"
+            ));
+            return Err(tobj::LoadError::ReadError);
+        };
+        if let Some(line) = mtl_problem(mtl) {
+            self.warnings.borrow_mut().push(format!(
+                "material library not loaded: {shown}, line {line}: colour needs three values"
+            ));
+            return Err(tobj::LoadError::MaterialParseError);
+        }
+        let mtl = strip_comments(mtl);
+        let result = catch_unwind(|| tobj::load_mtl_buf(&mut mtl.as_bytes()))
+            .unwrap_or(Err(tobj::LoadError::GenericFailure));
+        match &result {
+            Ok((mats, _)) => self.dirs.borrow_mut().push((
+                mats.len(),
+                path.parent().map(Path::to_path_buf).unwrap_or_default(),
+            )),
+            Err(e) => self
+                .warnings
+                .borrow_mut()
+                .push(format!("material library not loaded: {shown}: {e}")),
+        }
+        result
+    }
+}
+
 fn load_obj_text(
     text: &str,
     file: String,
@@ -243,79 +329,16 @@ fn load_obj_text(
     let text = strip_comments(text);
     let text = text.as_ref();
     let face_lines = prescan(text, &file, options)?;
-    let warnings = RefCell::new(Vec::<String>::new());
-    // Directory of each loaded MTL, with the number of materials it holds.
-    let mtl_dirs = RefCell::new(Vec::<(usize, PathBuf)>::new());
-    // An `mtllib` that leaves the model's folder: the load fails with it.
-    let refused = RefCell::new(None::<LoadError>);
     let folder = base.map(|b| Folder::new(b, options.allow_outside_paths));
-    let max_bytes = options.max_file_bytes;
-    let material_loader = |name: &Path| -> tobj::MTLLoadResult {
-        let Some(folder) = &folder else {
-            warnings.borrow_mut().push(format!(
-                "material library `{}` not loaded: in-memory input has no directory",
-                name.display()
-            ));
-            return Err(tobj::LoadError::OpenFileFailed);
-        };
-        let path = match folder.resolve(folder.path(), name) {
-            Ok(path) => path,
-            Err(Refusal::Outside { resolved }) => {
-                refused
-                    .borrow_mut()
-                    .get_or_insert(LoadError::PathOutsideModel {
-                        file: file.clone(),
-                        what: "mtllib".into(),
-                        reference: name.display().to_string(),
-                        resolved,
-                        folder: folder.path().to_path_buf(),
-                    });
-                return Err(tobj::LoadError::OpenFileFailed);
-            }
-            Err(Refusal::Unresolvable { joined, source }) => {
-                warnings.borrow_mut().push(format!(
-                    "material library not loaded: {}: {source}",
-                    joined.display()
-                ));
-                return Err(tobj::LoadError::OpenFileFailed);
-            }
-        };
-        let shown = path.display().to_string();
-        let bytes = match crate::read_file_capped(&path, &shown, max_bytes) {
-            Ok(b) => b,
-            Err(e) => {
-                warnings
-                    .borrow_mut()
-                    .push(format!("material library not loaded: {e}"));
-                return Err(tobj::LoadError::OpenFileFailed);
-            }
-        };
-        let Ok(mtl) = std::str::from_utf8(&bytes) else {
-            warnings.borrow_mut().push(format!(
-                "material library not loaded: {shown}: not valid UTF-8"
-            ));
-            return Err(tobj::LoadError::ReadError);
-        };
-        if let Some(line) = mtl_problem(mtl) {
-            warnings.borrow_mut().push(format!(
-                "material library not loaded: {shown}, line {line}: colour needs three values"
-            ));
-            return Err(tobj::LoadError::MaterialParseError);
-        }
-        let mtl = strip_comments(mtl);
-        let result = catch_unwind(|| tobj::load_mtl_buf(&mut mtl.as_bytes()))
-            .unwrap_or(Err(tobj::LoadError::GenericFailure));
-        match &result {
-            Ok((mats, _)) => mtl_dirs.borrow_mut().push((
-                mats.len(),
-                path.parent().map(Path::to_path_buf).unwrap_or_default(),
-            )),
-            Err(e) => warnings
-                .borrow_mut()
-                .push(format!("material library not loaded: {shown}: {e}")),
-        }
-        result
+    let libraries = MtlLibraries {
+        folder: folder.as_ref(),
+        file: &file,
+        max_bytes: options.max_file_bytes,
+        warnings: RefCell::new(Vec::new()),
+        dirs: RefCell::new(Vec::new()),
+        refused: RefCell::new(None),
     };
+    let material_loader = |name: &Path| libraries.load(name);
     // tobj's optional `merging`/`reordering` features add fields, hence the update.
     #[allow(clippy::needless_update)]
     let tobj_options = tobj::LoadOptions {
@@ -333,7 +356,7 @@ fn load_obj_text(
     let loaded = catch_unwind(AssertUnwindSafe(|| {
         tobj::load_obj_buf(&mut text.as_bytes(), &tobj_options, material_loader)
     }));
-    if let Some(e) = refused.into_inner() {
+    if let Some(e) = libraries.refused.take() {
         return Err(e);
     }
     let (models, materials) = match loaded {
@@ -355,8 +378,8 @@ fn load_obj_text(
             });
         }
     };
-    let mut raw = RawMesh::new(file);
-    raw.report.warnings = warnings.into_inner();
+    let mut raw = RawMesh::new(file.clone());
+    raw.report.warnings = libraries.warnings.take();
     // Materials.
     let tobj_materials = match materials {
         Ok(m) => m,
@@ -369,11 +392,34 @@ fn load_obj_text(
             Vec::new()
         }
     };
-    let dirs = mtl_dirs.into_inner();
+    push_materials(
+        &mut raw,
+        &tobj_materials,
+        &libraries.dirs.take(),
+        folder.as_ref(),
+    );
+    push_faces(&mut raw, &models, &face_lines)?;
+    if raw.face_count() == 0 {
+        return Err(LoadError::EmptyModel {
+            file: raw.file,
+            detail: "no `f` lines".into(),
+        });
+    }
+    finish(raw, options)
+}
+
+/// The MTL materials in file order, each with the folder of the library it came from (for
+/// its `map_Kd`, resolved inside the model's folder), appended to `raw`.
+fn push_materials(
+    raw: &mut RawMesh,
+    tobj_materials: &[tobj::Material],
+    dirs: &[(usize, PathBuf)],
+    folder: Option<&Folder>,
+) {
     let mut dir_of = dirs
         .iter()
         .flat_map(|(n, d)| std::iter::repeat_n(d.clone(), *n));
-    for m in &tobj_materials {
+    for m in tobj_materials {
         let dir = dir_of.next().unwrap_or_default();
         let kd = m.diffuse.unwrap_or([1.0; 3]);
         let alpha = m.dissolve.unwrap_or(1.0);
@@ -386,7 +432,7 @@ fn load_obj_text(
             diffuse = [1.0; 4];
         }
         let mut material = Material::new(m.name.clone(), diffuse);
-        if let (Some(tex), Some(folder)) = (&m.diffuse_texture, &folder) {
+        if let (Some(tex), Some(folder)) = (&m.diffuse_texture, folder) {
             let name = texture_name(tex);
             match folder.resolve(&dir, Path::new(name)) {
                 Ok(path) => material.texture = Some(path),
@@ -399,12 +445,21 @@ fn load_obj_text(
         }
         raw.materials.push(material);
     }
-    // Faces, in file order: models come in file order, faces in order within.
+}
+
+/// The faces of tobj's models, in file order (models come in file order, faces in order
+/// within), with their positions, materials, objects, source lines and uvs (dropped with a
+/// warning unless every face has finite ones), appended to `raw`.
+fn push_faces(
+    raw: &mut RawMesh,
+    models: &[tobj::Model],
+    face_lines: &[FaceLine],
+) -> Result<(), LoadError> {
     let mut all_uvs = Some(Vec::<Vec2>::new());
     let mut scan = face_lines.iter();
     let scan_ok = face_lines.len() == models.iter().map(|m| arities(&m.mesh).len()).sum::<usize>();
     let mut bad_uvs = false;
-    for model in &models {
+    for model in models {
         let mesh = &model.mesh;
         let base_index = raw.positions.len();
         let n_pos = mesh.positions.len() / 3;
@@ -488,13 +543,7 @@ fn load_obj_text(
             .push("texture coordinates missing on some faces: uvs dropped".into());
     }
     raw.uvs = all_uvs.filter(|u| u.len() == raw.indices.len());
-    if raw.face_count() == 0 {
-        return Err(LoadError::EmptyModel {
-            file: raw.file,
-            detail: "no `f` lines".into(),
-        });
-    }
-    finish(raw, options)
+    Ok(())
 }
 
 /// Face arities of a tobj mesh; tobj leaves the list empty when every face

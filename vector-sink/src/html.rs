@@ -186,7 +186,6 @@ pub fn css_matrix3d(m: &DMat4) -> String {
 /// of one face instead.
 #[must_use]
 pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
-    let (w, h) = (options.width, options.height);
     let root = page_root(scene, options);
     // Flat pages: the root's perspective on the container (CSS `perspective` about the
     // principal point is CONVENTIONS.md's `w = 1 − z/d`), so each element carries only an
@@ -329,15 +328,21 @@ pub fn write_html(scene: &Scene, options: &HtmlOptions) -> String {
     out.push_str("</style></head><body><div id=\"scene\">\n");
     out.push_str(&page);
     out.push_str("</div>\n");
-    if !options.overlay.is_empty() {
-        let _ = writeln!(
-            out,
-            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\" style=\"position:absolute;left:0;top:0\">{}</svg>",
-            options.overlay
-        );
-    }
+    out.push_str(&overlay_element(options));
     out.push_str("</body></html>\n");
     out
+}
+
+/// `options.overlay` as an SVG over the whole page (nothing when it is empty).
+fn overlay_element(options: &HtmlOptions) -> String {
+    if options.overlay.is_empty() {
+        return String::new();
+    }
+    let (w, h) = (options.width, options.height);
+    format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{h}\" viewBox=\"0 0 {w} {h}\" style=\"position:absolute;left:0;top:0\">{}</svg>\n",
+        options.overlay
+    )
 }
 
 /// The root the page draws with: the scene's, and for an orthographic one a huge
