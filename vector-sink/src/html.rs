@@ -429,7 +429,7 @@ fn page_head(options: &HtmlOptions, root: &DMat4, flat: &FlatRoot) -> String {
             ),
             HtmlMode::Preserve3d => format!(
                 "transform-style:preserve-3d;transform-origin:0 0;transform:{}",
-                css_matrix3d(&root)
+                css_matrix3d(root)
             ),
         },
     );

@@ -97,87 +97,12 @@ const PEER: &str = "plane-split";
 /// Runs the bench.
 pub fn run(args: &BenchArgs) -> Result<ExitCode> {
     if args.check {
-        let path = crate::workspace_root().join("docs/bench.md");
-        let text = std::fs::read_to_string(&path)
-            .with_context(|| format!("reading {}", path.display()))?;
-        report::check_format(&text).with_context(|| {
-            format!(
-                "{} is not in the current report format; regenerate it with `cargo xtask bench --docs`",
-                path.display()
-            )
-        })?;
-        println!("{}: in the current report format", path.display());
-        return Ok(ExitCode::SUCCESS);
+        return check_report();
     }
     if args.redraw_chart {
-        let docs = crate::workspace_root().join("docs");
-        let text = std::fs::read_to_string(docs.join("bench.md"))
-            .with_context(|| format!("reading {}", docs.join("bench.md").display()))?;
-        let text = report::split_notes(&text).0;
-        let rows = report::parse_rows(text)?;
-        write(&docs.join("bench.svg"), &chart::chart_svg(&rows)?)?;
-        println!(
-            "redrew {} from {} rows",
-            docs.join("bench.svg").display(),
-            rows.len()
-        );
-        let scaling = report::parse_scaling(text)?;
-        if !scaling.is_empty() {
-            write(
-                &docs.join("bench-scaling.svg"),
-                &chart::scaling_svg(&scaling)?,
-            )?;
-            println!(
-                "redrew {} from {} scaling rows",
-                docs.join("bench-scaling.svg").display(),
-                scaling.len()
-            );
-        }
-        return Ok(ExitCode::SUCCESS);
+        return redraw_charts();
     }
-    let budget = if args.smoke {
-        Budget {
-            yaws: 1,
-            pitches: &[25.0],
-            frames: 3,
-            per_view: Duration::from_millis(5),
-            scaling: &[],
-            peer_pieces: 1000,
-            scaling_limit: Duration::from_secs(1),
-        }
-    } else if args.quick {
-        Budget {
-            yaws: 4,
-            pitches: &[25.0, -30.0],
-            frames: 15,
-            per_view: Duration::from_millis(15),
-            scaling: &[1_000, 10_000],
-            peer_pieces: 8_000,
-            scaling_limit: Duration::from_secs(3),
-        }
-    } else if args.full {
-        Budget {
-            yaws: 8,
-            pitches: &[25.0, -30.0],
-            frames: 200,
-            per_view: Duration::from_millis(150),
-            scaling: &[1_000, 10_000, 100_000, 1_000_000],
-            peer_pieces: 20_000,
-            // Long enough for the BSP build of the million-face torus (minutes): the point of
-            // the full run is the growth curve to 1M faces.
-            scaling_limit: Duration::from_secs(600),
-        }
-    } else {
-        Budget {
-            yaws: 8,
-            pitches: &[25.0, -30.0],
-            frames: 60,
-            per_view: Duration::from_millis(40),
-            scaling: &[1_000, 10_000, 100_000],
-            peer_pieces: 20_000,
-            scaling_limit: Duration::from_secs(30),
-        }
-    };
+    let budget = Budget::of(args);
     let command = if args.smoke {
         "cargo xtask bench --smoke"
     } else if args.quick {
@@ -233,6 +158,117 @@ pub fn run(args: &BenchArgs) -> Result<ExitCode> {
     }
     bar.finish_and_clear();
 
+    let out = write_reports(args, command, &rows, &scaling)?;
+    println!("{}", report::summary(&rows));
+    println!(
+        "wrote {}, {}, {}",
+        out.join("report.md").display(),
+        out.join("report.json").display(),
+        out.join("chart.svg").display()
+    );
+    Ok(ExitCode::SUCCESS)
+}
+
+/// `--check`: docs/bench.md is in the current report format.
+fn check_report() -> Result<ExitCode> {
+    let path = crate::workspace_root().join("docs/bench.md");
+    let text =
+        std::fs::read_to_string(&path).with_context(|| format!("reading {}", path.display()))?;
+    report::check_format(&text).with_context(|| {
+        format!(
+            "{} is not in the current report format; regenerate it with `cargo xtask bench --docs`",
+            path.display()
+        )
+    })?;
+    println!("{}: in the current report format", path.display());
+    Ok(ExitCode::SUCCESS)
+}
+
+/// `--redraw-chart`: the charts of docs/ drawn again from docs/bench.md's rows.
+fn redraw_charts() -> Result<ExitCode> {
+    let docs = crate::workspace_root().join("docs");
+    let text = std::fs::read_to_string(docs.join("bench.md"))
+        .with_context(|| format!("reading {}", docs.join("bench.md").display()))?;
+    let text = report::split_notes(&text).0;
+    let rows = report::parse_rows(text)?;
+    write(&docs.join("bench.svg"), &chart::chart_svg(&rows)?)?;
+    println!(
+        "redrew {} from {} rows",
+        docs.join("bench.svg").display(),
+        rows.len()
+    );
+    let scaling = report::parse_scaling(text)?;
+    if !scaling.is_empty() {
+        write(
+            &docs.join("bench-scaling.svg"),
+            &chart::scaling_svg(&scaling)?,
+        )?;
+        println!(
+            "redrew {} from {} scaling rows",
+            docs.join("bench-scaling.svg").display(),
+            scaling.len()
+        );
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+impl Budget {
+    /// The budget `--smoke`, `--quick`, `--full` or the default asks for.
+    fn of(args: &BenchArgs) -> Budget {
+        if args.smoke {
+            Budget {
+                yaws: 1,
+                pitches: &[25.0],
+                frames: 3,
+                per_view: Duration::from_millis(5),
+                scaling: &[],
+                peer_pieces: 1000,
+                scaling_limit: Duration::from_secs(1),
+            }
+        } else if args.quick {
+            Budget {
+                yaws: 4,
+                pitches: &[25.0, -30.0],
+                frames: 15,
+                per_view: Duration::from_millis(15),
+                scaling: &[1_000, 10_000],
+                peer_pieces: 8_000,
+                scaling_limit: Duration::from_secs(3),
+            }
+        } else if args.full {
+            Budget {
+                yaws: 8,
+                pitches: &[25.0, -30.0],
+                frames: 200,
+                per_view: Duration::from_millis(150),
+                scaling: &[1_000, 10_000, 100_000, 1_000_000],
+                peer_pieces: 20_000,
+                // Long enough for the BSP build of the million-face torus (minutes): the point of
+                // the full run is the growth curve to 1M faces.
+                scaling_limit: Duration::from_secs(600),
+            }
+        } else {
+            Budget {
+                yaws: 8,
+                pitches: &[25.0, -30.0],
+                frames: 60,
+                per_view: Duration::from_millis(40),
+                scaling: &[1_000, 10_000, 100_000],
+                peer_pieces: 20_000,
+                scaling_limit: Duration::from_secs(30),
+            }
+        }
+    }
+}
+
+/// The report in `--out` (markdown, JSON, charts), `--json`, and with `--docs` docs/bench.md
+/// (keeping the hand-written notes that follow the generated report) and its charts.
+fn write_reports(
+    args: &BenchArgs,
+    command: &str,
+    rows: &[Row],
+    scaling: &[ScalingRow],
+) -> Result<std::path::PathBuf> {
     let out = args
         .out
         .clone()
@@ -240,23 +276,23 @@ pub fn run(args: &BenchArgs) -> Result<ExitCode> {
     std::fs::create_dir_all(&out).with_context(|| format!("creating {}", out.display()))?;
     let json = serde_json::to_string_pretty(&Report {
         command,
-        rows: &rows,
-        scaling: &scaling,
+        rows,
+        scaling,
     })?;
-    let rows_json = serde_json::to_string_pretty(&rows)?;
+    let rows_json = serde_json::to_string_pretty(rows)?;
     write(&out.join("report.json"), &rows_json)?;
     write(&out.join("report-full.json"), &json)?;
     if let Some(path) = &args.json {
         write(path, &json)?;
     }
-    let table = report::markdown(command, &rows, &scaling, args.resolution);
+    let table = report::markdown(command, rows, scaling, args.resolution);
     write(&out.join("report.md"), &table)?;
-    let chart = chart::chart_svg(&rows)?;
+    let chart = chart::chart_svg(rows)?;
     write(&out.join("chart.svg"), &chart)?;
     let scaling_chart = if scaling.is_empty() {
         None
     } else {
-        Some(chart::scaling_svg(&scaling)?)
+        Some(chart::scaling_svg(scaling)?)
     };
     if let Some(svg) = &scaling_chart {
         write(&out.join("scaling.svg"), svg)?;
@@ -278,14 +314,7 @@ pub fn run(args: &BenchArgs) -> Result<ExitCode> {
             write(&docs.join("bench-scaling.svg"), svg)?;
         }
     }
-    println!("{}", report::summary(&rows));
-    println!(
-        "wrote {}, {}, {}",
-        out.join("report.md").display(),
-        out.join("report.json").display(),
-        out.join("chart.svg").display()
-    );
-    Ok(ExitCode::SUCCESS)
+    Ok(out)
 }
 
 fn write(path: &std::path::Path, text: &str) -> Result<()> {

@@ -484,6 +484,15 @@ pub(super) fn generated_cases(
     models: &[(String, PolygonMesh, CullMode)],
     quick: bool,
 ) -> Result<Vec<Case>> {
+    let mut out = strategy_cases(quick)?;
+    coplanar_cases(models, quick, &mut out);
+    degenerate_cases(models, quick, &mut out);
+    view_cases(models, quick, &mut out)?;
+    Ok(out)
+}
+
+/// proptest's scenes, as generated and moved 1e7 away.
+fn strategy_cases(quick: bool) -> Result<Vec<Case>> {
     let mut out = Vec::new();
     let direction = DVec3::new(-0.3, 1.0, 0.8);
     for (i, scene) in strategy_scenes(if quick { 2 } else { 12 })?
@@ -509,6 +518,12 @@ pub(super) fn generated_cases(
             expect_error: false,
         });
     }
+    Ok(out)
+}
+
+/// Squares a hair apart, coplanar overlapping squares, a closed model doubled with the
+/// opposite winding.
+fn coplanar_cases(models: &[(String, PolygonMesh, CullMode)], quick: bool, out: &mut Vec<Case>) {
     let general = general_shots(CullMode::None);
     let two =
         |s: &[Shot]| -> Vec<Shot> { s.iter().take(if quick { 1 } else { 5 }).copied().collect() };
@@ -553,6 +568,14 @@ pub(super) fn generated_cases(
             expect_error: false,
         });
     }
+}
+
+/// Slivers, near-degenerate and degenerate faces, non-finite positions, twisted quads,
+/// T-junctions, duplicate vertices.
+fn degenerate_cases(models: &[(String, PolygonMesh, CullMode)], quick: bool, out: &mut Vec<Case>) {
+    let general = general_shots(CullMode::None);
+    let two =
+        |s: &[Shot]| -> Vec<Shot> { s.iter().take(if quick { 1 } else { 5 }).copied().collect() };
     let aspects: &[f64] = if quick { &[1e6] } else { &[1e3, 1e6] };
     for &a in aspects {
         out.push(Case {
@@ -629,6 +652,15 @@ pub(super) fn generated_cases(
             expect_error: false,
         });
     }
+}
+
+/// Views along the axes, edge-on, with the eye close and inside, of the models and of the
+/// hard scenes.
+fn view_cases(
+    models: &[(String, PolygonMesh, CullMode)],
+    quick: bool,
+    out: &mut Vec<Case>,
+) -> Result<()> {
     let view_models: Vec<(String, Result<PolygonMesh, String>, CullMode)> = if quick {
         vec![(models[0].0.clone(), Ok(models[0].1.clone()), CullMode::None)]
     } else {
@@ -673,5 +705,5 @@ pub(super) fn generated_cases(
             expect_error: false,
         });
     }
-    Ok(out)
+    Ok(())
 }
