@@ -221,8 +221,3 @@ pub enum BakeError {
         tolerance_deg: f64,
     },
 }
-
-/// The crate's README: its example is compiled and run as a doctest.
-#[cfg(doctest)]
-#[doc = include_str!("../README.md")]
-pub struct ReadmeDoctests;

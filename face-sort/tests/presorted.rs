@@ -318,3 +318,35 @@ fn certified_orders_refuse_eyes_nearer_than_the_certificate() {
         Err(CertifiedOrdersError::Uncertified { regions }) if regions > 0
     ));
 }
+
+/// `Presorted::with_options` never falls back silently: a build refused by its pair budget
+/// keeps the error (`refusal`), and every frame says it was drawn by the BSP because of it
+/// (`last_fallback`, `stats().fallback`, `fallback_frames`), exactly.
+#[test]
+fn a_refused_build_is_reported_on_every_frame() {
+    let geometry =
+        Geometry::with_exact_corners(&read_obj(&asset("keenan-crane/spot/spot_control_mesh.obj")))
+            .unwrap();
+    let options = PresortOptions {
+        max_pairs: 10,
+        ..PresortOptions::default()
+    };
+    let mut sorter = Presorted::with_options(&geometry, &options);
+    assert!(
+        matches!(
+            sorter.refusal(),
+            Some(PresortError::PairBudget { limit: 10, .. })
+        ),
+        "{:?}",
+        sorter.refusal()
+    );
+    let view = View::fit(&geometry.bounds(), 256, 256).with_yaw_pitch_roll(40.0, 25.0, 0.0);
+    let mut list = DrawList::new();
+    for frame in 1..=3 {
+        sorter.sort(&view, &mut list);
+        assert_eq!(sorter.last_fallback(), Some(FallbackReason::Refused));
+        assert_eq!(sorter.stats().fallback, Some(FallbackReason::Refused));
+        assert_eq!(sorter.fallback_frames(), frame);
+        assert_eq!(oracle::count_violations(&view, &list), 0);
+    }
+}

@@ -15,6 +15,7 @@
 
 use aspect_bake::{Axis, BakeOptions, BspSource, PictureOptions, Spin};
 use face_sort::{Geometry, View};
+use sprite_compose::Materials;
 
 use arbitrary::{Result, Unstructured};
 
@@ -74,8 +75,9 @@ pub fn bake(data: &[u8]) {
                 &lists,
                 &spin,
                 &geometry,
-                &|face| [face as u8, 0, 0, 255],
-                &vector_sink::SpinOptions::DEFAULT,
+                &vector_sink::SpinOptions::DEFAULT.with_materials(&Materials::solid(
+                    (0..geometry.face_count()).map(|face| [face as u8, 0, 0, 255]),
+                )),
             );
             crate::writers::check_html(&page);
             check_numbers(&page);
@@ -144,8 +146,9 @@ mod tests {
             &lists,
             &spin,
             &geometry,
-            &|_| [200, 100, 50, 255],
-            &vector_sink::SpinOptions::DEFAULT,
+            &vector_sink::SpinOptions::DEFAULT.with_materials(&Materials::solid(
+                (0..geometry.face_count()).map(|_| [200, 100, 50, 255]),
+            )),
         )
     }
 

@@ -250,19 +250,13 @@ impl YawBake {
             let options = SpinOptions::DEFAULT
                 .with_period(period)
                 .with_ids(ids)
-                .with_paused_at(paused);
-            let colours = &self.colours;
+                .with_paused_at(paused)
+                .with_materials(&Materials::solid(self.colours.iter().copied()));
             Ok(vector_sink::write_culled_spin_html(
                 &self.bake,
                 &lists,
                 &self.spin,
                 &self.geometry,
-                &|face| {
-                    colours
-                        .get(face as usize)
-                        .copied()
-                        .unwrap_or([128, 128, 128, 255])
-                },
                 &options,
             ))
         })

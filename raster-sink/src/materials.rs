@@ -13,7 +13,9 @@ use face_sort::View;
 use face_sort::glam::DVec3;
 use tiny_skia::Pixmap;
 
-use sprite_compose::{FaceMaterials, FacePaint, Image, MaterialOptions, Materials, TextureError};
+use sprite_compose::{
+    FaceMaterials, FacePaint, Image, MaterialOptions, MaterialWarning, Materials,
+};
 
 use crate::{Brush, Light, RasterError, Style, TextureBrush, shade_colour};
 
@@ -23,8 +25,8 @@ use crate::{Brush, Light, RasterError, Style, TextureBrush, shade_colour};
 pub struct MaterialStyle {
     /// One brush per face that has a material or a texture.
     pub style: Style,
-    /// One error per material texture that failed to load.
-    pub warnings: Vec<Arc<TextureError>>,
+    /// What the materials could not show ([`Materials::warnings`]).
+    pub warnings: Vec<MaterialWarning>,
 }
 
 /// Loads a PNG or JPEG texture within the default texture limits of

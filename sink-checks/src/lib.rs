@@ -9,3 +9,9 @@
 #[cfg(doctest)]
 #[doc = include_str!("../../README.md")]
 pub struct RootReadme;
+
+/// aspect-bake's README, whose quick start writes a page with vector-sink (which depends on
+/// aspect-bake, so aspect-bake cannot run it itself).
+#[cfg(doctest)]
+#[doc = include_str!("../../aspect-bake/README.md")]
+pub struct AspectBakeReadme;

@@ -84,7 +84,9 @@ pub use bake_player::BakePlayer;
 pub use compositor::{Brush, Compositor, OpCounts, SpriteId, TextureId};
 pub use copies::{CulledCopies, culled_copies};
 #[cfg(feature = "obj-quads")]
-pub use materials::{FaceMaterials, MaterialOptions, TextureError, decode_image, load_image};
+pub use materials::{
+    FaceMaterials, MaterialOptions, MaterialWarning, TextureError, decode_image, load_image,
+};
 pub use materials::{FacePaint, Image, Materials, UvMap};
 pub use overlay::{
     Dot, DrawnOverlay, Line, OrderedPart, Overlay, Point, Stroke, overlay_in_order, visible_overlay,

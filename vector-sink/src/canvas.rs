@@ -155,18 +155,19 @@ pub fn write_canvas_spin_html(
     lists: &[Vec<u32>],
     spin: &Spin,
     geometry: &Geometry,
-    colour: &dyn Fn(u32) -> [u8; 4],
     options: &SpinOptions,
 ) -> String {
+    let colour = |face| crate::page::face_colour(options.materials.as_deref(), face);
+    let background = crate::page::background(options.background, options.ids);
     let view = spin.view_at(0.0);
     let shift = geometry.bounds().centre() - view.centre();
     let (pieces, wide) = pieces_js(
         bake.polygons(),
         shift,
         &view,
-        colour,
+        &colour,
         options.ids,
-        options.background,
+        background,
     );
     let mut order = Vec::new();
     let mut cell_offsets = vec![0u32];
@@ -176,7 +177,7 @@ pub fn write_canvas_spin_html(
     }
     let lows: Vec<String> = bake.cells().iter().map(|c| num(c.range.lo)).collect();
     let [c0, c1, c2] = spin.rodrigues();
-    let mut page = page_head("spin", &view, options.background);
+    let mut page = page_head("spin", &view, background);
     page.push_str(&pieces);
     let _ = writeln!(
         page,
@@ -210,20 +211,21 @@ pub fn write_canvas_turn_html(
     sorter: &Presorted,
     geometry: &Geometry,
     view: &View,
-    colour: &dyn Fn(u32) -> [u8; 4],
     options: &TurnPageOptions,
 ) -> Result<TurnPage, CertifiedOrdersError> {
+    let colour = |face| crate::page::face_colour(options.materials.as_deref(), face);
+    let background = crate::page::background(options.background, options.ids);
     let (rest, eye, certified) = crate::turn_page::certified_at_rest(sorter, view)?;
     let shift = geometry.bounds().centre() - rest.centre();
     let (pieces, _) = pieces_js(
         &certified.pieces,
         shift,
         &rest,
-        colour,
+        &colour,
         options.ids,
-        options.background,
+        background,
     );
-    let mut page = page_head("face-sort presorted", &rest, options.background);
+    let mut page = page_head("face-sort presorted", &rest, background);
     page.push_str(&pieces);
     // The lookup's tables index pieces (one "element" each).
     let one_each: Vec<Vec<(String, char)>> =

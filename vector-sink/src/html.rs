@@ -415,11 +415,7 @@ fn page_head(options: &HtmlOptions, root: &DMat4, flat: &FlatRoot) -> String {
      .x i{{position:absolute;left:0;top:0;width:100%;height:100%;transform-origin:0 0;background-size:100% 100%}}\n\
      {texture_rules}",
         texture_rules = texture_rules(options),
-        bg = hex(options.background.unwrap_or(if options.ids {
-            [0, 0, 0, 255]
-        } else {
-            [255, 255, 255, 255]
-        })),
+        bg = hex(crate::page::background(options.background, options.ids)),
         scene_style = match options.mode {
             HtmlMode::Flat => format!(
                 "perspective:{}px;perspective-origin:{}px {}px",

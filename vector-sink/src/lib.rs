@@ -47,6 +47,7 @@ mod hidden;
 mod html;
 mod lines;
 mod numbers;
+mod page;
 mod page_pieces;
 mod pdf;
 mod spin;

@@ -3,16 +3,17 @@
 //! script: the browser only composites, in the document order of the visible container.
 
 use std::fmt::Write as _;
+use std::sync::Arc;
 
 use aspect_bake::{Bake, Spin};
 use face_sort::Geometry;
 use glam::{DMat3, DMat4, DVec2, DVec3};
 
 use crate::numbers::hex;
-use crate::{BakedSpriteTree, css_matrix3d, id_colour, perspective_matrix};
+use crate::{BakedSpriteTree, Materials, css_matrix3d, id_colour, perspective_matrix};
 
 /// Options of [`write_spin_html`].
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 #[non_exhaustive]
 pub struct SpinOptions {
     /// Seconds per full turn. Default: 8.
@@ -20,8 +21,14 @@ pub struct SpinOptions {
     /// Fill each face with its ID colour (CONVENTIONS.md) instead of the palette. Default:
     /// false.
     pub ids: bool,
-    /// Page background. Default: black (ID 0).
-    pub background: [u8; 4],
+    /// Page background. Default: none: black in ID mode, white otherwise (as every page
+    /// and the PNG).
+    pub background: Option<[u8; 4]>,
+    /// What fills each face in colour mode (a texture as its mean colour), for the pages that
+    /// draw a bake's pieces ([`write_culled_spin_html`](crate::write_culled_spin_html),
+    /// [`write_canvas_spin_html`](crate::write_canvas_spin_html)). Default: none (the
+    /// palette).
+    pub materials: Option<Arc<Materials>>,
     /// Each element is laid out at this many times its extent at rest, so that the browser
     /// rasters it at least at screen resolution (as [`HtmlOptions::oversize`](crate::HtmlOptions)).
     /// Default: 4.
@@ -39,7 +46,8 @@ impl SpinOptions {
     pub const DEFAULT: SpinOptions = SpinOptions {
         period_s: 8.0,
         ids: false,
-        background: [0, 0, 0, 255],
+        background: None,
+        materials: None,
         oversize: 4.0,
         orthographic_distance: 1e8,
         paused_at_s: None,
@@ -58,6 +66,20 @@ impl SpinOptions {
     #[must_use]
     pub fn with_ids(mut self, ids: bool) -> Self {
         self.ids = ids;
+        self
+    }
+
+    /// The page background (`None`: black in ID mode, white otherwise).
+    #[must_use]
+    pub fn with_background(mut self, background: Option<[u8; 4]>) -> Self {
+        self.background = background;
+        self
+    }
+
+    /// Faces filled from `materials` (in colour mode).
+    #[must_use]
+    pub fn with_materials(mut self, materials: &Materials) -> Self {
+        self.materials = Some(Arc::new(materials.clone()));
         self
     }
 
@@ -148,7 +170,7 @@ pub fn write_spin_html(
          .cell{{position:absolute;left:0;top:0;visibility:hidden;\
          animation:{period}s step-end {delay} infinite {state}}}\n\
          .cell>div{{position:absolute;left:0;top:0;transform-origin:0 0}}\n",
-        bg = hex(options.background),
+        bg = hex(crate::page::background(options.background, options.ids)),
     );
     // One class per polygon (its elements): transform, size, colour.
     let set = &bake.polygons();

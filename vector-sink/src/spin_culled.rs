@@ -29,16 +29,16 @@ use crate::spin::SpinOptions;
 /// - The container stays hidden until the last element has been parsed, so that every
 ///   animation starts together.
 ///
-/// `colour(face)` fills a face (ignored in ID mode).
+/// Faces are filled from `options.materials` (ignored in ID mode).
 #[must_use]
 pub fn write_culled_spin_html(
     bake: &Bake,
     lists: &[Vec<u32>],
     spin: &Spin,
     geometry: &Geometry,
-    colour: &dyn Fn(u32) -> [u8; 4],
     options: &SpinOptions,
 ) -> String {
+    let colour = |face| crate::page::face_colour(options.materials.as_deref(), face);
     let view = spin.view_at(0.0);
     let graph_maps = sprite_compose::polygon_maps(bake.polygons(), geometry, &view);
     let (w, h) = (view.width(), view.height());
@@ -73,7 +73,7 @@ pub fn write_culled_spin_html(
          #s>i,#s>b{{position:absolute;left:0;top:0;transform-origin:0 0;backface-visibility:hidden;animation:t {timing}}}\n\
          b{{width:0;height:0;border-style:solid;border-color:transparent}}\n\
          @keyframes t{{from{{rotate:{x} {y} {z} {a0}deg}}to{{rotate:{x} {y} {z} {a1}deg}}}}\n",
-        bg = hex(options.background),
+        bg = hex(crate::page::background(options.background, options.ids)),
         cx = num(origin.x),
         cy = num(origin.y),
         d = num(distance),
@@ -97,7 +97,7 @@ pub fn write_culled_spin_html(
                 distance,
             },
         },
-        &crate::page_pieces::face_fill(options.ids, colour),
+        &crate::page_pieces::face_fill(options.ids, &colour),
         options.oversize,
     );
     // Visibility of each element: shown in the cells that use it, hidden in the cells where

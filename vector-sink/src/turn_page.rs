@@ -4,6 +4,7 @@
 //! on the page was certified when the sorter was built.
 
 use std::fmt::Write as _;
+use std::sync::Arc;
 
 use base64::Engine as _;
 use face_sort::{
@@ -11,17 +12,22 @@ use face_sort::{
 };
 use glam::{DMat3, DMat4, DVec3};
 
+use crate::Materials;
 use crate::numbers::hex;
 use crate::page_pieces::{Placement, num, piece_classes};
 
 /// Options of [`write_turn_html`].
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, Debug)]
 #[non_exhaustive]
 pub struct TurnPageOptions {
     /// Fill each face with its ID colour (CONVENTIONS.md) instead of `colour`. Default: false.
     pub ids: bool,
-    /// Page background. Default: black (ID 0).
-    pub background: [u8; 4],
+    /// Page background. Default: none: black in ID mode, white otherwise (as every page
+    /// and the PNG).
+    pub background: Option<[u8; 4]>,
+    /// What fills each face in colour mode (a texture as its mean colour). Default: none
+    /// (the palette).
+    pub materials: Option<Arc<Materials>>,
     /// Each element is laid out at this many times its extent at rest (as
     /// [`SpinOptions::oversize`](crate::SpinOptions)). Default: 4.
     pub oversize: f64,
@@ -37,7 +43,8 @@ impl TurnPageOptions {
     /// The defaults.
     pub const DEFAULT: TurnPageOptions = TurnPageOptions {
         ids: false,
-        background: [0, 0, 0, 255],
+        background: None,
+        materials: None,
         oversize: 4.0,
         orthographic_distance: 1e8,
         start: Vec::new(),
@@ -47,6 +54,20 @@ impl TurnPageOptions {
     #[must_use]
     pub fn with_ids(mut self, ids: bool) -> Self {
         self.ids = ids;
+        self
+    }
+
+    /// The page background (`None`: black in ID mode, white otherwise).
+    #[must_use]
+    pub fn with_background(mut self, background: Option<[u8; 4]>) -> Self {
+        self.background = background;
+        self
+    }
+
+    /// Faces filled from `materials` (in colour mode).
+    #[must_use]
+    pub fn with_materials(mut self, materials: &Materials) -> Self {
+        self.materials = Some(Arc::new(materials.clone()));
         self
     }
 
@@ -112,9 +133,9 @@ pub fn write_turn_html(
     sorter: &Presorted,
     geometry: &Geometry,
     view: &View,
-    colour: &dyn Fn(u32) -> [u8; 4],
     options: &TurnPageOptions,
 ) -> Result<TurnPage, CertifiedOrdersError> {
+    let colour = |face| crate::page::face_colour(options.materials.as_deref(), face);
     let (rest, eye, certified) = certified_at_rest(sorter, view)?;
     let distance = match rest.projection() {
         Projection::Orthographic => options.orthographic_distance,
@@ -132,7 +153,7 @@ pub fn write_turn_html(
          #s{{position:absolute;left:{cx}px;top:{cy}px;width:0;height:0;perspective:{d}px;perspective-origin:0 0;--r:0 0 1 0deg}}\n\
          #s>i,#s>b{{position:absolute;left:0;top:0;transform-origin:0 0;backface-visibility:hidden;rotate:var(--r);visibility:hidden}}\n\
          b{{width:0;height:0;border-style:solid;border-color:transparent}}\n",
-        bg = hex(options.background),
+        bg = hex(crate::page::background(options.background, options.ids)),
         cx = num(origin.x),
         cy = num(origin.y),
         d = num(distance),
@@ -149,7 +170,7 @@ pub fn write_turn_html(
             scale: rest.scale(),
             turning: crate::page_pieces::Turning::Free,
         },
-        &crate::page_pieces::face_fill(options.ids, colour),
+        &crate::page_pieces::face_fill(options.ids, &colour),
         options.oversize,
     );
     page.push_str("</style></head><body><div id=\"s\">\n");

@@ -424,17 +424,17 @@ fn run_picture(args: &BakeArgs, prepared: &Prepared) -> Result<ExitCode> {
     }
     if args.html.is_some() || args.canvas.is_some() {
         let lists = aspect_bake::drawn_lists(&baked, &prepared.spin)?;
-        let colour = crate::raster::solid_colours(&geometry, &prepared.source)?;
+        let (_, materials) = crate::raster::face_style(&geometry, &prepared.source, None, None)?;
         let options = vector_sink::SpinOptions::DEFAULT
             .with_period(args.period)
             .with_ids(args.ids)
-            .with_paused_at(args.paused);
+            .with_paused_at(args.paused)
+            .with_materials(&materials);
         type Writer = fn(
             &Bake,
             &[Vec<u32>],
             &aspect_bake::Spin,
             &Geometry,
-            &dyn Fn(u32) -> [u8; 4],
             &vector_sink::SpinOptions,
         ) -> String;
         let pages: [(&Option<PathBuf>, Writer, &str); 2] = [
@@ -447,7 +447,7 @@ fn run_picture(args: &BakeArgs, prepared: &Prepared) -> Result<ExitCode> {
         ];
         for (path, write_page, what) in pages {
             let Some(path) = path else { continue };
-            let page = write_page(&baked, &lists, &prepared.spin, &geometry, &colour, &options);
+            let page = write_page(&baked, &lists, &prepared.spin, &geometry, &options);
             write(path, &page)?;
             let elements = page.matches("<i class=").count() + page.matches("<b class=").count();
             line.push_str(&format!(", {what} {} B", page.len()));

@@ -37,23 +37,6 @@ pub fn pixel_error(view: &View, list: &DrawList, truth: &Truth) -> ErrorCounts {
     }
 }
 
-/// Each face's solid colour for pages and files without textures: its material's brush
-/// (raster-sink's `sprite_brushes`), the palette where it has none.
-pub fn solid_colours(
-    geometry: &Geometry,
-    source: &obj_quads::Mesh,
-) -> Result<impl Fn(u32) -> [u8; 4]> {
-    let (style, _) = face_style(geometry, source, None, None)?;
-    let brushes = style.sprite_brushes(source, None);
-    Ok(move |face: u32| {
-        brushes
-            .get(face as usize)
-            .copied()
-            .unwrap_or(sprite_compose::Brush::Palette)
-            .solid_colour(face)
-    })
-}
-
 /// The render command's per-face brushes: the mesh's materials resolved once
 /// (sprite-compose's `Materials`, with `texture` for faces with uvs and no texture of their
 /// own), as raster brushes with the ground grid on its face, and as they are for the vector
@@ -70,7 +53,7 @@ pub fn face_style(
     let materials = Materials::resolve(mesh, geometry.bounds().centre(), &options)
         .map_err(|e| anyhow::anyhow!("texture {e}"))?;
     for warning in materials.warnings() {
-        eprintln!("warning: texture {warning}; using the diffuse colour");
+        eprintln!("warning: {warning}");
     }
     let mut style = Style::from_resolved(&materials).map_err(|e| anyhow::anyhow!("{e}"))?;
     if let Some((face, grid)) = grid {

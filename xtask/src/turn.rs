@@ -75,15 +75,15 @@ pub fn run(args: &TurnArgs) -> Result<ExitCode> {
     let (sorter, had, build_ms) =
         crate::presort_cache::load_or_build(&geometry, args.presort_cache.as_deref())??;
     let certificate = had.words(args.presort_cache.as_deref());
-    let colour = crate::raster::solid_colours(&geometry, &source)?;
+    let (_, materials) = crate::raster::face_style(&geometry, &source, None, None)?;
     let options = vector_sink::TurnPageOptions::DEFAULT
         .with_ids(args.ids)
-        .with_start(args.yaw, args.pitch);
+        .with_start(args.yaw, args.pitch)
+        .with_materials(&materials);
     type Writer = fn(
         &face_sort::Presorted,
         &face_sort::Geometry,
         &View,
-        &dyn Fn(u32) -> [u8; 4],
         &vector_sink::TurnPageOptions,
     ) -> Result<vector_sink::TurnPage, face_sort::CertifiedOrdersError>;
     let pages: [(&Option<PathBuf>, Writer, &str); 2] = [
@@ -96,7 +96,7 @@ pub fn run(args: &TurnArgs) -> Result<ExitCode> {
     ];
     for (path, write, what) in pages {
         let Some(path) = path else { continue };
-        let page = write(&sorter, &geometry, &view, &colour, &options)
+        let page = write(&sorter, &geometry, &view, &options)
             .with_context(|| format!("{}: the {what}", args.model.display()))?;
         if let Some(parent) = path.parent().filter(|p| !p.as_os_str().is_empty()) {
             std::fs::create_dir_all(parent)

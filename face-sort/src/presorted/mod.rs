@@ -255,7 +255,14 @@ impl Presorted {
     /// [`try_new`](Self::try_new) to handle the error instead.
     #[must_use]
     pub fn new(geometry: &Geometry) -> Self {
-        Self::try_new(geometry, &PresortOptions::default()).unwrap_or_else(|error| {
+        Self::with_options(geometry, &PresortOptions::default())
+    }
+
+    /// [`new`](Self::new) with `options`: on an error, every view falls back to the BSP and
+    /// says so ([`refusal`](Self::refusal), [`FallbackReason::Refused`]).
+    #[must_use]
+    pub fn with_options(geometry: &Geometry, options: &PresortOptions) -> Self {
+        Self::try_new(geometry, options).unwrap_or_else(|error| {
             let mut sorter =
                 Self::assemble(geometry, build::Built::uncovered(geometry), Instant::now());
             sorter.refusal = Some(error);

@@ -4,6 +4,7 @@
 
 mod browser;
 mod hidden;
+mod materials;
 mod overlay;
 mod pdf;
 mod plot;

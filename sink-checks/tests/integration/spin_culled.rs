@@ -21,8 +21,7 @@ use crate::writers::{SIZE, ids_of_rgba};
 const PERIOD_S: f64 = 8.0;
 
 /// A page writer of a picture bake: the culled CSS page or the canvas player.
-type Writer =
-    fn(&Bake, &[Vec<u32>], &Spin, &Geometry, &dyn Fn(u32) -> [u8; 4], &SpinOptions) -> String;
+type Writer = fn(&Bake, &[Vec<u32>], &Spin, &Geometry, &SpinOptions) -> String;
 
 /// Shows the page at `random` times and either side of every breakpoint through each of
 /// `compositors`; `exact`: every frame must show no wrong pixel, else at most 0.2 %.
@@ -73,7 +72,6 @@ fn check_page(
         let t = (b.degrees - baked.domain().lo).rem_euclid(360.0) / 360.0 * PERIOD_S;
         times.extend([t - 1e-3, t + 1e-3]);
     }
-    let none = |_: u32| [0, 0, 0, 255];
     for t in times {
         let t = t.rem_euclid(PERIOD_S);
         let page = write(
@@ -81,7 +79,6 @@ fn check_page(
             &lists,
             &spin,
             g,
-            &none,
             &SpinOptions::DEFAULT
                 .with_period(PERIOD_S)
                 .with_ids(true)

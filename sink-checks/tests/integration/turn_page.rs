@@ -25,13 +25,8 @@ fn yaw_pitch_of(u: DVec3) -> (f64, f64) {
 }
 
 /// A turning page's writer: the CSS page or the canvas player.
-type Writer = fn(
-    &Presorted,
-    &Geometry,
-    &View,
-    &dyn Fn(u32) -> [u8; 4],
-    &TurnPageOptions,
-) -> Result<TurnPage, CertifiedOrdersError>;
+type Writer =
+    fn(&Presorted, &Geometry, &View, &TurnPageOptions) -> Result<TurnPage, CertifiedOrdersError>;
 
 fn check(name: &str, g: &Geometry, base: View, random: usize) {
     check_page(write_turn_html, name, g, base, random, false);
@@ -64,13 +59,11 @@ fn check_page(write: Writer, name: &str, g: &Geometry, base: View, random: usize
         views.push(yaw_pitch_of(middle + n * 1e-6));
         views.push(yaw_pitch_of(middle - n * 1e-6));
     }
-    let none = |_: u32| [0, 0, 0, 255];
     for (k, &(yaw, pitch)) in views.iter().enumerate() {
         let page = write(
             &sorter,
             g,
             &base,
-            &none,
             &TurnPageOptions::DEFAULT
                 .with_ids(true)
                 // Through every earlier view: switching must leave nothing of their orders.

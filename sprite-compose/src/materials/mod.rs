@@ -27,7 +27,7 @@ use std::sync::Arc;
 pub use decode::{TextureError, decode_image, load_image};
 pub use image::Image;
 #[cfg(feature = "obj-quads")]
-pub use resolve::{FaceMaterials, MaterialOptions};
+pub use resolve::{FaceMaterials, MaterialOptions, MaterialWarning};
 pub use uv_map::UvMap;
 
 use crate::{Brush, Scene, SpriteSpace, TextureId};
@@ -56,7 +56,7 @@ pub struct Materials {
     faces: Vec<FacePaint>,
     images: Vec<Arc<Image>>,
     #[cfg(feature = "obj-quads")]
-    warnings: Vec<Arc<TextureError>>,
+    warnings: Vec<MaterialWarning>,
 }
 
 impl Materials {
@@ -64,6 +64,16 @@ impl Materials {
     #[must_use]
     pub fn palette() -> Self {
         Materials::default()
+    }
+
+    /// One solid colour per face (sRGB, straight alpha), in face order: materials for a
+    /// mesh without a loader's materials (faces past the list keep the palette).
+    #[must_use]
+    pub fn solid(colours: impl IntoIterator<Item = [u8; 4]>) -> Self {
+        Materials {
+            faces: colours.into_iter().map(FacePaint::Solid).collect(),
+            ..Materials::default()
+        }
     }
 
     /// A face's paint ([`FacePaint::Palette`] for faces past the resolved ones).

@@ -95,6 +95,27 @@ impl MaterialOptions {
 /// A face whose texture coordinates span several tiles: the face, its plain map, its tiles.
 type Spanning = (usize, UvMap, (DVec2, DVec2));
 
+/// Something a model asked for that its materials do not show: reported, never dropped
+/// silently.
+#[derive(Clone, Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum MaterialWarning {
+    /// A material's texture that could not be loaded: its faces use the diffuse colour.
+    #[error("texture {0}; its faces use the diffuse colour")]
+    Texture(Arc<TextureError>),
+    /// Faces with texture coordinates and no texture to map (e.g. an OBJ without an MTL):
+    /// they keep their diffuse colour or the palette.
+    #[error(
+        "{faces} faces have texture coordinates but no texture (the first is face {first}); give one with MaterialOptions::with_texture (render --texture)"
+    )]
+    UvsWithoutTexture {
+        /// How many faces.
+        faces: usize,
+        /// The first of them.
+        first: usize,
+    },
+}
+
 impl Materials {
     /// Resolves each face's material: its texture (or `options.texture`) where the face has
     /// uvs, fitted per face ([`UvMap::fit`]); else its diffuse colour; faces without a
@@ -122,6 +143,8 @@ impl Materials {
         let mut textured: Vec<(usize, usize, UvMap)> = Vec::new(); // (face, source, map)
         let positions = faces.positions();
         let (mut corners, mut uv_points) = (Vec::new(), Vec::new());
+        // Faces with uvs and no texture to map (an OBJ without an MTL): reported once.
+        let (mut unmapped, mut first_unmapped) = (0, None);
         for face in 0..faces.face_count() {
             let source = faces
                 .face_texture(face)
@@ -133,6 +156,10 @@ impl Materials {
                 })
                 .or(options.texture.as_deref().map(TextureSource::File));
             let mut paint = None;
+            if source.is_none() && faces.face_uvs(face).is_some() {
+                unmapped += 1;
+                first_unmapped.get_or_insert(face);
+            }
             if let (Some(source), Some(uvs), Some(indices)) =
                 (source, faces.face_uvs(face), faces.face_corners(face))
             {
@@ -147,7 +174,7 @@ impl Materials {
                                 return Err(e);
                             }
                             Err(e) => {
-                                out.warnings.push(Arc::new(e));
+                                out.warnings.push(MaterialWarning::Texture(Arc::new(e)));
                                 None
                             }
                         };
@@ -226,6 +253,12 @@ impl Materials {
                 out.images.len() - 1
             })
         };
+        if let Some(first) = first_unmapped {
+            out.warnings.push(MaterialWarning::UvsWithoutTexture {
+                faces: unmapped,
+                first,
+            });
+        }
         tile_spanning_faces(&mut out, &sources, spanning, &mut textured);
         textured.sort_by_key(|t| t.0);
         for (face, slot, map) in textured {
@@ -243,9 +276,10 @@ impl Materials {
         Self::resolve(faces, geometry.bounds().centre(), &MaterialOptions::DEFAULT)
     }
 
-    /// The material textures that could not be loaded.
+    /// What the resolution could not use: material textures that did not load, and faces
+    /// with texture coordinates but no texture.
     #[must_use]
-    pub fn warnings(&self) -> &[Arc<TextureError>] {
+    pub fn warnings(&self) -> &[MaterialWarning] {
         &self.warnings
     }
 }
