@@ -15,7 +15,7 @@ pub struct EventCircle {
     pub offset: f64,
 }
 
-/// What a sorter's sign conditions are made of, for [`EventSource::rows`].
+/// What a sorter's sign conditions are made of, for [`EventSource::rows`](crate::EventSource::rows).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Row {
     /// A plane whose sign against the viewer decides a facing or a BSP side: `n·d`

@@ -13,8 +13,13 @@ use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use face_sort::glam::DVec3;
 use face_sort::{Bsp, Centroid, DrawList, FaceSorter, Geometry, Newell, SceneSorter, View};
 
+#[path = "../tests/common/mod.rs"]
+mod common;
+
 fn scene(c: &mut Criterion) {
-    let (meshes, instances) = test_support::models::suzanne_scene(100, 5);
+    // test-support's "suzanne-scene": 100 suzannes 5 units apart.
+    let meshes = vec![common::load_model("suzanne/suzanne.obj")];
+    let instances = face_sort::generate::scattered_instances(1, 100, 5, 5.0);
     let build = Instant::now();
     let mut scene = SceneSorter::new(meshes, instances.clone()).expect("scene");
     let scene_build = build.elapsed();

@@ -1,5 +1,5 @@
 //! Per-frame cull + order of every sorter beside the centroid baseline, on real models and
-//! generated bumpy tori (`test_support::models::bumpy_torus`) of 1k, 10k and 100k quads;
+//! generated bumpy tori (`face_sort::generate::torus`, the tables' "bumpy-torus") of 1k, 10k and 100k quads;
 //! plus BSP build time.
 //!
 //! `cargo bench -p face-sort --bench sorters -- --warm-up-time 0.5 --measurement-time 1 --sample-size 10`
@@ -10,8 +10,9 @@ mod common;
 use std::hint::black_box;
 
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
+use face_sort::generate::torus as bumpy_torus;
 use face_sort::{DrawList, Geometry, PolygonMesh, SorterKind, View};
-use test_support::models::{bumpy_torus, model_name};
+use test_base::model_name;
 
 fn scenes() -> Vec<(String, PolygonMesh)> {
     vec![

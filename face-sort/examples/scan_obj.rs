@@ -27,7 +27,7 @@ fn main() {
         }
     }
     let mesh = PolygonMesh::new(positions, faces).expect("a valid mesh");
-    let text = test_support::to_obj(
+    let text = face_sort::generate::to_obj(
         &mesh,
         &["scan-like blob: face-sort/examples/scan_obj.rs".to_owned()],
     );

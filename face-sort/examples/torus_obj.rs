@@ -11,10 +11,10 @@ fn main() {
         .expect("usage: torus_obj FACES OUT.obj");
     let out = args.next().expect("usage: torus_obj FACES OUT.obj");
     let mesh = face_sort::generate::torus(faces);
-    let text = test_support::to_obj(
+    let text = face_sort::generate::to_obj(
         &mesh,
         &[format!(
-            "face_sort::generate::torus({faces}) (test_support::models::bumpy_torus)"
+            "face_sort::generate::torus({faces}) (the tables' bumpy-torus)"
         )],
     );
     std::fs::write(&out, text).unwrap_or_else(|e| panic!("writing {out}: {e}"));

@@ -119,7 +119,7 @@ mod tests {
 
     #[test]
     fn the_radix_sort_orders_as_total_cmp() {
-        let mut rng = test_support::Rng::new(7);
+        let mut rng = crate::generate::Rng::new(7);
         for n in [RADIX_MIN, 3000] {
             let mut keys: Vec<(f64, u32)> = (0..n as u32)
                 .map(|i| {

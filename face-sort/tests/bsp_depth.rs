@@ -8,7 +8,7 @@ use face_sort::{BspOptions, BspTree, Geometry};
 
 #[test]
 fn a_large_smooth_surface_gets_a_shallow_tree() {
-    let geometry = Geometry::new(&test_support::models::planar_torus(20_000)).unwrap();
+    let geometry = Geometry::new(&face_sort::generate::planar_torus(20_000)).unwrap();
     let tree = BspTree::build(&geometry, &BspOptions::DEFAULT);
     let pieces = geometry.pieces().len();
     assert!(tree.depth() <= 400, "depth {}", tree.depth());

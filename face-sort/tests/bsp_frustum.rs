@@ -1,12 +1,14 @@
 //! BSP subtree culling by bounding sphere: zoomed in, the BSP draws fewer items, every item
 //! it leaves out lies outside the image, and the order stays exact.
 
+mod common;
+
 use face_sort::glam::DVec2;
 use face_sort::{Bsp, DrawItem, DrawList, FaceSorter, Geometry, ProjectionScratch, View, oracle};
 
 #[test]
 fn subtrees_outside_the_image_are_skipped() {
-    let geometry = Geometry::new(&test_support::load_polygon_mesh(
+    let geometry = Geometry::new(&common::load_model(
         "keenan-crane/spot/spot_quadrangulated.obj",
     ))
     .unwrap();

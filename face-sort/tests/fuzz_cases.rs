@@ -3,6 +3,8 @@
 //! sorter it once broke; a case saved for a sorter that is not exact (the centroid sort) must
 //! still break it, so that the file keeps testing something hard.
 
+mod common;
+
 use face_sort::strategies::ViewSpec;
 use face_sort::{DrawList, Geometry, SorterKind, oracle};
 
@@ -15,7 +17,7 @@ struct Case {
 }
 
 fn cases() -> Vec<Case> {
-    let dir = test_support::test_data_dir().join("sorters");
+    let dir = test_base::test_data_dir().join("sorters");
     let mut paths: Vec<_> = std::fs::read_dir(&dir)
         .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
         .map(|entry| entry.expect("directory entry").path())
@@ -41,7 +43,7 @@ fn cases() -> Vec<Case> {
                 .into_iter()
                 .find(|k| k.name() == sorter)
                 .unwrap_or_else(|| panic!("{name}: no sorter named `{sorter}`"));
-            let mesh = test_support::polygon_mesh(&test_support::load_model_at(&path));
+            let mesh = common::read_obj(&path);
             let geometry = Geometry::new(&mesh).unwrap_or_else(|e| panic!("{name}: {e}"));
             Case {
                 name,

@@ -307,7 +307,7 @@ fn cull_only_orders_group_by_brush() {
 
 /// A mesh of axis-aligned boxes, outward faces.
 fn boxes(list: &[(DVec3, DVec3)]) -> Geometry {
-    Geometry::new(&test_support::models::boxes(list)).unwrap()
+    Geometry::new(&face_sort::generate::boxes(list)).unwrap()
 }
 
 #[test]

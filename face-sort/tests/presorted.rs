@@ -12,7 +12,7 @@ use face_sort::{
 /// Views at seeded random rotations (any yaw, pitch and roll), orthographic and perspective
 /// with the eye from 1.6 to 4 bounding radii away.
 fn random_views(geometry: &Geometry, count: usize, seed: u64) -> Vec<View> {
-    let mut rng = test_support::Rng::new(seed);
+    let mut rng = face_sort::generate::Rng::new(seed);
     let base = View::fit(&geometry.bounds(), 384, 384);
     let radius = 0.5 * geometry.bounds().diagonal();
     (0..count)
@@ -157,7 +157,7 @@ fn hostile_certificate_bytes_give_errors_not_panics() {
     );
     let view = View::fit(&geometry.bounds(), 64, 64).with_yaw_pitch_roll(30.0, 20.0, 0.0);
     let mut list = DrawList::new();
-    let mut rng = test_support::Rng::new(5);
+    let mut rng = face_sort::generate::Rng::new(5);
     let mut refused = 0;
     for _ in 0..300 {
         let mut changed = bytes.clone();
@@ -264,7 +264,7 @@ fn certified_orders_played_as_a_page_leave_no_violation() {
         let sorter = Presorted::new(&geometry);
         let radius = 0.5 * geometry.bounds().diagonal();
         let base = View::fit(&geometry.bounds(), 384, 384);
-        let mut rng = test_support::Rng::new(11);
+        let mut rng = face_sort::generate::Rng::new(11);
         for eye in [None, Some(2.0 * radius), Some(3.5 * radius)] {
             let orders = sorter.certified_orders(eye).unwrap();
             assert!(!orders.regions.is_empty(), "{model}");

@@ -2,6 +2,8 @@
 //! flattened scene under culling, mirrored instances culled by their own front, and moving
 //! instances rebuilding only their own clusters.
 
+mod common;
+
 use std::collections::BTreeSet;
 
 use face_sort::glam::{DAffine3, DVec3};
@@ -60,7 +62,7 @@ fn faces_of(list: &DrawList) -> BTreeSet<u32> {
 
 #[test]
 fn instanced_scenes_are_exact_and_draw_what_the_flattened_scene_draws() {
-    let (meshes, instances) = test_support::models::instanced_scene(24, 7);
+    let (meshes, instances) = common::instanced_scene(24, 7);
     let mut scene = SceneSorter::new(meshes, instances).unwrap();
     let flat = Geometry::new(&scene.flattened()).unwrap();
     let mut list = DrawList::new();
@@ -93,7 +95,7 @@ fn instanced_scenes_are_exact_and_draw_what_the_flattened_scene_draws() {
 
 #[test]
 fn instances_share_their_meshs_presorted_orders_exactly() {
-    let (meshes, instances) = test_support::models::instanced_scene(24, 7);
+    let (meshes, instances) = common::instanced_scene(24, 7);
     let mut scene = SceneSorter::new(meshes, instances).unwrap();
     let flat = Geometry::new(&scene.flattened()).unwrap();
     scene
@@ -109,7 +111,7 @@ fn instances_share_their_meshs_presorted_orders_exactly() {
 
 #[test]
 fn moving_instances_stay_exact_and_rebuild_only_their_clusters() {
-    let (meshes, instances) = test_support::models::instanced_scene(16, 3);
+    let (meshes, instances) = common::instanced_scene(16, 3);
     let mut scene = SceneSorter::new(meshes, instances.clone()).unwrap();
     // A frame of reference that holds instance 5 wherever it goes.
     let b = scene.bounds();
@@ -144,7 +146,7 @@ fn moving_instances_stay_exact_and_rebuild_only_their_clusters() {
 
 #[test]
 fn a_mirrored_instance_keeps_its_own_front() {
-    let cube = test_support::models::boxes(&[(DVec3::splat(-0.5), DVec3::splat(0.5))]);
+    let cube = face_sort::generate::boxes(&[(DVec3::splat(-0.5), DVec3::splat(0.5))]);
     let mirror = DAffine3::from_scale(DVec3::new(-1.0, 1.0, 1.0));
     let shifted = DAffine3::from_translation(DVec3::new(3.0, 0.0, 0.0)) * mirror;
     let mut scene = SceneSorter::new(
@@ -168,7 +170,7 @@ fn a_mirrored_instance_keeps_its_own_front() {
 
 #[test]
 fn instances_outside_the_image_are_culled_by_their_box() {
-    let (meshes, instances) = test_support::models::instanced_scene(16, 11);
+    let (meshes, instances) = common::instanced_scene(16, 11);
     let mut scene = SceneSorter::new(meshes, instances).unwrap();
     // Four times closer: most instances fall outside the image.
     let view = View::fit(&scene.bounds(), 256, 256)
@@ -184,7 +186,7 @@ fn instances_outside_the_image_are_culled_by_their_box() {
 
 #[test]
 fn an_instance_moved_outside_the_frame_of_reference_stays_exact() {
-    let cube = test_support::models::boxes(&[(DVec3::splat(-0.5), DVec3::splat(0.5))]);
+    let cube = face_sort::generate::boxes(&[(DVec3::splat(-0.5), DVec3::splat(0.5))]);
     let at = |x: f64| DAffine3::from_translation(DVec3::new(x, 0.0, 0.0));
     let mut scene = SceneSorter::new(
         vec![cube],
@@ -210,7 +212,7 @@ fn an_instance_moved_outside_the_frame_of_reference_stays_exact() {
 
 #[test]
 fn bad_scenes_are_typed_errors() {
-    let cube = test_support::models::boxes(&[(DVec3::ZERO, DVec3::ONE)]);
+    let cube = face_sort::generate::boxes(&[(DVec3::ZERO, DVec3::ONE)]);
     let e = SceneSorter::new(
         vec![cube.clone()],
         vec![Instance::new(1, DAffine3::IDENTITY)],
@@ -234,9 +236,9 @@ fn bad_scenes_are_typed_errors() {
 #[test]
 fn levels_of_detail_follow_the_projected_size() {
     use face_sort::glam::DQuat;
-    let suzanne = test_support::load_polygon_mesh("suzanne/suzanne.obj");
+    let suzanne = common::load_model("suzanne/suzanne.obj");
     let cube =
-        test_support::models::boxes(&[(DVec3::new(-1.3, -1.0, -0.9), DVec3::new(1.3, 1.0, 0.9))]);
+        face_sort::generate::boxes(&[(DVec3::new(-1.3, -1.0, -0.9), DVec3::new(1.3, 1.0, 0.9))]);
     let instances: Vec<Instance> = (0..9)
         .map(|k| {
             let at = DVec3::new(f64::from(k % 3) * 3.5, 0.0, f64::from(k / 3) * 3.5);
@@ -280,7 +282,7 @@ fn levels_of_detail_follow_the_projected_size() {
 
 #[test]
 fn material_overrides_and_layers_are_found_from_a_face() {
-    let cube = test_support::models::boxes(&[(DVec3::splat(-0.5), DVec3::splat(0.5))]);
+    let cube = face_sort::generate::boxes(&[(DVec3::splat(-0.5), DVec3::splat(0.5))]);
     let at = |x: f64| DAffine3::from_translation(DVec3::new(x, 0.0, 0.0));
     let scene = SceneSorter::new(
         vec![cube],

@@ -1,12 +1,14 @@
 //! The small-piece filter: drops exactly the items below the area, keeps the others' order.
 
+mod common;
+
 use face_sort::{
     Bsp, DrawList, FaceSorter, Geometry, ProjectionScratch, SmallPieceFilter, View, signed_area_2d,
 };
 
 #[test]
 fn small_pieces_go_and_the_rest_keep_their_order() {
-    let geometry = Geometry::new(&test_support::load_polygon_mesh(
+    let geometry = Geometry::new(&common::load_model(
         "keenan-crane/spot/spot_quadrangulated.obj",
     ))
     .unwrap();

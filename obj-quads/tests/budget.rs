@@ -4,7 +4,7 @@
 use obj_quads::{LoadError, LoadOptions, load_obj_str};
 
 #[global_allocator]
-static ALLOCATOR: test_support::memory::PeakAllocator = test_support::memory::PeakAllocator;
+static ALLOCATOR: test_base::memory::PeakAllocator = test_base::memory::PeakAllocator;
 
 /// A 10-million-face OBJ is refused by the first pass over its text: the face cap
 /// (`DEFAULT_MAX_FACES`, 2²²) ends the load before any face is built, with at most 128 MB
@@ -17,7 +17,7 @@ fn a_ten_million_face_obj_stops_within_its_budget() {
     for _ in 0..faces {
         text.push_str("f 1 2 3\n");
     }
-    let (result, peak) = test_support::memory::peak(|| load_obj_str(&text, &LoadOptions::DEFAULT));
+    let (result, peak) = test_base::memory::peak(|| load_obj_str(&text, &LoadOptions::DEFAULT));
     let error = result.expect_err("10 million faces are over the default cap");
     assert!(
         matches!(

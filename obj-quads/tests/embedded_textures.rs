@@ -3,7 +3,7 @@
 //! multiply the texture (`texture_times_diffuse`).
 
 use obj_quads::{LoadOptions, load, load_gltf_slice};
-use test_support::textured_box::{ImageSource, textured_box, textured_box_path, textured_box_png};
+use test_base::textured_box::{ImageSource, textured_box, textured_box_path, textured_box_png};
 
 #[test]
 fn data_uri_and_glb_images_are_embedded_textures() {

@@ -8,7 +8,7 @@ use std::sync::LazyLock;
 /// A model of the repository (`assets/models/`, through the workspace's test scaffolding),
 /// read once.
 fn asset(relative: &str) -> &'static [u8] {
-    let bytes = std::fs::read(test_support::model_path(relative))
+    let bytes = std::fs::read(test_base::model_path(relative))
         .unwrap_or_else(|e| panic!("{relative}: {e}"));
     Box::leak(bytes.into_boxed_slice())
 }

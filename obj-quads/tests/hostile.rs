@@ -567,7 +567,7 @@ fn png_within_limits_decodes_and_short_data_is_an_error() {
         "{e}"
     );
     // A real texture.
-    let spot = test_support::model_path("keenan-crane/spot/spot_texture.png");
+    let spot = test_base::model_path("keenan-crane/spot/spot_texture.png");
     let texture = load_texture(&spot, &LoadOptions::DEFAULT).unwrap();
     assert_eq!(
         texture.rgba.len(),
@@ -616,7 +616,7 @@ fn jpeg_limits_are_read_from_the_frame_header() {
 
 #[test]
 fn jpeg_within_limits_decodes() {
-    let jpeg = test_support::loaders::grey_jpeg();
+    let jpeg = test_base::encoded::grey_jpeg();
     let header = obj_quads::texture_header(&jpeg, "grey.jpg").unwrap();
     assert_eq!((header.width, header.height), (16, 8));
     let texture = decode_texture(&jpeg, "grey.jpg", &LoadOptions::DEFAULT).unwrap();

@@ -6,7 +6,7 @@ use obj_quads::{FacePolicy, LoadOptions, LoadReport, Mesh, NonConvexPolicy, load
 
 /// A model's path under `assets/models/` (the workspace's test scaffolding knows where).
 fn asset(relative: &str) -> String {
-    test_support::model_path(relative).display().to_string()
+    test_base::model_path(relative).display().to_string()
 }
 
 fn opts(face_policy: FacePolicy) -> LoadOptions {

@@ -4,13 +4,16 @@
 //!   [`test_data_dir`] (`tests/data/`, the committed fuzz regression cases);
 //! - the one conversion from a loaded [`obj_quads::Mesh`] to a [`face_sort::PolygonMesh`]
 //!   ([`polygon_mesh`], [`load_polygon_mesh`]);
-//! - one seeded random generator ([`Rng`], SplitMix64);
-//! - a polygon mesh written back as OBJ text ([`to_obj`]);
+//! - the seeded random generator ([`Rng`], SplitMix64; face-sort's, which its generated
+//!   scenes draw from);
+//! - a polygon mesh written as OBJ text ([`to_obj`], face-sort's);
 //! - named generated models ([`models`]): every generated model has one name, and one name
 //!   means one model;
 //! - loader fuzzing's seeds, its one check and the committed loader cases ([`loaders`]).
 //!
-//! The crate is `publish = false`; library crates take it as a dev-dependency only.
+//! The crate is `publish = false`. It stands on the loader and the sorter, so those two take
+//! only `test-base` (what every test stands on: paths, memory, consumers), which it
+//! re-exports; the other crates take this one as a dev-dependency.
 //!
 //! ```
 //! use test_support::{Rng, load_polygon_mesh, models};
@@ -25,22 +28,17 @@
 //! assert_eq!(models::planar_torus(1_000).face_count(), models::planar_torus(1_000).face_count());
 //! ```
 
-pub mod consumers;
-pub mod gltf_scene;
 pub mod loaders;
-pub mod memory;
 pub mod models;
 mod obj_text;
 mod paths;
-mod rng;
-pub mod textured_box;
 
-pub use obj_text::to_obj;
-pub use paths::{
-    load_model, load_model_at, load_polygon_mesh, model_path, polygon_mesh, test_data_dir,
-    try_polygon_mesh, workspace_root,
+pub use face_sort::generate::{Rng, to_obj};
+pub use paths::{load_model, load_model_at, load_polygon_mesh, polygon_mesh, try_polygon_mesh};
+pub use test_base::{
+    consumers, encoded, gltf_scene, memory, model_path, test_data_dir, textured_box, workspace_root,
 };
-pub use rng::Rng;
 
 pub use face_sort;
 pub use obj_quads;
+pub use test_base;

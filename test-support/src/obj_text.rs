@@ -1,33 +1,8 @@
-//! A polygon mesh written back as OBJ text (shrunk fuzz cases, generated models for
-//! whole-process measurements).
-
-use face_sort::PolygonMesh;
-
-/// Writes a polygon mesh as OBJ text, with `comment` lines first.
-#[must_use]
-pub fn to_obj(mesh: &PolygonMesh, comment: &[String]) -> String {
-    use std::fmt::Write as _;
-    let mut out = String::new();
-    for line in comment {
-        let _ = writeln!(out, "# {line}");
-    }
-    for p in mesh.positions() {
-        // `{:?}` prints f64 so that it reads back exactly.
-        let _ = writeln!(out, "v {:?} {:?} {:?}", p.x, p.y, p.z);
-    }
-    for face in mesh.faces() {
-        out.push('f');
-        for &i in face {
-            let _ = write!(out, " {}", i + 1);
-        }
-        out.push('\n');
-    }
-    out
-}
+//! The OBJ writer (face-sort's `generate::to_obj`) read back by the loader.
 
 #[cfg(test)]
 mod tests {
-    use super::to_obj;
+    use crate::to_obj;
 
     #[test]
     fn reads_back_exactly() {

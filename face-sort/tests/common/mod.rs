@@ -1,4 +1,5 @@
-//! Test helpers: models read with `obj-quads` (through `test-support`), and runners.
+//! Test helpers: models read with `obj-quads` (a dev-dependency: face-sort itself knows no
+//! loader), the generated scenes, and runners.
 
 #![allow(dead_code)]
 
@@ -6,13 +7,30 @@ use face_sort::{DrawList, FaceSorter, Geometry, PolygonMesh, SorterKind, View, o
 
 /// Path of a model in the repository's assets.
 pub fn asset(path: &str) -> String {
-    test_support::model_path(path).display().to_string()
+    test_base::model_path(path).display().to_string()
 }
 
-/// Reads an OBJ model with `obj-quads` (a dev-dependency only: face-sort itself knows no
-/// loader), through the workspace's test scaffolding.
-pub fn read_obj(path: &str) -> PolygonMesh {
-    test_support::polygon_mesh(&test_support::load_model_at(path))
+/// Reads an OBJ model at `path` with `obj-quads`: its positions and face index lists.
+pub fn read_obj(path: &(impl AsRef<std::path::Path> + ?Sized)) -> PolygonMesh {
+    let path = path.as_ref();
+    let (mesh, _) = obj_quads::load(path, &obj_quads::LoadOptions::default())
+        .unwrap_or_else(|e| panic!("model {} does not load: {e}", path.display()));
+    PolygonMesh::new(mesh.positions(), mesh.faces()).expect("a loaded mesh is a polygon mesh")
+}
+
+/// A model under `assets/models/` ([`read_obj`]).
+pub fn load_model(relative: &str) -> PolygonMesh {
+    read_obj(&test_base::model_path(relative))
+}
+
+/// `"instanced"` (test-support's `models::instanced_scene`): `count` instances of a unit
+/// box, a UV sphere and suzanne, 2.2 units apart.
+pub fn instanced_scene(count: usize, seed: u64) -> (Vec<PolygonMesh>, Vec<face_sort::Instance>) {
+    use face_sort::generate::{boxes, scattered_instances, uv_sphere};
+    let cube = boxes(&[(glam::DVec3::splat(-0.5), glam::DVec3::splat(0.5))]);
+    let meshes = vec![cube, uv_sphere(12, 8), load_model("suzanne/suzanne.obj")];
+    let instances = scattered_instances(meshes.len(), count, seed, 2.2);
+    (meshes, instances)
 }
 
 /// Sorts with `sorter` and returns the oracle's violation count.

@@ -94,7 +94,7 @@ pub fn textured_box(source: ImageSource, factor: Option<[f32; 4]>) -> Vec<u8> {
             );
             let mut chunk = bin;
             chunk.extend(&png);
-            crate::loaders::glb(&json, &chunk)
+            crate::encoded::glb(&json, &chunk)
         }
     }
 }

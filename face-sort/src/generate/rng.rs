@@ -1,8 +1,10 @@
-//! The one seeded random generator of tests, benches and xtask scenes.
+//! The one seeded random generator of the generated scenes, and of the workspace's tests,
+//! benches and xtask scenes.
 
-use face_sort::glam::DVec3;
+use glam::DVec3;
 
-/// A small seeded generator (SplitMix64): reproducible scenes without a dependency.
+/// A small seeded generator (SplitMix64): reproducible scenes without a dependency. Not for
+/// anything that needs unpredictable numbers.
 #[derive(Clone, Debug)]
 pub struct Rng(u64);
 
