@@ -47,12 +47,12 @@ fn rows(m: DMat3) -> String {
 /// The page up to its script: a `<canvas>` of the view's size on the background.
 fn page_head(title: &str, view: &View, background: [u8; 4]) -> String {
     let (w, h) = (view.width(), view.height());
-    let background = crate::numbers::hex(background);
-    format!(
-        "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>{title}</title>\n\
-         <style>html,body{{margin:0;background:{background}}}canvas{{display:block}}</style></head>\n\
+    let mut page = crate::page::head(title, w, h, background);
+    page.push_str(&format!(
+        "canvas{{display:block}}</style></head>\n\
          <body><canvas id=\"c\" width=\"{w}\" height=\"{h}\" style=\"width:{w}px;height:{h}px\"></canvas>\n<script>\n"
-    )
+    ));
+    page
 }
 
 /// `const P={…};`: the pieces of `set` (centred on `view`'s centre after `shift`) and the

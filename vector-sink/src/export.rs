@@ -10,8 +10,8 @@ use crate::{HiddenParts, HtmlOptions, PdfOptions, SvgOptions, write_html, write_
 /// order, in its own materials, at the view's size.
 ///
 /// ```
-/// use sprite_compose::face_sort::{Geometry, PolygonMesh, View};
-/// use sprite_compose::Export;
+/// use vector_sink::face_sort::{Geometry, PolygonMesh, View};
+/// use vector_sink::Export;
 ///
 /// let positions = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.5, 0.5, 0.5]];
 /// let mesh = PolygonMesh::new(positions, [[0u32, 2, 1], [0, 1, 3], [1, 2, 3], [2, 0, 3]]).unwrap();

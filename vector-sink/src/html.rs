@@ -403,19 +403,17 @@ fn border_triangles(
 /// container's perspective (flat pages) or root transform (`preserve-3d`).
 fn page_head(options: &HtmlOptions, root: &DMat4, flat: &FlatRoot) -> String {
     let (w, h) = (options.width, options.height);
-    let mut page = String::new();
+    let background = crate::page::background(options.background, options.ids);
+    let mut page = crate::page::head("vector-sink", w, h, background);
     let _ = write!(
         page,
-        "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>sprite-compose</title><style>\n\
-     html,body{{margin:0;padding:0;overflow:hidden;width:{w}px;height:{h}px;background:{bg}}}\n\
-     #scene{{position:absolute;left:0;top:0;width:{w}px;height:{h}px;{scene_style}}}\n\
+        "#scene{{position:absolute;left:0;top:0;width:{w}px;height:{h}px;{scene_style}}}\n\
      #scene>div{{position:absolute;left:0;top:0;transform-origin:0 0}}\n\
      .x{{overflow:hidden}}\n\
      .x>div{{position:absolute;left:0;top:0;width:100%;height:100%;overflow:hidden}}\n\
      .x i{{position:absolute;left:0;top:0;width:100%;height:100%;transform-origin:0 0;background-size:100% 100%}}\n\
      {texture_rules}",
         texture_rules = texture_rules(options),
-        bg = hex(crate::page::background(options.background, options.ids)),
         scene_style = match options.mode {
             HtmlMode::Flat => format!(
                 "perspective:{}px;perspective-origin:{}px {}px",

@@ -158,19 +158,17 @@ pub fn write_spin_html(
         Some(t) => (format!("{:e}s", -t), "paused"),
         None => ("0s".to_owned(), "running"),
     };
-    let mut page = String::new();
+    let background = crate::page::background(options.background, options.ids);
+    let mut page = crate::page::head("aspect-bake spin", w, h, background);
     let _ = write!(
         page,
-        "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>aspect-bake spin</title><style>\n\
-         @property --a{{syntax:'<angle>';inherits:true;initial-value:0deg}}\n\
+        "@property --a{{syntax:'<angle>';inherits:true;initial-value:0deg}}\n\
          @keyframes turn{{from{{--a:0deg}}to{{--a:360deg}}}}\n\
-         html,body{{margin:0;padding:0;overflow:hidden;width:{w}px;height:{h}px;background:{bg}}}\n\
          #scene{{position:absolute;left:0;top:0;width:{w}px;height:{h}px;\
          animation:turn {period}s linear {delay} infinite {state}}}\n\
          .cell{{position:absolute;left:0;top:0;visibility:hidden;\
          animation:{period}s step-end {delay} infinite {state}}}\n\
          .cell>div{{position:absolute;left:0;top:0;transform-origin:0 0}}\n",
-        bg = hex(crate::page::background(options.background, options.ids)),
     );
     // One class per polygon (its elements): transform, size, colour.
     let set = &bake.polygons();

@@ -7,7 +7,6 @@ use aspect_bake::{Bake, Spin};
 use face_sort::Geometry;
 use glam::{DMat3, DMat4, DVec3};
 
-use crate::numbers::hex;
 use crate::page_pieces::num;
 use crate::spin::SpinOptions;
 
@@ -63,17 +62,15 @@ pub fn write_culled_spin_html(
     let timing = format!("{period}s linear {delay} infinite {state}");
     let steps = format!("{period}s step-end {delay} infinite {state}");
     let copies = sprite_compose::culled_copies(lists, bake.polygons().len());
-    let mut page = String::new();
+    let background = crate::page::background(options.background, options.ids);
+    let mut page = crate::page::head("aspect-bake spin", w, h, background);
     let _ = write!(
         page,
-        "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>aspect-bake spin</title><style>\n\
-         html,body{{margin:0;padding:0;overflow:hidden;width:{w}px;height:{h}px;background:{bg}}}\n\
-         #s{{position:absolute;left:{cx}px;top:{cy}px;width:0;height:0;perspective:{d}px;perspective-origin:0 0}}\n\
+        "#s{{position:absolute;left:{cx}px;top:{cy}px;width:0;height:0;perspective:{d}px;perspective-origin:0 0}}\n\
          body:not(:has(#end)) #s{{display:none}}\n\
          #s>i,#s>b{{position:absolute;left:0;top:0;transform-origin:0 0;backface-visibility:hidden;animation:t {timing}}}\n\
          b{{width:0;height:0;border-style:solid;border-color:transparent}}\n\
          @keyframes t{{from{{rotate:{x} {y} {z} {a0}deg}}to{{rotate:{x} {y} {z} {a1}deg}}}}\n",
-        bg = hex(crate::page::background(options.background, options.ids)),
         cx = num(origin.x),
         cy = num(origin.y),
         d = num(distance),

@@ -13,7 +13,6 @@ use face_sort::{
 use glam::{DMat3, DMat4, DVec3};
 
 use crate::Materials;
-use crate::numbers::hex;
 use crate::page_pieces::{Placement, num, piece_classes};
 
 /// Options of [`write_turn_html`].
@@ -145,15 +144,13 @@ pub fn write_turn_html(
     let (w, h) = (rest.width(), rest.height());
     let origin = DVec3::new(f64::from(w) * 0.5, f64::from(h) * 0.5, 0.0);
     let flip = DMat3::from_diagonal(DVec3::new(1.0, -1.0, 1.0));
-    let mut page = String::new();
+    let background = crate::page::background(options.background, options.ids);
+    let mut page = crate::page::head("face-sort presorted", w, h, background);
     let _ = write!(
         page,
-        "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>face-sort presorted</title><style>\n\
-         html,body{{margin:0;padding:0;overflow:hidden;width:{w}px;height:{h}px;background:{bg}}}\n\
-         #s{{position:absolute;left:{cx}px;top:{cy}px;width:0;height:0;perspective:{d}px;perspective-origin:0 0;--r:0 0 1 0deg}}\n\
+        "#s{{position:absolute;left:{cx}px;top:{cy}px;width:0;height:0;perspective:{d}px;perspective-origin:0 0;--r:0 0 1 0deg}}\n\
          #s>i,#s>b{{position:absolute;left:0;top:0;transform-origin:0 0;backface-visibility:hidden;rotate:var(--r);visibility:hidden}}\n\
          b{{width:0;height:0;border-style:solid;border-color:transparent}}\n",
-        bg = hex(crate::page::background(options.background, options.ids)),
         cx = num(origin.x),
         cy = num(origin.y),
         d = num(distance),

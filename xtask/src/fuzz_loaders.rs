@@ -693,7 +693,7 @@ pub fn run(cases: u64, seed: u64, out: Option<PathBuf>) -> Result<ExitCode> {
         Ok(ExitCode::SUCCESS)
     } else {
         println!(
-            "{} failing input(s) saved under {}; `cargo test -p fuzz-checks --test loader_cases` replays them",
+            "{} failing input(s) saved under {}; `cargo test -p fuzz-checks --test integration loader_cases` replays them",
             saved.len(),
             out.display()
         );

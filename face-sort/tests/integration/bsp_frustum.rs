@@ -1,8 +1,7 @@
 //! BSP subtree culling by bounding sphere: zoomed in, the BSP draws fewer items, every item
 //! it leaves out lies outside the image, and the order stays exact.
 
-mod common;
-
+use crate::common;
 use face_sort::glam::DVec2;
 use face_sort::{Bsp, DrawItem, DrawList, FaceSorter, Geometry, ProjectionScratch, View, oracle};
 

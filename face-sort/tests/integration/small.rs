@@ -1,7 +1,6 @@
 //! The small-piece filter: drops exactly the items below the area, keeps the others' order.
 
-mod common;
-
+use crate::common;
 use face_sort::{
     Bsp, DrawList, FaceSorter, Geometry, ProjectionScratch, SmallPieceFilter, View, signed_area_2d,
 };

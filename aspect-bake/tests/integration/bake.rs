@@ -2,13 +2,12 @@
 //! scenes and axes (proptest), real models orthographic and perspective, the sampling
 //! baseline's misses, budgets, the delta timeline and the serde round trip.
 
-mod common;
-
+use crate::common;
+use crate::common::{close_pair, cube};
 use aspect_bake::{
     Axis, Bake, BakeError, BakeOptions, BspSource, CentroidSource, Delta, EventSource, Spin, bake,
     bake_sampled, verify,
 };
-use common::{close_pair, cube};
 use face_sort::glam::DVec3;
 use face_sort::{Geometry, View, strategies};
 use proptest::prelude::*;
@@ -443,7 +442,7 @@ fn picture_bakes_are_exact_for_the_picture_in_few_cells() {
 /// Suzanne (eyes that pass through the head, 121 cuts) spun in yaw at pitch 20°,
 /// orthographic and perspective: cutting pieces of the cycles that end cells brings the
 /// sweep's 18–19 cells to at most 16, each verified. Ignored in CI (seconds in release,
-/// minutes in a debug build): `cargo test --release -p aspect-bake --test bake suzanne --
+/// minutes in a debug build): `cargo test --release -p aspect-bake --test integration bake suzanne --
 /// --ignored --nocapture`.
 #[test]
 #[ignore = "seconds in release, minutes in debug"]

@@ -1,9 +1,7 @@
 //! The seed system's sample book: its BSP left 48 (ortho) and 189 (perspective) order
 //! violations over this grid; exact sorters here must leave none.
 
-mod common;
-
-use common::{asset, book_grid, read_obj, violations};
+use crate::common::{asset, book_grid, read_obj, violations};
 use face_sort::{DrawList, Geometry, SorterKind, View};
 
 fn total_violations(kind: SorterKind, perspective: bool) -> usize {

@@ -1,7 +1,6 @@
 //! The planner: what it proves, what it picks, and that what it picks is exact.
 
-mod common;
-
+use crate::common;
 use face_sort::generate::{torus, uv_sphere};
 use face_sort::sorter_api::DrawListWriter;
 use face_sort::{

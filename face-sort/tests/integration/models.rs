@@ -1,8 +1,6 @@
 //! Exact sorters on the repository's real models, judged by the oracle.
 
-mod common;
-
-use common::{asset, read_obj};
+use crate::common::{asset, read_obj};
 use face_sort::{CullMode, DrawList, Geometry, SorterKind, View, oracle};
 
 const MODELS: [&str; 9] = [

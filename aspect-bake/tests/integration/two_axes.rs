@@ -1,13 +1,12 @@
 //! Two-axis bakes (yaw × pitch) checked against the live sorters: the unit cube, the book,
 //! generated scenes (proptest), what a sampled grid misses, budgets.
 
-mod common;
-
+use crate::common;
+use crate::common::{close_pair, cube};
 use aspect_bake::{
     BakeError, BspSource, CentroidSource, EventSource, TwoAxisBake, TwoAxisOptions, YawPitch,
     bake_two_axes, verify_two_axes,
 };
-use common::{close_pair, cube};
 use face_sort::glam::DVec3;
 use face_sort::{Geometry, PolygonMesh, View, strategies};
 use proptest::prelude::*;

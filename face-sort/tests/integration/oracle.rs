@@ -5,8 +5,6 @@
 use face_sort::sorter_api::DrawListWriter;
 use face_sort::{DrawList, Geometry, View, oracle};
 
-mod common;
-
 /// The oracle's first violation, if any, of two pieces of `g` drawn in `order`.
 fn violations_in_order(g: &Geometry, view: &View, order: [u32; 2]) -> Vec<oracle::Violation> {
     let mut list = DrawList::new();
@@ -17,7 +15,7 @@ fn violations_in_order(g: &Geometry, view: &View, order: [u32; 2]) -> Vec<oracle
     oracle::find_violations(view, &list, 1)
 }
 
-use common::{asset, read_obj};
+use crate::common::{asset, read_obj};
 
 #[test]
 fn a_sliver_seen_edge_on_is_judged_within_the_rounding_of_its_position() {

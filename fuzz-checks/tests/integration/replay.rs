@@ -2,7 +2,7 @@
 //! (`fuzz/corpus/TARGET/`) and the regressions, each a crash or hang that libFuzzer found
 //! and that is fixed (`fuzz/regressions/TARGET/`). The findings not fixed yet wait under
 //! `fuzz/open/TARGET/`; an ignored test lists which of them still fail
-//! (`cargo test -p fuzz-checks --test replay -- --ignored --nocapture`).
+//! (`cargo test -p fuzz-checks --test integration replay -- --ignored --nocapture`).
 
 use std::path::Path;
 

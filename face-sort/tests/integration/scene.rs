@@ -2,8 +2,7 @@
 //! flattened scene under culling, mirrored instances culled by their own front, and moving
 //! instances rebuilding only their own clusters.
 
-mod common;
-
+use crate::common;
 use std::collections::BTreeSet;
 
 use face_sort::glam::{DAffine3, DVec3};

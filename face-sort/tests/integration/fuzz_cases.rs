@@ -3,8 +3,7 @@
 //! sorter it once broke; a case saved for a sorter that is not exact (the centroid sort) must
 //! still break it, so that the file keeps testing something hard.
 
-mod common;
-
+use crate::common;
 use face_sort::strategies::ViewSpec;
 use face_sort::{DrawList, Geometry, SorterKind, oracle};
 

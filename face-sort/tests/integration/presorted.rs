@@ -1,8 +1,6 @@
 //! `Presorted`: certified orders at views the build never saw, its fallbacks, its budgets.
 
-mod common;
-
-use common::{asset, read_obj};
+use crate::common::{asset, read_obj};
 use face_sort::glam::{DQuat, DVec3};
 use face_sort::{
     CertifiedOrdersError, CullMode, DrawList, FaceSorter, FallbackReason, Geometry, PresortError,
