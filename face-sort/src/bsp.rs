@@ -5,7 +5,7 @@ use web_time::Instant;
 
 use glam::DVec3;
 
-use crate::bsp_builder;
+use crate::bsp_builder::{self, Node};
 use crate::fragment_merge::{FragmentMerge, MergeInput};
 use crate::ids::NodeId;
 use crate::plane::Plane;
@@ -81,24 +81,6 @@ impl Default for BspOptions {
     fn default() -> Self {
         Self::DEFAULT
     }
-}
-
-/// One node, in pre-order (node, front subtree, back subtree).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Node {
-    /// Fragments lying in the node's plane: `[first, first + same)` face the plane's way,
-    /// `[first + same, first + same + opposite)` face the other way.
-    pub first: u32,
-    pub same: u32,
-    pub opposite: u32,
-    pub front_child: NodeId,
-    pub back_child: NodeId,
-    /// Fragments in the front and back subtrees.
-    pub front_size: u32,
-    pub back_size: u32,
-    /// A convex leaf: its `same` fragments need no order among themselves beyond "facing away
-    /// first" (front faces of a convex set never overlap, nor do its back faces).
-    pub leaf: bool,
 }
 
 /// An inner node as the per-view pass reads it: its plane row and its layout, 64 bytes.

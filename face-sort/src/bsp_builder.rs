@@ -5,11 +5,28 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 use glam::DVec3;
 
-use crate::bsp::Node;
 use crate::ids::NodeId;
 use crate::plane::{Plane, Side};
 use crate::polygon::split_polygon;
 use crate::{BspOptions, PolygonSet};
+
+/// One node, in pre-order (node, front subtree, back subtree).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Node {
+    /// Fragments lying in the node's plane: `[first, first + same)` face the plane's way,
+    /// `[first + same, first + same + opposite)` face the other way.
+    pub first: u32,
+    pub same: u32,
+    pub opposite: u32,
+    pub front_child: NodeId,
+    pub back_child: NodeId,
+    /// Fragments in the front and back subtrees.
+    pub front_size: u32,
+    pub back_size: u32,
+    /// A convex leaf: its `same` fragments need no order among themselves beyond "facing away
+    /// first" (front faces of a convex set never overlap, nor do its back faces).
+    pub leaf: bool,
+}
 
 /// Sets of at most this many polygons are tested for convexity (every polygon on or behind
 /// every other's plane); a convex set becomes a leaf and is not split further.

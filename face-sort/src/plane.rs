@@ -133,7 +133,8 @@ pub fn newell_normal(corners: &[DVec3]) -> DVec3 {
     // size of its distance from the origin, so a small face far out keeps its precision.
     let origin = corners.first().copied().unwrap_or(DVec3::ZERO);
     let mut normal = DVec3::ZERO;
-    for (a, b) in crate::polygon::edges(corners) {
+    let next = corners.iter().skip(1).chain(corners.first());
+    for (&a, &b) in corners.iter().zip(next) {
         let (a, b) = (a - origin, b - origin);
         normal.x += (a.y - b.y) * (a.z + b.z);
         normal.y += (a.z - b.z) * (a.x + b.x);

@@ -32,19 +32,6 @@ impl PolygonSet {
         }
     }
 
-    /// These polygons with the T-junctions between polygons of the same face closed: each
-    /// corner of one that lies inside an edge of another of the same face (within
-    /// `tolerance` of the edge's line, farther than `tolerance` from its ends) is inserted
-    /// there. Order, faces and planes are kept and corners copied bit for bit, so a
-    /// rasteriser with finite precision (a GPU, a vector renderer) covers each pixel of a
-    /// face once where cuts divide it. A tolerance of [`PLANE_SIDE`](crate::tolerance::PLANE_SIDE)
-    /// times the model's size is what the sorters use.
-    #[must_use]
-    pub fn without_t_junctions(&self, tolerance: f64) -> PolygonSet {
-        let faces: Vec<u32> = (0..self.len()).map(|i| self.face(i)).collect();
-        crate::t_junctions::conform(self, &faces, tolerance)
-    }
-
     /// Number of polygons.
     #[inline]
     #[must_use]

@@ -4,4 +4,5 @@
 mod bake;
 mod cli;
 mod docs;
+mod house;
 mod ship;
