@@ -86,14 +86,16 @@ pub struct RenderArgs {
     /// Texture (PNG) for a model with uvs but no material texture (the demo uses spot's).
     #[arg(long, value_name = "PNG")]
     pub(crate) texture: Option<PathBuf>,
-    /// Also write an SVG of the same view (sprite-compose writer, palette colours).
+    /// Also write an SVG of the same view (vector-sink's writer, in the model's materials,
+    /// textures embedded).
     #[arg(long, value_name = "OUT.svg")]
     pub(crate) svg: Option<PathBuf>,
-    /// Also write an HTML/CSS 3D page of the same view (sprite-compose writer).
+    /// Also write an HTML/CSS 3D page of the same view (vector-sink's writer, in the model's
+    /// materials).
     #[arg(long, value_name = "OUT.html")]
     pub(crate) html: Option<PathBuf>,
-    /// Also write a one-page PDF of the same view (sprite-compose writer; one pixel to one
-    /// point).
+    /// Also write a one-page PDF of the same view (vector-sink's writer, in the model's
+    /// materials; one pixel to one point).
     #[arg(long, value_name = "OUT.pdf")]
     pub(crate) pdf: Option<PathBuf>,
     /// Draw every mesh edge over the model (hidden parts hidden), black, 1 px, in the PNG,
