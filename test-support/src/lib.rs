@@ -39,6 +39,18 @@ pub use test_base::{
     consumers, encoded, gltf_scene, memory, model_path, test_data_dir, textured_box, workspace_root,
 };
 
+/// The geometry of a mesh the tests built or loaded.
+///
+/// # Panics
+/// When `face_sort` refuses the mesh: test meshes are valid.
+#[must_use]
+pub fn geometry(mesh: &face_sort::PolygonMesh) -> face_sort::Geometry {
+    match face_sort::Geometry::new(mesh) {
+        Ok(geometry) => geometry,
+        Err(e) => panic!("a test mesh is a valid geometry: {e}"),
+    }
+}
+
 pub use face_sort;
 pub use obj_quads;
 pub use test_base;

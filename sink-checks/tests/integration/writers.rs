@@ -268,7 +268,7 @@ fn tinted_inside(svg: &str, t: &Truth, colour: [u8; 4]) -> usize {
 fn svg_seam_stroke_hides_conflation_hairlines() {
     // A closed mesh in one dark colour on white: anti-aliased neighbours let the background
     // through along shared edges unless each polygon is stroked in its own colour.
-    let g = support::geometry(&support::uv_sphere(12, 24));
+    let g = support::geometry(&test_support::models::uv_sphere(24, 12));
     let view = View::fit(&g.bounds(), SIZE, SIZE).with_yaw_pitch_roll(30.0, 20.0, 0.0);
     let mut p = SpritePainter::new(
         &g,

@@ -115,7 +115,7 @@ fn materials_swap_brushes_only_and_bakes_swap_in_one_step() {
 
 #[test]
 fn convex_facing_predicates_match_culling() {
-    let g = support::geometry(&support::uv_sphere(6, 10));
+    let g = support::geometry(&test_support::models::uv_sphere(10, 6));
     for view in [
         View::fit(&g.bounds(), 256, 256).with_yaw_pitch_roll(0.0, 25.0, 0.0),
         View::fit(&g.bounds(), 256, 256)

@@ -25,7 +25,7 @@ fn painter(
 }
 
 fn sphere() -> Geometry {
-    support::geometry(&support::uv_sphere(8, 12))
+    support::geometry(&test_support::models::uv_sphere(12, 8))
 }
 
 /// Checks that the backend shows exactly the draw list, in order, at the right pixels.
@@ -224,7 +224,7 @@ fn model_change_rebuilds_every_sprite() {
     let view = View::fit(&g.bounds(), 256, 256);
     let mut p = painter(&g, SorterKind::Centroid, view);
     p.frame();
-    let g2 = support::geometry(&support::uv_sphere(5, 7));
+    let g2 = support::geometry(&test_support::models::uv_sphere(7, 5));
     let v2 = View::fit(&g2.bounds(), 256, 256).with_yaw_pitch_roll(10.0, 10.0, 0.0);
     p.set_geometry(&g2, SorterKind::Centroid.build(&g2), v2);
     let destroyed = p.compositor().frame().destroy;
