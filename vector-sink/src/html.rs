@@ -100,25 +100,10 @@ impl HtmlOptions {
         self
     }
 
-    /// Texture `src`s by texture index.
-    #[must_use]
-    pub fn with_textures(mut self, textures: Vec<String>) -> Self {
-        self.textures = textures;
-        self
-    }
-
     /// How clipped sprites are drawn.
     #[must_use]
     pub fn with_pieces(mut self, pieces: HtmlPieces) -> Self {
         self.pieces = pieces;
-        self
-    }
-
-    /// Page size.
-    #[must_use]
-    pub fn with_size(mut self, width: u32, height: u32) -> Self {
-        self.width = width;
-        self.height = height;
         self
     }
 
@@ -128,21 +113,9 @@ impl HtmlOptions {
         self.mode = mode;
         self
     }
-
-    /// ID colours mode.
-    #[must_use]
-    pub fn with_ids(mut self, ids: bool) -> Self {
-        self.ids = ids;
-        self
-    }
-
-    /// Background colour.
-    #[must_use]
-    pub fn with_background(mut self, background: Option<[u8; 4]>) -> Self {
-        self.background = background;
-        self
-    }
 }
+
+crate::page::page_setters!(HtmlOptions: size, ids, background, textures);
 
 impl Default for HtmlOptions {
     fn default() -> Self {

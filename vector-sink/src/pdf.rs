@@ -80,49 +80,15 @@ impl PdfOptions {
         self
     }
 
-    /// Image size in pixels.
-    #[must_use]
-    pub fn with_size(mut self, width: u32, height: u32) -> Self {
-        self.width = width;
-        self.height = height;
-        self
-    }
-
     /// Points per pixel.
     #[must_use]
     pub fn with_points_per_pixel(mut self, points: f64) -> Self {
         self.points_per_pixel = points;
         self
     }
-
-    /// ID colours mode.
-    #[must_use]
-    pub fn with_ids(mut self, ids: bool) -> Self {
-        self.ids = ids;
-        self
-    }
-
-    /// Background colour.
-    #[must_use]
-    pub fn with_background(mut self, background: Option<[u8; 4]>) -> Self {
-        self.background = background;
-        self
-    }
-
-    /// Seam stroke width in pixels (0: off).
-    #[must_use]
-    pub fn with_seam_stroke(mut self, width: f64) -> Self {
-        self.seam_stroke = width;
-        self
-    }
-
-    /// Keep or remove hidden parts.
-    #[must_use]
-    pub fn with_hidden(mut self, hidden: HiddenParts) -> Self {
-        self.hidden = hidden;
-        self
-    }
 }
+
+crate::page::page_setters!(PdfOptions: size, ids, background, hidden, seam_stroke);
 
 impl Default for PdfOptions {
     fn default() -> Self {

@@ -62,27 +62,6 @@ impl SpinOptions {
         self
     }
 
-    /// ID colours mode.
-    #[must_use]
-    pub fn with_ids(mut self, ids: bool) -> Self {
-        self.ids = ids;
-        self
-    }
-
-    /// The page background (`None`: black in ID mode, white otherwise).
-    #[must_use]
-    pub fn with_background(mut self, background: Option<[u8; 4]>) -> Self {
-        self.background = background;
-        self
-    }
-
-    /// Faces filled from `materials` (in colour mode).
-    #[must_use]
-    pub fn with_materials(mut self, materials: &Materials) -> Self {
-        self.materials = Some(Arc::new(materials.clone()));
-        self
-    }
-
     /// Paused at `seconds` into the turn (`None`: spinning).
     #[must_use]
     pub fn with_paused_at(mut self, seconds: Option<f64>) -> Self {
@@ -90,6 +69,8 @@ impl SpinOptions {
         self
     }
 }
+
+crate::page::page_setters!(SpinOptions: ids, background, materials);
 
 impl Default for SpinOptions {
     fn default() -> Self {

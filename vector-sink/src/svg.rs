@@ -69,49 +69,6 @@ impl SvgOptions {
         self
     }
 
-    /// Seam stroke width in pixels (0: off).
-    #[must_use]
-    pub fn with_seam_stroke(mut self, width: f64) -> Self {
-        self.seam_stroke = width;
-        self
-    }
-
-    /// Keep or remove hidden parts.
-    #[must_use]
-    pub fn with_hidden(mut self, hidden: HiddenParts) -> Self {
-        self.hidden = hidden;
-        self
-    }
-
-    /// Image size.
-    #[must_use]
-    pub fn with_size(mut self, width: u32, height: u32) -> Self {
-        self.width = width;
-        self.height = height;
-        self
-    }
-
-    /// ID colours mode.
-    #[must_use]
-    pub fn with_ids(mut self, ids: bool) -> Self {
-        self.ids = ids;
-        self
-    }
-
-    /// Background colour.
-    #[must_use]
-    pub fn with_background(mut self, background: Option<[u8; 4]>) -> Self {
-        self.background = background;
-        self
-    }
-
-    /// Texture `href`s by texture index.
-    #[must_use]
-    pub fn with_textures(mut self, textures: Vec<String>) -> Self {
-        self.textures = textures;
-        self
-    }
-
     /// Markup drawn on top.
     #[must_use]
     pub fn with_overlay(mut self, overlay: String) -> Self {
@@ -119,6 +76,8 @@ impl SvgOptions {
         self
     }
 }
+
+crate::page::page_setters!(SvgOptions: size, ids, background, hidden, textures, seam_stroke);
 
 impl Default for SvgOptions {
     fn default() -> Self {

@@ -49,27 +49,6 @@ impl TurnPageOptions {
         start: Vec::new(),
     };
 
-    /// ID colours mode.
-    #[must_use]
-    pub fn with_ids(mut self, ids: bool) -> Self {
-        self.ids = ids;
-        self
-    }
-
-    /// The page background (`None`: black in ID mode, white otherwise).
-    #[must_use]
-    pub fn with_background(mut self, background: Option<[u8; 4]>) -> Self {
-        self.background = background;
-        self
-    }
-
-    /// Faces filled from `materials` (in colour mode).
-    #[must_use]
-    pub fn with_materials(mut self, materials: &Materials) -> Self {
-        self.materials = Some(Arc::new(materials.clone()));
-        self
-    }
-
     /// The view shown until the pointer moves, yaw and pitch in degrees.
     #[must_use]
     pub fn with_start(mut self, yaw: f64, pitch: f64) -> Self {
@@ -85,6 +64,8 @@ impl TurnPageOptions {
         self
     }
 }
+
+crate::page::page_setters!(TurnPageOptions: ids, background, materials);
 
 impl Default for TurnPageOptions {
     fn default() -> Self {
