@@ -4,6 +4,7 @@ use std::sync::Arc;
 use web_time::Instant;
 
 use super::occlusion::{OcclusionTest, PieceBounds, may_ever_hide, may_face};
+use super::octant_order::{EverPairs, OctantOrder, octant_order};
 use super::region::Region;
 use super::{CORE, Leaf, Node, NodeKind, PresortError, PresortOptions};
 use crate::tolerance::PLANE_SIDE;
@@ -75,7 +76,7 @@ struct Builder<'a> {
 /// Adjacency lists: where each piece's targets start, and the targets.
 type Adjacency = (Vec<u32>, Vec<u32>);
 
-fn pairs_ever(
+pub(super) fn pairs_ever(
     pieces: &PolygonSet,
     tolerance: f64,
     max_pairs: usize,
@@ -218,6 +219,7 @@ pub(super) fn build(geometry: &Geometry, options: &PresortOptions) -> Result<Bui
         .map(|b| b.expect("every octant was built"))
         .collect();
     let (nodes, leaves, mut cores, pair_tests) = merge_octants(parts);
+
     let shared = share_cores(pieces, &mut cores);
     Ok(Built {
         nodes,
@@ -325,23 +327,33 @@ impl<'a> Builder<'a> {
             kind: NodeKind::Leaf(u32::MAX),
         });
         let grown = region.grown();
-        let test = OcclusionTest::new(self.pieces, self.bounds, grown);
+        let mut test = OcclusionTest::new(self.pieces, self.bounds, grown);
         let facing = self.facing(&grown, &test);
-        let mut candidates = Vec::new();
-        for a in 0..self.pieces.len() {
-            if !facing[a] {
-                continue;
-            }
-            for &b in &targets[start[a] as usize..start[a + 1] as usize] {
-                if facing[b as usize] {
-                    candidates.push((a as u32, b));
-                }
-            }
+        let ever = EverPairs { start, targets };
+        let OctantOrder {
+            partial,
+            open_edges,
+            tests,
+        } = octant_order(
+            &mut test,
+            self.bounds,
+            &facing,
+            region.centre(),
+            &ever,
+            &|| self.check_time(),
+        )?;
+        self.pair_tests += tests;
+        self.settle(region, partial, &open_edges, usize::MAX, 0)
+    }
+
+    /// [`PresortError::TimeBudget`] once the build has run longer than its budget.
+    fn check_time(&self) -> Result<(), PresortError> {
+        if self.started.elapsed() > self.options.max_build_time {
+            return Err(PresortError::TimeBudget {
+                limit: self.options.max_build_time,
+            });
         }
-        let order = (0..self.pieces.len() as u32)
-            .filter(|&i| facing[i as usize])
-            .collect();
-        self.certify(region, &Partial::open(order), &candidates, 0)
+        Ok(())
     }
 
     fn facing(&self, grown: &Region, test: &OcclusionTest<'_>) -> Vec<bool> {
@@ -362,11 +374,7 @@ impl<'a> Builder<'a> {
         candidates: &[(u32, u32)],
         depth: usize,
     ) -> Result<NodeKind, PresortError> {
-        if self.started.elapsed() > self.options.max_build_time {
-            return Err(PresortError::TimeBudget {
-                limit: self.options.max_build_time,
-            });
-        }
+        self.check_time()?;
         let grown = region.grown();
         let mut test = OcclusionTest::new(self.pieces, self.bounds, grown);
         let facing = self.facing(&grown, &test);
@@ -381,6 +389,20 @@ impl<'a> Builder<'a> {
             }
         }
         let (partial, open_edges) = parent.refined(&facing, &edges);
+        self.settle(region, partial, &open_edges, parent.open_pieces(), depth)
+    }
+
+    /// Stores `partial` as the order of `region` (at `depth`, below a region whose cycles
+    /// held `parent_open` pieces), or splits the region, passing on the pairs inside its
+    /// cycles (`open_edges`).
+    fn settle(
+        &mut self,
+        region: Region,
+        partial: Partial,
+        open_edges: &[(u32, u32)],
+        parent_open: usize,
+        depth: usize,
+    ) -> Result<NodeKind, PresortError> {
         let small = partial
             .blocks
             .iter()
@@ -389,7 +411,7 @@ impl<'a> Builder<'a> {
         // in the parent's, the cycles hold from every side of the region (pieces that touch
         // along a cut, cyclic overlaps of crossing soups) and more regions only cost memory.
         let open = partial.open_pieces();
-        let stalled = depth > 0 && open >= parent.open_pieces();
+        let stalled = depth > 0 && open >= parent_open;
         if depth >= 2 && !small && 4 * open > partial.order.len() {
             return Ok(NodeKind::Uncertified);
         }
@@ -413,7 +435,7 @@ impl<'a> Builder<'a> {
                 });
             }
             for (k, child) in children.iter().enumerate() {
-                let kind = self.certify(*child, &partial, &open_edges, depth + 1)?;
+                let kind = self.certify(*child, &partial, open_edges, depth + 1)?;
                 self.nodes[first as usize + k].kind = kind;
             }
             return Ok(if split_distance {
@@ -543,17 +565,23 @@ pub(super) struct Partial {
 }
 
 impl Partial {
-    /// Everything in one open block.
-    pub fn open(pieces: Vec<u32>) -> Partial {
-        let n = pieces.len() as u32;
-        Partial {
-            order: pieces,
-            blocks: if n > 1 {
-                std::iter::once(0..n).collect()
-            } else {
-                Vec::new()
-            },
+    /// `order` with a block for each run of two or more pieces of one cycle (`cycle_of`
+    /// numbers them, `u32::MAX` for a piece in none).
+    pub fn with_runs(order: Vec<u32>, cycle_of: &[u32]) -> Partial {
+        let mut blocks = Vec::new();
+        let mut i = 0;
+        while i < order.len() {
+            let cycle = cycle_of[order[i] as usize];
+            let mut end = i + 1;
+            while cycle != u32::MAX && end < order.len() && cycle_of[order[end] as usize] == cycle {
+                end += 1;
+            }
+            if end > i + 1 {
+                blocks.push(i as u32..end as u32);
+            }
+            i = end;
         }
+        Partial { order, blocks }
     }
 
     /// Pieces in open blocks.
@@ -626,13 +654,13 @@ impl Partial {
 }
 
 /// Pairs "`a` before `b`" as adjacency lists.
-struct Graph {
+pub(super) struct Graph {
     start: Vec<u32>,
     targets: Vec<u32>,
 }
 
 impl Graph {
-    fn new(n: usize, edges: &[(u32, u32)]) -> Self {
+    pub fn new(n: usize, edges: &[(u32, u32)]) -> Self {
         let mut start = vec![0u32; n + 1];
         for &(a, _) in edges {
             start[a as usize + 1] += 1;
@@ -649,13 +677,13 @@ impl Graph {
         Graph { start, targets }
     }
 
-    fn next(&self, v: usize) -> &[u32] {
+    pub fn next(&self, v: usize) -> &[u32] {
         &self.targets[self.start[v] as usize..self.start[v + 1] as usize]
     }
 
     /// The strongly connected components of the `kept` pieces (Tarjan, iterative), in
     /// topological order (each component's pieces ascending).
-    fn components(&self, kept: &[bool]) -> Vec<Vec<u32>> {
+    pub fn components(&self, kept: &[bool]) -> Vec<Vec<u32>> {
         let n = kept.len();
         let mut index = vec![u32::MAX; n];
         let mut low = vec![0u32; n];
@@ -727,7 +755,8 @@ mod tests {
     fn refining_orders_components_and_keeps_cycles_open() {
         // 0 → 1 → 2 → 1, 2 → 3: one block of all four.
         let edges = [(0, 1), (1, 2), (2, 1), (2, 3)];
-        let (partial, open) = Partial::open(vec![3, 2, 1, 0]).refined(&[true; 4], &edges);
+        let (partial, open) =
+            Partial::with_runs(vec![3, 2, 1, 0], &[0; 4]).refined(&[true; 4], &edges);
         assert_eq!(partial.order, [0, 1, 2, 3]);
         assert_eq!(partial.blocks, std::iter::once(1..3).collect::<Vec<_>>());
         assert_eq!(open, [(1, 2), (2, 1)]);

@@ -40,9 +40,11 @@
 //! [`Presorted::refusal`] why a build of [`Presorted::new`] stopped.
 //!
 //! # Cost
-//! The build tests every pair that can ever need an order (the plane-side test of
-//! `occlusion.rs`) against the regions it reaches: quadratic in the pieces, stopped by
-//! [`PresortOptions::max_pairs`] and [`PresortOptions::max_build_time`].
+//! The build finds every pair that can ever need an order (the plane-side test of
+//! `occlusion.rs`: quadratic in the pieces, but a few comparisons a pair), stopped by
+//! [`PresortOptions::max_pairs`]. An octant then tests only the pairs against a far-to-near
+//! rank of its pieces and those its cycles need (`octant_order.rs`); a sub-region, only the
+//! pairs inside its parent's cycles. [`PresortOptions::max_build_time`] bounds the whole.
 //!
 //! # Kept on disk
 //! [`Presorted::to_bytes`] writes the region tree, the orders and the cores' piece sets,
@@ -54,6 +56,7 @@ mod bytes;
 mod certified;
 mod cones;
 mod occlusion;
+mod octant_order;
 mod region;
 
 use std::sync::Arc;

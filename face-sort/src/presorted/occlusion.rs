@@ -125,6 +125,11 @@ pub(crate) struct OcclusionTest<'a> {
     eye_rays: Vec<DVec3>,
     /// Per piece whose cone of eyes is computed, a cap holding it.
     eye_caps: Vec<Cap>,
+    /// Per piece whose cone of eyes is computed, its facets (range of `eye_facets`).
+    facet_ranges: Vec<(u32, u32)>,
+    /// Facets of the cones of eyes: an inward unit normal `f` whose plane the whole cone
+    /// lies in front of, and the least `f · p` over the piece's corners `p`.
+    eye_facets: Vec<(DVec3, f64)>,
     generators: Vec<DVec3>,
     hull_rays: Vec<DVec3>,
     clipped: Vec<DVec3>,
@@ -151,6 +156,8 @@ impl<'a> OcclusionTest<'a> {
             eye_cones: vec![(u32::MAX, 0); pieces.len()],
             eye_rays: Vec::new(),
             eye_caps: vec![Cap::default(); pieces.len()],
+            facet_ranges: vec![(0, 0); pieces.len()],
+            eye_facets: Vec::new(),
             generators: Vec::new(),
             hull_rays: Vec::new(),
             clipped: Vec::new(),
@@ -185,6 +192,16 @@ impl<'a> OcclusionTest<'a> {
             let (sin_s, cos_s) = (reach / distance, (1.0 - (reach / distance).powi(2)).sqrt());
             let cos_sum = cos_s * cap.cos_radius - sin_s * cap.sin_radius;
             if cap.centre.dot(join) < (cos_sum - PRESORT_CLIP) * distance {
+                return false;
+            }
+        }
+        // A facet of `A`'s cone of eyes that all of `B ⊖ A` lies behind parts the cones; it
+        // is the facet test of `full` before clipping (the clipped cone's other facets, the
+        // planes of `A` and `B`, never part a pair that passed `may_ever_hide`).
+        let (first, count) = self.facet_ranges[a];
+        let corners = self.pieces.corners(b);
+        for &(f, least) in &self.eye_facets[first as usize..(first + count) as usize] {
+            if corners.iter().all(|q| f.dot(*q) <= least) {
                 return false;
             }
         }
@@ -228,10 +245,33 @@ impl<'a> OcclusionTest<'a> {
             self.eye_cones[a] = (start as u32, len as u32);
             if pointed {
                 self.eye_caps[a] = Cap::around(&self.eye_rays[start..]);
+                self.facets_of(a, start..start + len);
             }
             return pointed.then_some((start, len));
         }
         (len > 0).then_some((start as usize, len as usize))
+    }
+
+    /// Records the facets of `A`'s cone of eyes (rays `cone`): those whose plane every ray
+    /// lies in front of (a facet between rays a rounding apart points anywhere and is left
+    /// out), each with the least `f · p` over `A`'s corners.
+    fn facets_of(&mut self, a: usize, cone: std::ops::Range<usize>) {
+        let first = self.eye_facets.len();
+        let rays = &self.eye_rays[cone];
+        let corners = self.pieces.corners(a);
+        for i in 0..rays.len() {
+            let Some(f) = rays[i].cross(rays[(i + 1) % rays.len()]).try_normalize() else {
+                continue;
+            };
+            if rays.iter().all(|r| f.dot(*r) >= -PRESORT_SEPARATION) {
+                let least = corners
+                    .iter()
+                    .map(|p| f.dot(*p))
+                    .fold(f64::INFINITY, f64::min);
+                self.eye_facets.push((f, least));
+            }
+        }
+        self.facet_ranges[a] = (first as u32, (self.eye_facets.len() - first) as u32);
     }
 
     fn full(
