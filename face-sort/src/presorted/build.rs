@@ -4,8 +4,8 @@ use std::sync::Arc;
 use web_time::Instant;
 
 use super::occlusion::{OcclusionTest, PieceBounds, may_ever_hide, may_face};
-use super::octant_order::{EverPairs, OctantOrder, octant_order};
 use super::region::Region;
+use super::region_order::{MIN_LEAN, RegionOrder, Setting, lean, region_order};
 use super::{CORE, Leaf, Node, NodeKind, PresortError, PresortOptions};
 use crate::tolerance::PLANE_SIDE;
 use crate::{BspOptions, BspTree, Geometry, PolygonSet};
@@ -58,10 +58,13 @@ pub(super) struct Core {
 
 struct Builder<'a> {
     geometry: &'a Geometry,
+    setting: &'a Setting<'a>,
     pieces: &'a PolygonSet,
     bounds: &'a [PieceBounds],
     options: &'a PresortOptions,
     tolerance: f64,
+    /// Pairs the regions' orders looked at ([`RegionOrder::candidates`]).
+    candidates: usize,
     /// This builder's regions: its octant's root first.
     nodes: Vec<Node>,
     leaves: Vec<Leaf>,
@@ -154,41 +157,19 @@ pub(super) fn build(geometry: &Geometry, options: &PresortOptions) -> Result<Bui
     let pieces = &pieces;
     let n = pieces.len();
     let threads = crate::workers::threads(options.threads).min(8);
-    let (start, targets) = pairs_ever(pieces, tolerance, options.max_pairs, threads)?;
-    // The pairs that may ever need an order are necessary for every viewer, orthographic or
-    // perspective, wherever the eye: when they have no cycle, one order serves every view.
-    let everything = Graph { start, targets };
-    let components = everything.components(&vec![true; n]);
-    let Graph { start, targets } = everything;
-    if components.iter().all(|c| c.len() == 1) {
-        let order: Vec<u32> = components.into_iter().map(|c| c[0]).collect();
-        let region = octants[0];
-        let mut builder = Builder::new(geometry, pieces, &[], options, Instant::now());
-        builder.leaf(
-            region,
-            &Partial {
-                order,
-                blocks: Vec::new(),
-            },
-        )?;
-        return Ok(Built {
-            nodes: octants
-                .map(|region| Node {
-                    region,
-                    kind: NodeKind::Leaf(0),
-                })
-                .to_vec(),
-            leaves: builder.leaves,
-            shared: Arc::new(pieces.clone()),
-            cores: Vec::new(),
-            near: 0.0,
-            pair_tests: 0,
-            candidate_pairs: targets.len(),
-            cuts,
-            threads,
-        });
+    if n <= ONE_ORDER_PIECES
+        && let Some(built) = one_order(geometry, pieces, options, (near, tolerance), threads, cuts)?
+    {
+        return Ok(built);
     }
     let bounds = PieceBounds::of(pieces);
+    let setting = Setting {
+        pieces,
+        bounds: &bounds,
+        radius,
+        tolerance,
+        max_pairs: options.max_pairs,
+    };
     let started = Instant::now();
     // Each octant is certified on its own, the octants shared out among the threads.
     let next = std::sync::atomic::AtomicUsize::new(0);
@@ -200,8 +181,8 @@ pub(super) fn build(geometry: &Geometry, options: &PresortOptions) -> Result<Bui
                 if k >= octants.len() {
                     return done;
                 }
-                let mut builder = Builder::new(geometry, pieces, &bounds, options, started);
-                let result = builder.octant(octants[k], &start, &targets).map(|kind| {
+                let mut builder = Builder::new(geometry, &setting, options, started);
+                let result = builder.octant(octants[k]).map(|kind| {
                     builder.nodes[0].kind = kind;
                     builder
                 });
@@ -212,12 +193,11 @@ pub(super) fn build(geometry: &Geometry, options: &PresortOptions) -> Result<Bui
     for (k, result) in built.into_iter().flatten() {
         by_octant[k] = Some(result?);
     }
-    let candidate_pairs = targets.len();
-    drop(targets);
     let parts: Vec<Builder<'_>> = by_octant
         .into_iter()
         .map(|b| b.expect("every octant was built"))
         .collect();
+    let candidate_pairs = parts.iter().map(|b| b.candidates).sum();
     let (nodes, leaves, mut cores, pair_tests) = merge_octants(parts);
 
     let shared = share_cores(pieces, &mut cores);
@@ -232,6 +212,65 @@ pub(super) fn build(geometry: &Geometry, options: &PresortOptions) -> Result<Bui
         cuts,
         threads,
     })
+}
+
+/// Models with at most this many pieces are checked for one order that serves every view
+/// (a scan of every pair, quadratic); larger ones are certified by regions only.
+pub(super) const ONE_ORDER_PIECES: usize = 8192;
+
+/// One order for every view, when the pairs that may ever need an order (necessary for every
+/// viewer, orthographic or perspective, wherever the eye) have no cycle; `None` when they
+/// have one or are more than the budget allows.
+fn one_order(
+    geometry: &Geometry,
+    pieces: &PolygonSet,
+    options: &PresortOptions,
+    (near, tolerance): (f64, f64),
+    threads: usize,
+    cuts: usize,
+) -> Result<Option<Built>, PresortError> {
+    let n = pieces.len();
+    let Ok((start, targets)) = pairs_ever(pieces, tolerance, options.max_pairs, threads) else {
+        return Ok(None);
+    };
+    let candidate_pairs = targets.len();
+    let components = Graph { start, targets }.components(&vec![true; n]);
+    if components.iter().any(|c| c.len() > 1) {
+        return Ok(None);
+    }
+    let order: Vec<u32> = components.into_iter().map(|c| c[0]).collect();
+    let octants = Region::octants(near);
+    let setting = Setting {
+        pieces,
+        bounds: &[],
+        radius: geometry.bounds().diagonal() * 0.5,
+        tolerance,
+        max_pairs: options.max_pairs,
+    };
+    let mut builder = Builder::new(geometry, &setting, options, Instant::now());
+    builder.leaf(
+        octants[0],
+        &Partial {
+            order,
+            blocks: Vec::new(),
+        },
+    )?;
+    Ok(Some(Built {
+        nodes: octants
+            .map(|region| Node {
+                region,
+                kind: NodeKind::Leaf(0),
+            })
+            .to_vec(),
+        leaves: builder.leaves,
+        shared: Arc::new(pieces.clone()),
+        cores: Vec::new(),
+        near: 0.0,
+        pair_tests: 0,
+        candidate_pairs,
+        cuts,
+        threads,
+    }))
 }
 
 /// The octants' builders as one tree: the eight roots first (so that the octant of a
@@ -295,17 +334,18 @@ impl<'a> Builder<'a> {
     /// A builder with no regions yet; its budget of time runs from `started`.
     fn new(
         geometry: &'a Geometry,
-        pieces: &'a PolygonSet,
-        bounds: &'a [PieceBounds],
+        setting: &'a Setting<'a>,
         options: &'a PresortOptions,
         started: Instant,
     ) -> Self {
         Builder {
             geometry,
-            pieces,
-            bounds,
+            setting,
+            pieces: setting.pieces,
+            bounds: setting.bounds,
             options,
-            tolerance: PLANE_SIDE * geometry.bounds().diagonal(),
+            tolerance: setting.tolerance,
+            candidates: 0,
             nodes: Vec::new(),
             leaves: Vec::new(),
             cores: Vec::new(),
@@ -316,34 +356,86 @@ impl<'a> Builder<'a> {
     }
 
     /// Certifies one octant (its root is this builder's node 0).
-    fn octant(
-        &mut self,
-        region: Region,
-        start: &[u32],
-        targets: &[u32],
-    ) -> Result<NodeKind, PresortError> {
+    fn octant(&mut self, region: Region) -> Result<NodeKind, PresortError> {
         self.nodes.push(Node {
             region,
             kind: NodeKind::Leaf(u32::MAX),
         });
+        self.top(region, 0)
+    }
+
+    /// Certifies `region` (at `depth`, its node pushed) from all its pieces: ordered by
+    /// [`region_order`] when its viewers see the geometry from one side, else split into
+    /// quarters that are (or left uncertified when no split is left).
+    fn top(&mut self, region: Region, depth: usize) -> Result<NodeKind, PresortError> {
+        self.check_time()?;
         let grown = region.grown();
+        if lean(&grown, self.setting.radius) < MIN_LEAN {
+            return Ok(if self.may_split(depth) {
+                self.split(region, false, depth, &mut |b, child, d| b.top(child, d))?
+            } else {
+                NodeKind::Uncertified
+            });
+        }
         let mut test = OcclusionTest::new(self.pieces, self.bounds, grown);
         let facing = self.facing(&grown, &test);
-        let ever = EverPairs { start, targets };
-        let OctantOrder {
+        let started = self.started;
+        let limit = self.options.max_build_time;
+        let check_time = move || {
+            if started.elapsed() > limit {
+                return Err(PresortError::TimeBudget { limit });
+            }
+            Ok(())
+        };
+        let RegionOrder {
             partial,
             open_edges,
             tests,
-        } = octant_order(
-            &mut test,
-            self.bounds,
-            &facing,
-            region.centre(),
-            &ever,
-            &|| self.check_time(),
-        )?;
+            candidates,
+        } = region_order(self.setting, &mut test, &facing, &grown, &check_time)?;
         self.pair_tests += tests;
-        self.settle(region, partial, &open_edges, usize::MAX, 0)
+        self.candidates += candidates;
+        self.settle(region, partial, &open_edges, usize::MAX, depth)
+    }
+
+    /// Whether a region at `depth` may still be split (depth and node budgets).
+    fn may_split(&self, depth: usize) -> bool {
+        depth < self.options.max_depth && 8 * (self.nodes.len() + 4) <= self.options.max_nodes
+    }
+
+    /// Splits `region` (at `depth`) by distance or into quarters of directions, certifying
+    /// each child with `child`.
+    fn split(
+        &mut self,
+        region: Region,
+        by_distance: bool,
+        depth: usize,
+        child: &mut dyn FnMut(&mut Self, Region, usize) -> Result<NodeKind, PresortError>,
+    ) -> Result<NodeKind, PresortError> {
+        let children: Vec<Region> = if by_distance {
+            region.split_distance().to_vec()
+        } else {
+            region.split_directions().to_vec()
+        };
+        let first = self.nodes.len() as u32;
+        for c in &children {
+            self.nodes.push(Node {
+                region: *c,
+                kind: NodeKind::Leaf(u32::MAX),
+            });
+        }
+        for (k, c) in children.iter().enumerate() {
+            let kind = child(self, *c, depth + 1)?;
+            self.nodes[first as usize + k].kind = kind;
+        }
+        Ok(if by_distance {
+            NodeKind::Distance {
+                mid: region.distance_split(),
+                first,
+            }
+        } else {
+            NodeKind::Directions { first }
+        })
     }
 
     /// [`PresortError::TimeBudget`] once the build has run longer than its budget.
@@ -419,32 +511,11 @@ impl<'a> Builder<'a> {
             // Acyclic, or the cycles left are ordered per frame by BSP trees of their own.
             return Ok(NodeKind::Leaf(self.leaf(region, &partial)?));
         }
-        if depth < self.options.max_depth && 8 * (self.nodes.len() + 4) <= self.options.max_nodes {
-            let split_distance = !region.orthographic_only()
+        if self.may_split(depth) {
+            let by_distance = !region.orthographic_only()
                 && region.angular_radius() < parallax(&region, self.geometry);
-            let children: Vec<Region> = if split_distance {
-                region.split_distance().to_vec()
-            } else {
-                region.split_directions().to_vec()
-            };
-            let first = self.nodes.len() as u32;
-            for child in &children {
-                self.nodes.push(Node {
-                    region: *child,
-                    kind: NodeKind::Leaf(u32::MAX),
-                });
-            }
-            for (k, child) in children.iter().enumerate() {
-                let kind = self.certify(*child, &partial, open_edges, depth + 1)?;
-                self.nodes[first as usize + k].kind = kind;
-            }
-            return Ok(if split_distance {
-                NodeKind::Distance {
-                    mid: region.distance_split(),
-                    first,
-                }
-            } else {
-                NodeKind::Directions { first }
+            return self.split(region, by_distance, depth, &mut |b, child, d| {
+                b.certify(child, &partial, open_edges, d)
             });
         }
         // The deepest split: the open blocks are ordered per frame.

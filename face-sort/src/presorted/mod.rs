@@ -40,12 +40,15 @@
 //! [`Presorted::refusal`] why a build of [`Presorted::new`] stopped.
 //!
 //! # Cost
-//! The build finds every pair that can ever need an order (the plane-side test of
-//! `occlusion.rs`: quadratic in the pieces, but a few comparisons a pair), stopped by
-//! [`PresortOptions::max_pairs`]. An octant then tests only the pairs against a far-to-near
-//! rank of its pieces and those its cycles need (`octant_order.rs`); a sub-region, only the
-//! pairs inside its parent's cycles. [`PresortOptions::max_build_time`] bounds the whole.
-//!
+//! Each region is ordered from a far-to-near rank of its pieces, testing only the pairs that
+//! may be kept against that rank (spatial neighbours in a thin slab of depth, found by a grid)
+//! and then the pairs that ranks repairing it turn (`region_order.rs`, with the proof):
+//! near `n log n` a region, for regions whose viewers see the geometry from one side (the
+//! octants are quartered first when their eyes come near). A sub-region tests only the pairs
+//! inside its parent's cycles. Models of at most 8,192 pieces are first scanned for one order
+//! that serves every view (every pair, quadratic). [`PresortOptions::max_pairs`] bounds the
+//! pairs a region looks at, [`PresortOptions::max_build_time`] the whole.
+
 //! # Kept on disk
 //! [`Presorted::to_bytes`] writes the region tree, the orders and the cores' piece sets,
 //! nothing the geometry gives; [`Presorted::from_bytes`] checks them against the geometry
@@ -56,8 +59,8 @@ mod bytes;
 mod certified;
 mod cones;
 mod occlusion;
-mod octant_order;
 mod region;
+mod region_order;
 
 use std::sync::Arc;
 use std::time::Duration;
@@ -91,7 +94,10 @@ pub struct PresortOptions {
     /// A region whose open cycles all have at most this many pieces is not split further:
     /// the cycles are ordered per frame by BSP trees of their own.
     pub small_cycle_pieces: usize,
-    /// Most pairs that can ever need an order ([`PresortError::PairBudget`] beyond).
+    /// Most pairs of pieces one region may look at (those its grid puts forward, those a
+    /// new rank turns, and every pair inside its cycles); [`PresortError::PairBudget`]
+    /// beyond. The scan for one order that serves every view (models of at most 8,192
+    /// pieces) stops at this many pairs too, and is then left out.
     pub max_pairs: usize,
     /// Longest build ([`PresortError::TimeBudget`] beyond).
     pub max_build_time: Duration,
@@ -127,8 +133,10 @@ impl Default for PresortOptions {
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[non_exhaustive]
 pub enum PresortError {
-    /// More pairs can need an order than the budget allows.
-    #[error("more than {limit} pairs of pieces can need an order (PresortOptions::max_pairs)")]
+    /// A region would look at more pairs than the budget allows.
+    #[error(
+        "more than {limit} pairs of pieces to look at in one region (PresortOptions::max_pairs)"
+    )]
     PairBudget {
         /// The budget.
         limit: usize,
