@@ -4,7 +4,7 @@
 //! and build time on every core; the certified orders a page turned by the pointer would carry
 //! (`Presorted::certified_orders`, orthographic and an eye at 2 bounding radii: regions,
 //! orders, cycles and the most planes of a cycle's tree, or why there are none); then, for spot and blub, the planner's `CostModel` figures
-//! (build per pair of pieces on one thread, frame per piece, orthographic).
+//! (build per piece and level on one thread, frame per piece, orthographic).
 //!
 //! `cargo run --release -p face-sort --example presort_models`
 
@@ -80,12 +80,20 @@ fn main() {
             page(&sorter, Some(geometry.bounds().diagonal())),
         );
     }
-    println!("\nCostModel: build ns per pair of pieces on one thread, frame ns per piece");
-    for model in [
+    println!(
+        "\nCostModel: build ns per piece and level (n log2 n) on one thread, frame ns per piece"
+    );
+    let scan = SorterKind::Presorted
+        .geometry_for(&face_sort::generate::scan_blob(264, 132))
+        .unwrap();
+    for (model, geometry) in [
         "keenan-crane/spot/spot_quadrangulated.obj",
         "keenan-crane/blub/blub_quadrangulated.obj",
-    ] {
-        let geometry = geometry(model);
+    ]
+    .map(|model| (model, geometry(model)))
+    .into_iter()
+    .chain([("scan_blob(264, 132)", scan)])
+    {
         let n = geometry.pieces().len() as f64;
         let start = Instant::now();
         let one_thread = PresortOptions {
@@ -108,8 +116,8 @@ fn main() {
         }
         times.sort_by(f64::total_cmp);
         println!(
-            "{model}: build {:.0} ns per pair, frame {:.2} ns per piece",
-            build / (n * n),
+            "{model}: build {:.0} ns per piece and level, frame {:.2} ns per piece",
+            build / (n * n.log2()),
             times[times.len() / 2] / n
         );
     }

@@ -26,7 +26,8 @@
 //! - **Otherwise the cheaper exact sorter for the frames the caller will draw.** [`Newell`]
 //!   needs no tree (for a few frames, no build at all: `NEWELL_COVERAGE_FRAMES`) and draws
 //!   almost no extra items; [`Bsp`] pays a build once and then traverses cheaply;
-//!   [`Presorted`](crate::Presorted) pays a quadratic build and then only looks up and culls
+//!   [`Presorted`](crate::Presorted) pays a build near `n log n` (with a constant about 80
+//!   times the BSP's) and then only looks up and culls
 //!   (about half the BSP's frame, no extra items), so it wins only for callers that announce
 //!   very many frames (on spot, about 60 frames per piece). The model counts the sorter's
 //!   time only, not the sink's per item.
@@ -77,8 +78,8 @@ pub enum Strategy {
     Newell,
     /// [`Bsp`]: a build amortised over many frames.
     Bsp,
-    /// [`Presorted`](crate::Presorted): a quadratic build, then a lookup and a cull per
-    /// frame; for callers that announce very many frames.
+    /// [`Presorted`](crate::Presorted): a costly build, then a lookup and a cull per frame;
+    /// for callers that announce very many frames.
     Presorted,
 }
 
@@ -115,10 +116,11 @@ pub struct CostModel {
     pub bsp_frame_per_piece: f64,
     /// Newell per frame, per piece.
     pub newell_frame_per_piece: f64,
-    /// Presorted build, per pair of pieces (`n²`). `cargo run --release -p face-sort
-    /// --example presort_models` prints it for spot and blub on one thread; the build on
-    /// every core costs about half of that. The constant lies between the two.
-    pub presorted_build_per_pair: f64,
+    /// Presorted build, per piece and per level (`n · log2 n`). `cargo run --release -p
+    /// face-sort --example presort_models` prints it for spot, blub and the scan-like blob on
+    /// one thread; the build on every core costs about half of that. The constant lies
+    /// between the models'.
+    pub presorted_build_per_piece_level: f64,
     /// Presorted per frame (region lookup and cull), per piece (the same example).
     pub presorted_frame_per_piece: f64,
 }
@@ -129,13 +131,13 @@ impl CostModel {
         bsp_build_per_piece_level: 262.0,
         bsp_frame_per_piece: 5.8,
         newell_frame_per_piece: 88.0,
-        presorted_build_per_pair: 180.0,
+        presorted_build_per_piece_level: 20_000.0,
         presorted_frame_per_piece: 2.9,
     };
 
     /// Predicted nanoseconds of a `Presorted` build of `n` pieces.
     fn presorted_build(&self, n: f64) -> f64 {
-        self.presorted_build_per_pair * n * n
+        self.presorted_build_per_piece_level * n * n.log2().max(1.0)
     }
 
     /// Predicted nanoseconds for `pieces` pieces over `frames` frames.

@@ -173,6 +173,16 @@ pub fn planar_torus(faces: usize) -> Scene {
     }
 }
 
+/// The scan-like blob (`face_sort::generate::scan_blob(264, 132)`: 69,168 triangles, a laser
+/// scan's size and kind), seen from outside.
+pub fn scan() -> Scene {
+    Scene {
+        name: "scan".to_owned(),
+        mesh: face_sort::generate::scan_blob(264, 132),
+        cull: CullMode::Back,
+    }
+}
+
 /// The repository's test models used by the bench: (name, path relative to the root).
 pub const MODELS: [(&str, &str); 7] = [
     (

@@ -529,8 +529,6 @@ impl<'a> Builder<'a> {
             region,
             edges: region.edge_normals(),
             pieces: Vec::with_capacity(n),
-            faces: Vec::with_capacity(n),
-            rows: Vec::with_capacity(n),
         };
         let mut blocks = partial.blocks.iter().peekable();
         let mut i = 0;
@@ -540,20 +538,13 @@ impl<'a> Builder<'a> {
                     partial.order[block.start as usize..block.end as usize].to_vec();
                 let core = self.core(&set)?;
                 leaf.pieces.push(CORE | core);
-                leaf.faces.push(0);
-                leaf.rows.push([0.0; 4]);
                 i = block.end as usize;
                 continue;
             }
-            let piece = partial.order[i];
-            let plane = self.pieces.plane(piece as usize);
-            let normal = plane.normal();
-            leaf.pieces.push(piece);
-            leaf.faces.push(self.pieces.face(piece as usize));
-            leaf.rows
-                .push([normal.x, normal.y, normal.z, plane.offset()]);
+            leaf.pieces.push(partial.order[i]);
             i += 1;
         }
+        leaf.pieces.shrink_to_fit();
         self.leaves.push(leaf);
         Ok(self.leaves.len() as u32 - 1)
     }

@@ -299,23 +299,14 @@ impl Presorted {
                 region,
                 edges: region.edge_normals(),
                 pieces: Vec::with_capacity(steps),
-                faces: Vec::with_capacity(steps),
-                rows: Vec::with_capacity(steps),
             };
             for _ in 0..steps {
                 let step = r.u32("an order's step")?;
                 if step & CORE != 0 {
                     core_refs.push(step & !CORE);
                     leaf.pieces.push(step);
-                    leaf.faces.push(0);
-                    leaf.rows.push([0.0; 4]);
                 } else if (step as usize) < pieces.len() {
-                    let plane = pieces.plane(step as usize);
-                    let normal = plane.normal();
                     leaf.pieces.push(step);
-                    leaf.faces.push(pieces.face(step as usize));
-                    leaf.rows
-                        .push([normal.x, normal.y, normal.z, plane.offset()]);
                 } else {
                     return Err(r.invalid("an order's step (no such piece)"));
                 }

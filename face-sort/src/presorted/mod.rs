@@ -206,16 +206,14 @@ enum NodeKind {
     Uncertified,
 }
 
-/// One certified order: piece indices (or `CORE | k`), their faces and plane rows
-/// `(normal, offset)`, side by side for the per-frame pass.
+/// One certified order: piece indices (or `CORE | k`); the per-frame pass reads each piece's
+/// face and plane from the shared set.
 #[derive(Clone, Debug)]
 struct Leaf {
     region: Region,
     /// `region.edge_normals()`, for the per-frame test whether the viewer is still inside.
     edges: [DVec3; 3],
     pieces: Vec<u32>,
-    faces: Vec<u32>,
-    rows: Vec<[f64; 4]>,
 }
 
 /// Exact per frame by looking up an order certified for a region of views (module docs).
@@ -486,7 +484,8 @@ impl Presorted {
         let (point, w) = cull.viewer_point();
         out.begin(&self.shared);
         let leaf = &self.leaves[leaf as usize];
-        for ((&piece, &face), row) in leaf.pieces.iter().zip(&leaf.faces).zip(&leaf.rows) {
+        let planes = self.shared.planes();
+        for &piece in &leaf.pieces {
             if piece & CORE != 0 {
                 let k = (piece & !CORE) as usize;
                 self.core_sorters[k].sort_culled(&cull, &mut self.core_list);
@@ -494,8 +493,11 @@ impl Presorted {
                 for item in self.core_list.items() {
                     out.push(core.offset + item.polygon, core.faces[item.face as usize]);
                 }
-            } else if row[0] * point.x + row[1] * point.y + row[2] * point.z - w * row[3] > 0.0 {
-                out.push(piece, face);
+            } else {
+                let plane = &planes[piece as usize];
+                if plane.normal().dot(point) - w * plane.offset() > 0.0 {
+                    out.push(piece, self.shared.face(piece as usize));
+                }
             }
         }
     }
@@ -511,11 +513,7 @@ impl FaceSorter for Presorted {
     }
 
     fn stats(&self) -> SorterStats {
-        let leaf_bytes: usize = self
-            .leaves
-            .iter()
-            .map(|l| l.pieces.capacity() * 4 + l.faces.capacity() * 4 + l.rows.capacity() * 32)
-            .sum();
+        let leaf_bytes: usize = self.leaves.iter().map(|l| l.pieces.capacity() * 4).sum();
         SorterStats {
             build_ms: self.build_ms,
             polygons: self.shared.len(),

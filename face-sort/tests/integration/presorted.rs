@@ -348,3 +348,46 @@ fn a_refused_build_is_reported_on_every_frame() {
         assert_eq!(oracle::count_violations(&view, &list), 0);
     }
 }
+
+/// Builds the certificate of `face_sort::generate::scan_blob(segments, rings)` within the
+/// default budgets and checks `views` random views (eyes from 1.6 radii, outside
+/// `min_eye_distance`): none falls back, none leaves an order violation.
+fn scan_is_certified_and_exact(segments: usize, rings: usize, views: usize) {
+    let mesh = face_sort::generate::scan_blob(segments, rings);
+    let geometry = face_sort::SorterKind::Presorted
+        .geometry_for(&mesh)
+        .unwrap();
+    let mut sorter = Presorted::try_new(&geometry, &PresortOptions::default()).unwrap();
+    eprintln!(
+        "scan_blob({segments}, {rings}): {} triangles, {} pieces, {} regions, {} orders, {:?} cores, {} uncertified regions, built in {:.0} ms",
+        mesh.face_count(),
+        geometry.pieces().len(),
+        sorter.regions(),
+        sorter.orders(),
+        sorter.cores(),
+        sorter.uncertified_regions(),
+        sorter.stats().build_ms
+    );
+    let mut list = DrawList::new();
+    for view in &random_views(&geometry, views, 23) {
+        sorter.sort(view, &mut list);
+        assert!(!sorter.last_frame_fell_back(), "{view:?}");
+        let found = oracle::find_violations(view, &list, 3);
+        assert!(found.is_empty(), "at {view:?}: {found:?}");
+    }
+    assert_eq!(sorter.fallback_frames(), 0);
+}
+
+#[test]
+fn a_scan_like_blob_is_certified_and_exact_at_random_views() {
+    scan_is_certified_and_exact(48, 24, 6);
+}
+
+/// The scan-like blob at a laser scan's size (69,168 triangles): about 15 s of build in a
+/// release build, far longer in a debug one, so it runs on request:
+/// `cargo test --release -p face-sort --test integration -- --ignored scan --nocapture`.
+#[test]
+#[ignore = "a release build's minute: cargo test --release -p face-sort --test integration -- --ignored scan"]
+fn a_seventy_thousand_face_scan_is_certified_and_exact_at_random_views() {
+    scan_is_certified_and_exact(264, 132, 12);
+}

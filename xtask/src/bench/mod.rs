@@ -333,5 +333,6 @@ fn load_scenes(smoke: bool) -> Result<Vec<Scene>> {
     out.push(scenes::interpenetrating()?);
     out.push(scenes::nested_boxes()?);
     out.push(scenes::random_quads(60, 7)?);
+    out.push(scenes::scan());
     Ok(out)
 }
