@@ -61,8 +61,8 @@ pub struct BenchArgs {
     /// the load time, and its note says so.
     #[arg(long, value_name = "DIR")]
     presort_cache: Option<PathBuf>,
-    /// Run only the `Presorted` scaling series (bumpy tori of 10³ to 10⁶ faces; with
-    /// --quick 10³ and 10⁴): build time, peak memory, certificate bytes, per-frame time and
+    /// Run only the `Presorted` scaling series (bumpy tori of 10³ to 10⁶ faces, with
+    /// --quick 10³ and 10⁴; then the 69,168-triangle scan-like blob): build time, peak memory, certificate bytes, per-frame time and
     /// items against the centroid sort. Writes OUT/presort-scaling.md (with --docs also
     /// docs/bench-presort.md).
     #[arg(long)]
@@ -126,8 +126,13 @@ pub fn run(args: &BenchArgs) -> Result<ExitCode> {
             .out
             .clone()
             .unwrap_or_else(|| crate::target_dir().join("bench"));
-        let table =
-            presort_scaling::run(sizes, &budget, &command, &out.join("presort-scaling.md"))?;
+        let table = presort_scaling::run(
+            sizes,
+            !args.smoke,
+            &budget,
+            &command,
+            &out.join("presort-scaling.md"),
+        )?;
         if args.docs {
             write(
                 &crate::workspace_root().join("docs/bench-presort.md"),
