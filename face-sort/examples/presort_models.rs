@@ -1,9 +1,9 @@
-//! What `Presorted` makes of every OBJ model of the repository: pieces, cuts, pairs that may
-//! ever need an order, whether one
+//! What `Presorted` makes of every OBJ model of the repository: pieces, cuts, pairs the build
+//! looked at, whether one
 //! order serves every view, certified orders, small cycles, uncertified regions, cached bytes
 //! and build time on every core; the certified orders a page turned by the pointer would carry
 //! (`Presorted::certified_orders`, orthographic and an eye at 2 bounding radii: regions,
-//! orders, cycles and the most planes of a cycle's tree, or why there are none); then, for spot and blub, the planner's `CostModel` figures
+//! orders, cycles and the most planes of a cycle's tree, or why there are none); then, for spot, blub and the scan-like blob, the planner's `CostModel` figures
 //! (build per piece and level on one thread, frame per piece, orthographic).
 //!
 //! `cargo run --release -p face-sort --example presort_models`
@@ -59,7 +59,7 @@ fn page(sorter: &Presorted, eye_distance: Option<f64>) -> String {
 
 fn main() {
     println!(
-        "model | pieces | cuts | pairs ever | one order | orders | small cycles | uncertified | cached MB | build ms | page ortho | page eye at 2 radii"
+        "model | pieces | cuts | pairs looked at | one order | orders | small cycles | uncertified | cached MB | build ms | page ortho | page eye at 2 radii"
     );
     for model in MODELS {
         let geometry = geometry(model);

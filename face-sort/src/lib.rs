@@ -85,7 +85,7 @@ pub use polygon_set::PolygonSet;
 pub use presorted::{
     CertifiedOrders, CertifiedOrdersError, CertifiedRegion, CoreOrders, FallbackReason,
     MAX_CORE_PLANES, OrderStep, PRESORT_FORMAT_VERSION, PresortError, PresortLoadError,
-    PresortOptions, Presorted,
+    PresortOptions, PresortProgress, Presorted,
 };
 pub use scene::{Instance, Layer, MAX_LODS, SceneError, SceneSorter, SceneStats};
 pub use small::SmallPieceFilter;

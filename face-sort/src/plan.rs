@@ -26,10 +26,10 @@
 //! - **Otherwise the cheaper exact sorter for the frames the caller will draw.** [`Newell`]
 //!   needs no tree (for a few frames, no build at all: `NEWELL_COVERAGE_FRAMES`) and draws
 //!   almost no extra items; [`Bsp`] pays a build once and then traverses cheaply;
-//!   [`Presorted`](crate::Presorted) pays a build near `n log n` (with a constant about 80
+//!   [`Presorted`](crate::Presorted) pays a build near `n log n` (with a constant about 70
 //!   times the BSP's) and then only looks up and culls
-//!   (about half the BSP's frame, no extra items), so it wins only for callers that announce
-//!   very many frames (on spot, about 60 frames per piece). The model counts the sorter's
+//!   (about a third of the BSP's frame, no extra items), so it wins only for callers that
+//!   announce very many frames (about `4,500 · log2 n`: on spot, about 57,000). The model counts the sorter's
 //!   time only, not the sink's per item.
 //!   [`PlanHint::frames`] says how many frames the build is spread over: one picture (an
 //!   export) is [`PlanHint::ONE_FRAME`]. The cost model and its measured
@@ -131,8 +131,8 @@ impl CostModel {
         bsp_build_per_piece_level: 262.0,
         bsp_frame_per_piece: 5.8,
         newell_frame_per_piece: 88.0,
-        presorted_build_per_piece_level: 20_000.0,
-        presorted_frame_per_piece: 2.9,
+        presorted_build_per_piece_level: 18_000.0,
+        presorted_frame_per_piece: 1.9,
     };
 
     /// Predicted nanoseconds of a `Presorted` build of `n` pieces.

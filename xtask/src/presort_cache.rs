@@ -54,7 +54,20 @@ pub fn load_or_build(
             Err(error) => refused = Some(error.to_string()),
         }
     }
-    let sorter = match Presorted::try_new(geometry, &PresortOptions::default()) {
+    // A bar on builds that take over a second (on a terminal).
+    let bar = std::sync::OnceLock::new();
+    let progress = |p: face_sort::PresortProgress| {
+        if start.elapsed().as_secs_f64() > 1.0 {
+            let bar = bar.get_or_init(|| crate::progress::bar(p.total as u64, "presort"));
+            bar.set_length(p.total as u64);
+            bar.set_position(p.done as u64);
+        }
+    };
+    let built = Presorted::try_new_with_progress(geometry, &PresortOptions::default(), &progress);
+    if let Some(bar) = bar.get() {
+        bar.finish_and_clear();
+    }
+    let sorter = match built {
         Ok(sorter) => sorter,
         Err(error) => return Ok(Err(error)),
     };

@@ -1,12 +1,13 @@
 //! Building the region tree: certify a region's order, or split the region.
 
 use std::sync::Arc;
+use std::sync::atomic::{AtomicUsize, Ordering};
 use web_time::Instant;
 
 use super::occlusion::{OcclusionTest, PieceBounds, may_ever_hide, may_face};
 use super::region::Region;
 use super::region_order::{MIN_LEAN, RegionOrder, Setting, lean, region_order};
-use super::{CORE, Leaf, Node, NodeKind, PresortError, PresortOptions};
+use super::{CORE, Leaf, Node, NodeKind, PresortError, PresortOptions, PresortProgress};
 use crate::tolerance::PLANE_SIDE;
 use crate::{BspOptions, BspTree, Geometry, PolygonSet};
 
@@ -65,6 +66,8 @@ struct Builder<'a> {
     tolerance: f64,
     /// Pairs the regions' orders looked at ([`RegionOrder::candidates`]).
     candidates: usize,
+    /// Where ordered regions are counted and told.
+    report: Option<&'a Report<'a>>,
     /// This builder's regions: its octant's root first.
     nodes: Vec<Node>,
     leaves: Vec<Leaf>,
@@ -122,7 +125,11 @@ pub(super) fn pairs_ever(
     Ok((start, all))
 }
 
-pub(super) fn build(geometry: &Geometry, options: &PresortOptions) -> Result<Built, PresortError> {
+pub(super) fn build(
+    geometry: &Geometry,
+    options: &PresortOptions,
+    progress: &(dyn Fn(PresortProgress) + Sync),
+) -> Result<Built, PresortError> {
     let radius = geometry.bounds().diagonal() * 0.5;
     let near = options.min_eye_distance * radius;
     let tolerance = PLANE_SIDE * geometry.bounds().diagonal();
@@ -171,6 +178,14 @@ pub(super) fn build(geometry: &Geometry, options: &PresortOptions) -> Result<Bui
         max_pairs: options.max_pairs,
     };
     let started = Instant::now();
+    let report = Report {
+        done: AtomicUsize::new(0),
+        total: octants
+            .iter()
+            .map(|o| top_regions(o, radius, options.max_depth, 0))
+            .sum(),
+        progress,
+    };
     // Each octant is certified on its own, the octants shared out among the threads.
     let next = std::sync::atomic::AtomicUsize::new(0);
     let built: Vec<Vec<(usize, Result<Builder<'_>, PresortError>)>> =
@@ -182,6 +197,7 @@ pub(super) fn build(geometry: &Geometry, options: &PresortOptions) -> Result<Bui
                     return done;
                 }
                 let mut builder = Builder::new(geometry, &setting, options, started);
+                builder.report = Some(&report);
                 let result = builder.octant(octants[k]).map(|kind| {
                     builder.nodes[0].kind = kind;
                     builder
@@ -197,6 +213,10 @@ pub(super) fn build(geometry: &Geometry, options: &PresortOptions) -> Result<Bui
         .into_iter()
         .map(|b| b.expect("every octant was built"))
         .collect();
+    (report.progress)(PresortProgress {
+        done: report.total,
+        total: report.total,
+    });
     let candidate_pairs = parts.iter().map(|b| b.candidates).sum();
     let (nodes, leaves, mut cores, pair_tests) = merge_octants(parts);
 
@@ -212,6 +232,29 @@ pub(super) fn build(geometry: &Geometry, options: &PresortOptions) -> Result<Bui
         cuts,
         threads,
     })
+}
+
+/// The build's count of ordered regions, and whom to tell.
+struct Report<'a> {
+    done: AtomicUsize,
+    total: usize,
+    progress: &'a (dyn Fn(PresortProgress) + Sync),
+}
+
+/// How many regions below `region` (at `depth`) [`Builder::top`] orders from all their
+/// pieces: itself, or its quarters' when it does not see the geometry from one side.
+fn top_regions(region: &Region, radius: f64, max_depth: usize, depth: usize) -> usize {
+    if lean(&region.grown(), radius) >= MIN_LEAN {
+        1
+    } else if depth < max_depth {
+        region
+            .split_directions()
+            .iter()
+            .map(|q| top_regions(q, radius, max_depth, depth + 1))
+            .sum()
+    } else {
+        0
+    }
 }
 
 /// Models with at most this many pieces are checked for one order that serves every view
@@ -346,6 +389,7 @@ impl<'a> Builder<'a> {
             options,
             tolerance: setting.tolerance,
             candidates: 0,
+            report: None,
             nodes: Vec::new(),
             leaves: Vec::new(),
             cores: Vec::new(),
@@ -395,6 +439,13 @@ impl<'a> Builder<'a> {
         } = region_order(self.setting, &mut test, &facing, &grown, &check_time)?;
         self.pair_tests += tests;
         self.candidates += candidates;
+        if let Some(report) = self.report {
+            let done = report.done.fetch_add(1, Ordering::Relaxed) + 1;
+            (report.progress)(PresortProgress {
+                done: done.min(report.total),
+                total: report.total,
+            });
+        }
         self.settle(region, partial, &open_edges, usize::MAX, depth)
     }
 

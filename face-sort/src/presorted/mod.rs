@@ -129,6 +129,16 @@ impl Default for PresortOptions {
     }
 }
 
+/// How far a [`Presorted`] build has come: of the regions it orders from all their pieces
+/// (quarters of octants, or whole octants; most of the work), how many are done.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PresortProgress {
+    /// Regions ordered so far.
+    pub done: usize,
+    /// Regions to order in all.
+    pub total: usize,
+}
+
 /// Why a [`Presorted`] build stopped.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 #[non_exhaustive]
@@ -284,11 +294,24 @@ impl Presorted {
     /// # Errors
     /// A budget of `options` exceeded, or a cycle's BSP tree failing to build.
     pub fn try_new(geometry: &Geometry, options: &PresortOptions) -> Result<Self, PresortError> {
+        Self::try_new_with_progress(geometry, options, &|_| {})
+    }
+
+    /// [`try_new`](Self::try_new), telling `progress` (from the build's threads) each time a
+    /// region has been ordered from all its pieces; the last call has `done == total`.
+    ///
+    /// # Errors
+    /// As [`try_new`](Self::try_new).
+    pub fn try_new_with_progress(
+        geometry: &Geometry,
+        options: &PresortOptions,
+        progress: &(dyn Fn(PresortProgress) + Sync),
+    ) -> Result<Self, PresortError> {
         if !(options.min_eye_distance > 1.0 && options.min_eye_distance.is_finite()) {
             return Err(PresortError::EyeDistance(options.min_eye_distance));
         }
         let start = Instant::now();
-        let built = build::build(geometry, options)?;
+        let built = build::build(geometry, options, progress)?;
         Ok(Self::assemble(geometry, built, start))
     }
 
@@ -365,7 +388,10 @@ impl Presorted {
         (self.cores.len(), self.cores.iter().map(|c| c.pieces).sum())
     }
 
-    /// Pairs that can ever need an order, and pair-region tests the build made.
+    /// Pairs of pieces the build looked at (those its regions' grids put forward, those
+    /// repaired ranks turned that may need a test, and those inside cycles; for one order
+    /// that serves every view, the pairs that can ever need an order), and the pair-region
+    /// tests it made.
     #[must_use]
     pub fn pairs(&self) -> (usize, usize) {
         (self.candidate_pairs, self.pair_tests)

@@ -391,3 +391,27 @@ fn a_scan_like_blob_is_certified_and_exact_at_random_views() {
 fn a_seventy_thousand_face_scan_is_certified_and_exact_at_random_views() {
     scan_is_certified_and_exact(264, 132, 12);
 }
+
+/// A build tells its progress: every region it orders from all its pieces once, counted up to
+/// the total it announced, and a last call with all done.
+#[test]
+fn a_build_tells_its_progress() {
+    let geometry =
+        Geometry::with_exact_corners(&read_obj(&asset("keenan-crane/spot/spot_control_mesh.obj")))
+            .unwrap();
+    let calls = std::sync::Mutex::new(Vec::new());
+    let record = |p: face_sort::PresortProgress| calls.lock().unwrap().push(p);
+    let sorter =
+        Presorted::try_new_with_progress(&geometry, &PresortOptions::default(), &record).unwrap();
+    let calls = calls.into_inner().unwrap();
+    let total = calls[0].total;
+    // The octants' quarters, each ordered once, then the last call.
+    assert_eq!(total, 32);
+    assert_eq!(calls.len(), total + 1);
+    assert!(calls.iter().all(|p| p.total == total && p.done <= total));
+    let mut done: Vec<usize> = calls[..total].iter().map(|p| p.done).collect();
+    done.sort_unstable();
+    assert_eq!(done, (1..=total).collect::<Vec<_>>());
+    assert_eq!(calls[total].done, total);
+    assert!(sorter.orders() > 0);
+}
