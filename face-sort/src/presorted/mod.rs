@@ -59,6 +59,7 @@ mod bytes;
 mod certified;
 mod cones;
 mod occlusion;
+mod partial;
 mod region;
 mod region_order;
 

@@ -47,8 +47,8 @@ use std::hash::{BuildHasherDefault, Hasher};
 use glam::{DVec2, DVec3, UVec2};
 
 use super::PresortError;
-use super::build::{Graph, Partial};
 use super::occlusion::{OcclusionTest, PieceBounds, may_ever_hide};
+use super::partial::{Graph, Partial};
 use super::region::{EyeHull, Region};
 use crate::PolygonSet;
 

@@ -383,7 +383,7 @@ fn a_scan_like_blob_is_certified_and_exact_at_random_views() {
     scan_is_certified_and_exact(48, 24, 6);
 }
 
-/// The scan-like blob at a laser scan's size (69,168 triangles): about 15 s of build in a
+/// The scan-like blob at a laser scan's size (69,168 triangles): seconds of build in a
 /// release build, far longer in a debug one, so it runs on request:
 /// `cargo test --release -p face-sort --test integration -- --ignored scan --nocapture`.
 #[test]
